@@ -1,0 +1,3 @@
+"""impact: time-stepping simulator of adhesive impacts (MDR contact law on JAX and diffrax)."""
+
+__version__ = "0.1.0"
