@@ -1,3 +1,12 @@
-"""impact: time-stepping simulator of adhesive impacts (MDR contact law on JAX and diffrax)."""
+"""impact: time-stepping simulator of adhesive impacts (MDR contact law on JAX and diffrax).
+
+Enable float64 before use (the CLI does): `jax.config.update("jax_enable_x64", True)`.
+"""
+
+from . import profiles, theory
+from .scene import Scene, SceneError, load_scene
+from .simulate import Result, simulate
 
 __version__ = "0.1.0"
+
+__all__ = ["Result", "Scene", "SceneError", "load_scene", "profiles", "simulate", "theory", "__version__"]

@@ -1,0 +1,180 @@
+"""Monotone branches of an edge function h(x) = g(x) − λ·√x, and the cascades between them.
+
+The contact radius only ever sits where h is increasing: a spring at x stays attached while
+d > h_detach(x) and the next one attaches once d ≥ h_attach(x). A `Branch` splits [0, x_top]
+at the turning points of h into segments. Roots of h(x) = d on a segment come from a
+bracketed Newton iteration; where they are needed at every step (loading integrated in time)
+the branch also keeps, for each increasing segment, a table of x against
+u = √((d − h(p))/(h(q) − h(p))), in which x is smooth even at a critical point (where
+a ∝ √(d − d_c)): a radius is then one look-up and three Newton steps, O(1).
+
+Cascades: when the edge spring at a turning point lets go (detach) or the next one catches
+(attach), the contact radius jumps to the next point where h crosses the level d;
+`cascade_in` and `cascade_out` find it.
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .law import ContactLaw
+
+_GRID_DECADES = 12.0
+_BISECTION_STEPS = 64
+_SAFEGUARDED_STEPS = 80
+_NEWTON_STEPS = 3
+
+
+class Branch(eqx.Module):
+    """Segments of one edge function on [0, x_top] with their inversion tables."""
+
+    coefficient: jax.Array  # λ of this edge function
+    nodes: jax.Array  # [S+1] segment ends: 0, turning points, x_top (padded with x_top)
+    levels: jax.Array  # [S+1] h at the nodes
+    increasing: jax.Array  # [S] whether h increases on the segment
+    table: jax.Array | None  # [S, M] x at u_i = i/(M−1) on increasing segments, if kept
+    overflow: jax.Array  # more turning points than the branch holds
+
+    def level(self, law: ContactLaw, x):
+        return law.edge(x, self.coefficient)
+
+    def radius(self, law: ContactLaw, indentation, segment):
+        """Root of h(x) = d on an increasing segment (clamped to the segment)."""
+        if self.table is None:
+            return self._solve(law, indentation, self.nodes[segment], self.nodes[segment + 1])
+        low_level, high_level = self.levels[segment], self.levels[segment + 1]
+        span = jnp.where(high_level > low_level, high_level - low_level, 1.0)
+        u = jnp.sqrt(jnp.clip((indentation - low_level) / span, 0.0, 1.0))
+        size = self.table.shape[1]
+        position = u * (size - 1)
+        index = jnp.clip(jnp.floor(position).astype(int), 0, size - 2)
+        lower = self.table[segment, index]
+        upper = self.table[segment, index + 1]
+        start = lower + (position - index) * (upper - lower)
+
+        def bracketed(_, x):
+            return jnp.clip(self._newton(law, x, indentation), lower, upper)
+
+        refined = jax.lax.stop_gradient(jax.lax.fori_loop(0, _NEWTON_STEPS, bracketed, start))
+        return jnp.clip(self._newton(law, refined, indentation), lower, upper)
+
+    def _newton(self, law: ContactLaw, x, indentation):
+        slope = law.edge_slope(x, self.coefficient)
+        usable = slope > 0.0
+        step = (self.level(law, x) - indentation) / jnp.where(usable, slope, 1.0)
+        return x - jnp.where(usable, step, 0.0)
+
+    def _solve(self, law: ContactLaw, indentation, lower, upper):
+        """Newton's method safeguarded by bisection on [lower, upper], fixed step count."""
+
+        def step(_, state):
+            lo, hi, x = state
+            below = self.level(law, x) < indentation
+            lo, hi = jnp.where(below, x, lo), jnp.where(below, hi, x)
+            guess = self._newton(law, x, indentation)
+            inside = (guess > lo) & (guess < hi)
+            return lo, hi, jnp.where(inside, guess, 0.5 * (lo + hi))
+
+        start = (lower, upper, 0.5 * (lower + upper))
+        _, _, x = jax.lax.stop_gradient(jax.lax.fori_loop(0, _SAFEGUARDED_STEPS, step, start))
+        return jnp.clip(self._newton(law, x, indentation), lower, upper)
+
+    def cascade_out(self, law: ContactLaw, start, indentation):
+        """First x ≥ start with h(x) > d: where an outward (attach) cascade stops.
+
+        Returns (radius, segment, blocked); blocked means no such x below x_top (the
+        contact reaches the body's wall, or the table's top).
+        """
+        ends = self.nodes[1:]
+        candidate = self.increasing & (ends > start) & (self.levels[1:] > indentation)
+        segment = jnp.argmax(candidate)
+        blocked = ~jnp.any(candidate)
+        radius = jnp.maximum(self.radius(law, indentation, segment), start)
+        return jnp.where(blocked, self.nodes[-1], radius), segment, blocked
+
+    def cascade_in(self, law: ContactLaw, start, indentation):
+        """Largest x ≤ start with h(x) < d: where an inward (detach) cascade stops.
+
+        Returns (radius, segment, separated); separated means no spring holds: a = 0.
+        """
+        begins = self.nodes[:-1]
+        candidate = self.increasing & (begins < start) & (self.levels[:-1] < indentation)
+        count = candidate.shape[0]
+        segment = count - 1 - jnp.argmax(candidate[::-1])
+        separated = ~jnp.any(candidate)
+        radius = jnp.minimum(self.radius(law, indentation, segment), start)
+        return jnp.where(separated, 0.0, radius), segment, separated
+
+
+def build_branch(
+    law: ContactLaw, coefficient, top, max_turns: int, grid_size: int, table_size: int
+) -> Branch:
+    """Find the turning points of h on (0, top]; tabulate its increasing segments if
+    `table_size` > 0. The search grid is a third logarithmic, two thirds uniform."""
+
+    def slope(x):
+        return law.edge_slope(x, coefficient)
+
+    logarithmic = grid_size // 3
+    grid = jnp.sort(
+        jnp.concatenate(
+            [
+                top * jnp.logspace(-_GRID_DECADES, 0.0, logarithmic),
+                top * jnp.linspace(0.0, 1.0, grid_size - logarithmic + 1)[1:],
+            ]
+        )
+    )
+    rising = slope(grid) > 0.0
+    change = rising[1:] != rising[:-1]
+    count = jnp.sum(change)
+    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
+    valid = jnp.arange(max_turns) < count
+
+    def refine(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        same = (slope(mid) > 0.0) == (slope(lo) > 0.0)
+        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
+
+    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
+    turns = jnp.where(valid, 0.5 * (lo + hi), top)
+    nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
+    levels = law.edge(nodes, coefficient)
+    middles = 0.5 * (nodes[:-1] + nodes[1:])
+    increasing = (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1])
+    return Branch(
+        coefficient=jnp.asarray(coefficient, dtype=nodes.dtype),
+        nodes=nodes,
+        levels=levels,
+        increasing=increasing,
+        table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
+        overflow=count > max_turns,
+    )
+
+
+def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_size):
+    """x at u_i = i/(M−1) on each increasing segment, by bisection."""
+    u = jnp.linspace(0.0, 1.0, table_size)
+    targets = levels[:-1, None] + u[None, :] ** 2 * (levels[1:] - levels[:-1])[:, None]
+
+    def invert(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        below = law.edge(mid, coefficient) < targets
+        return jnp.where(below, mid, lo), jnp.where(below, hi, mid)
+
+    lower = jnp.broadcast_to(nodes[:-1, None], targets.shape)
+    upper = jnp.broadcast_to(nodes[1:, None], targets.shape)
+    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, invert, (lower, upper))
+    table = jnp.where(increasing[:, None], 0.5 * (lo + hi), lower)
+    return table.at[:, 0].set(nodes[:-1]).at[:, -1].set(jnp.where(increasing, nodes[1:], nodes[:-1]))
+
+
+def top_radius(law: ContactLaw, indentation_cap):
+    """x_top: the body's extent, or where ĝ first exceeds `indentation_cap` (doubling)."""
+
+    def grow(_, x):
+        return jnp.where(law.g(x) < indentation_cap, 2.0 * x, x)
+
+    unbounded = jax.lax.fori_loop(0, 256, grow, jnp.asarray(1.0))
+    return jnp.minimum(law.extent(), unbounded)

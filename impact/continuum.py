@@ -1,0 +1,266 @@
+"""The continuum contact law (N → ∞ springs) integrated with diffrax, phase by phase.
+
+Every change of the contact law is a located event that ends a `diffeqsolve`; the rules in
+`transitions` pick the next phase and a `while_loop` chains the phases. Free flight between
+contacts is analytic.
+
+While the contact radius rides a branch d = h(a), a(d) has a square-root singularity wherever
+h' = 0 (the critical points where contacts snap or separate), which costs an adaptive method
+its order. So those phases take the radius itself as state, with a pseudo-time s:
+
+    a' = v·q,   v' = (g − F(a, h(a)))·h'(a)·q,   t' = h'(a)·q,   q = 1/√(1 + h'(a)²),
+
+smooth through turnarounds (v = 0) and critical points (h' = 0) alike, and free of any root
+solve: d = h(a) is explicit. Only a hold (a fixed, F linear in d) and loading that starts from
+a = 0 (no jump-in; h' may be infinite there) are integrated in time with d as state.
+"""
+
+import diffrax as dfx
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import optimistix as optx
+
+from . import transitions
+from .outcome import Carry, Outcome, active_branch, finish, initial_carry, log_event, phase_summary, store_samples
+from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .setup import Numerics, Problem
+
+SOLVERS = {
+    "tsit5": dfx.Tsit5,
+    "dopri5": dfx.Dopri5,
+    "dopri8": dfx.Dopri8,
+    "bosh3": dfx.Bosh3,
+    "heun": dfx.Heun,
+    "kvaerno3": dfx.Kvaerno3,
+    "kvaerno5": dfx.Kvaerno5,
+}
+
+# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
+_PHASE_HORIZON = 1.0e4
+# Event times are O(1) in pseudo-time; a tighter absolute bound only meets round-off.
+_ROOT_ATOL = 1e-12
+
+
+class PhaseArgs(eqx.Module):
+    law: object
+    branch: object
+    riding: jax.Array  # state is (a, v, t) in pseudo-time; else (d, v, t) in time
+    mode: jax.Array
+    segment: jax.Array
+    radius: jax.Array  # held radius (HOLD)
+    gravity: jax.Array
+    velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
+    level_sign: jax.Array  # branch end: sign·(d − level) crosses zero upwards
+    level: jax.Array
+
+
+def timed_radius(d, args: PhaseArgs):
+    """Contact radius of a time-parametrized phase: held, or the branch root at d."""
+    riding = args.branch.radius(args.law, d, args.segment)
+    return jnp.where(args.mode == HOLD, args.radius, riding)
+
+
+def _make_vector_field(timed_loading: bool):
+    def vector_field(s, y, args: PhaseArgs):
+        x, v = y[0], y[1]
+        law, branch = args.law, args.branch
+        slope = law.edge_slope(x, branch.coefficient)
+        pace = 1.0 / jnp.sqrt(1.0 + slope**2)
+        force = law.force(x, branch.level(law, x))
+        riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
+        held = law.force(args.radius, x)
+        if timed_loading:
+            held = law.force(timed_radius(x, args), x)
+        timed = jnp.stack([v, args.gravity - held, jnp.ones_like(v)])
+        return jnp.where(args.riding, riding, timed)
+
+    return vector_field
+
+
+def _turned(t, y, args: PhaseArgs, **kwargs):
+    return args.velocity_sign * y[1]
+
+
+def _left_branch(t, y, args: PhaseArgs, **kwargs):
+    return args.level_sign * (y[0] - args.level)
+
+
+def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
+    """Free flight (analytic) to the next touch, or out of reach for good."""
+    duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
+    touch_time = c.t + duration
+    over_bounces = c.contacts >= numerics.max_bounces
+    over_time = touch_time > problem.time_limit
+    lands = reaches & ~over_bounces & ~over_time
+
+    if numerics.samples_per_phase:
+        tau = jnp.linspace(0.0, jnp.where(lands, duration, 0.0), numerics.samples_per_phase)
+        rows = jnp.stack(
+            [
+                c.t + tau,
+                c.d + c.v * tau + 0.5 * problem.gravity * tau**2,
+                c.v + problem.gravity * tau,
+                jnp.zeros_like(tau),
+                jnp.zeros_like(tau),
+            ],
+            axis=1,
+        )
+        c = store_samples(c, numerics, rows)
+
+    nxt = transitions.touch(problem)
+    first = c.contacts == 0
+    status = jnp.where(
+        ~reaches,
+        RESULT_CODE["separated"],
+        jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
+    )
+    ended_by_limit = reaches & ~lands
+    c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
+    c = log_event(c, c.t, EVENT_CODE["limit"], ended_by_limit)
+    c = log_event(c, touch_time, EVENT_CODE["limit"], lands & nxt.overflow)
+    start_force = problem.law.force(nxt.radius, 0.0)
+    return eqx.tree_at(
+        lambda s: (
+            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.contacts, s.status,
+            s.touch_velocity, s.touch_time, s.contact_work, s.max_force, s.min_force,
+        ),
+        c,
+        (
+            jnp.where(lands, touch_time, c.t),
+            jnp.where(lands, 0.0, c.d),
+            jnp.where(lands, speed, c.v),
+            jnp.where(lands, jnp.where(nxt.overflow, DONE, nxt.mode), DONE),
+            nxt.segment,
+            nxt.radius,
+            c.phases + 1,
+            c.contacts + jnp.asarray(lands, int),
+            jnp.where(lands, jnp.where(nxt.overflow, RESULT_CODE["radius_overflow"], c.status), status),
+            jnp.where(lands & first, speed, c.touch_velocity),
+            jnp.where(lands & first, touch_time, c.touch_time),
+            jnp.zeros(()),
+            jnp.where(lands, jnp.maximum(c.max_force, start_force), c.max_force),
+            jnp.where(lands, jnp.minimum(c.min_force, start_force), c.min_force),
+        ),
+    )
+
+
+def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
+    """One contact phase with diffrax, ended by its located event."""
+    law = problem.law
+    in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
+    branch = active_branch(c.mode, problem.attach, problem.detach)
+    riding = (c.mode == RECEDE) | ((c.mode == ADVANCE) & (c.radius > 0.0))
+    # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
+    # detach edge of the held radius.
+    segment_end = jnp.where(c.mode == ADVANCE, branch.nodes[c.segment + 1], branch.nodes[c.segment])
+    level = jnp.where(
+        riding,
+        segment_end,
+        jnp.where(c.mode == HOLD, problem.detach.level(law, c.radius), branch.level(law, segment_end)),
+    )
+    args = PhaseArgs(
+        law=law,
+        branch=branch,
+        riding=riding,
+        mode=c.mode,
+        segment=c.segment,
+        radius=c.radius,
+        gravity=problem.gravity,
+        velocity_sign=jnp.where(c.mode == ADVANCE, -1.0, 1.0),
+        level_sign=jnp.where(c.mode == ADVANCE, 1.0, -1.0),
+        level=level,
+    )
+    horizon = jnp.where(in_contact, _PHASE_HORIZON, 1e-9)
+    save_dense = numerics.samples_per_phase > 0
+    solution = dfx.diffeqsolve(
+        dfx.ODETerm(_make_vector_field(numerics.timed_loading)),
+        SOLVERS[numerics.method](),
+        t0=0.0,
+        t1=horizon,
+        dt0=None,
+        y0=jnp.stack([jnp.where(riding, c.radius, c.d), c.v, c.t]),
+        args=args,
+        saveat=dfx.SaveAt(t1=True, dense=save_dense),
+        stepsize_controller=dfx.PIDController(rtol=numerics.rtol, atol=numerics.atol),
+        event=dfx.Event(
+            [_turned, _left_branch],
+            root_finder=optx.Newton(rtol=numerics.rtol, atol=max(numerics.atol, _ROOT_ATOL)),
+            direction=True,
+        ),
+        max_steps=numerics.max_steps,
+        throw=False,
+    )
+    x_end, v_end, t_end = solution.ys[-1, 0], solution.ys[-1, 1], solution.ys[-1, 2]
+    d_end = jnp.where(riding, branch.level(law, x_end), x_end)
+    a_end = jnp.where(
+        riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment))
+    )
+    turned = solution.event_mask[0]
+    event_found = solution.result == dfx.RESULTS.event_occurred
+
+    if save_dense:
+        pseudo = jnp.linspace(0.0, solution.ts[-1], numerics.samples_per_phase)
+        states = jax.vmap(solution.evaluate)(pseudo)
+        x, v, t = states[:, 0], states[:, 1], states[:, 2]
+        radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
+        d = jnp.where(riding, branch.level(law, x), x)
+        rows = jnp.stack([t, d, v, law.force(radii, d), radii], axis=1)
+        c = jax.tree.map(lambda new, old: jnp.where(in_contact, new, old), store_samples(c, numerics, rows), c)
+
+    work, low, high, deepest = phase_summary(
+        law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end)
+    )
+    nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
+    failed = in_contact & ~event_found
+    contact_work = c.contact_work + work
+    first = c.contacts == 1
+    separated = in_contact & event_found & nxt.separated
+    captured = in_contact & event_found & nxt.captured
+    mode = jnp.where(failed | nxt.overflow, DONE, nxt.mode)
+    status = jnp.where(
+        failed,
+        RESULT_CODE["solver_failure"],
+        jnp.where(nxt.overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+    )
+    updated = eqx.tree_at(
+        lambda s: (
+            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.status, s.stuck,
+            s.separation_velocity, s.separation_time, s.max_indentation, s.max_force, s.min_force,
+            s.contact_work, s.first_contact_work, s.steps, s.accepted, s.rejected,
+        ),
+        c,
+        (
+            t_end, d_end, v_end, mode, nxt.segment, nxt.radius, c.phases + 1, status, captured,
+            jnp.where(first & separated, jnp.abs(v_end), c.separation_velocity),
+            jnp.where(first & separated, t_end, c.separation_time),
+            jnp.maximum(c.max_indentation, deepest),
+            jnp.maximum(c.max_force, high),
+            jnp.minimum(c.min_force, low),
+            contact_work,
+            jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+            c.steps + solution.stats["num_steps"],
+            c.accepted + solution.stats["num_accepted_steps"],
+            c.rejected + solution.stats["num_rejected_steps"],
+        ),
+    )
+    updated = log_event(updated, t_end, nxt.event, event_found)
+    return jax.tree.map(lambda new, old: jnp.where(in_contact, new, old), updated, c)
+
+
+def integrate(problem: Problem, numerics: Numerics) -> Outcome:
+    """Run one impact (possibly several bounces) with the continuum law."""
+
+    def running(c: Carry):
+        return (c.mode != DONE) & (c.phases < numerics.max_phases)
+
+    def advance(c: Carry):
+        return jax.lax.cond(
+            c.mode == FLIGHT,
+            lambda s: flight(problem, numerics, s),
+            lambda s: contact(problem, numerics, s),
+            c,
+        )
+
+    c = jax.lax.while_loop(running, advance, initial_carry(problem, numerics))
+    return finish(c)

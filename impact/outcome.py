@@ -1,0 +1,235 @@
+"""What an integrator returns, in scaled units, and the bookkeeping both integrators share."""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .branches import Branch
+from .law import ContactLaw
+from .phases import ADVANCE, DONE, FLIGHT, RESULT_CODE
+from .setup import Numerics, Problem
+
+EVENTS_PER_PHASE = 2
+
+_QUADRATURE_NODES = 48
+_SCAN_POINTS = 33
+_GOLDEN_STEPS = 60
+
+
+class Outcome(eqx.Module):
+    """Scaled results of one impact (mass 1, units of `Scales`)."""
+
+    status: jax.Array  # result code (phases.RESULT_CODES)
+    stuck: jax.Array
+    touch_velocity: jax.Array  # speed at the first touch
+    separation_velocity: jax.Array  # speed when the first contact let go (0 if captured)
+    touch_time: jax.Array
+    separation_time: jax.Array  # inf if the first contact never let go
+    contacts: jax.Array  # number of contacts (bounces)
+    max_indentation: jax.Array
+    max_force: jax.Array
+    min_force: jax.Array
+    first_contact_work: jax.Array  # ∮F dd over the first contact
+    end_time: jax.Array
+    end_indentation: jax.Array
+    end_velocity: jax.Array
+    steps: jax.Array  # solver steps (or spring events) in all
+    accepted_steps: jax.Array
+    rejected_steps: jax.Array
+    event_times: jax.Array  # [E], nan where unused
+    event_kinds: jax.Array  # [E], −1 where unused
+    trajectory: jax.Array  # [T, 5]: t, d, v, F, a (nan where unused); T = 0 without samples
+
+
+def gauss_legendre(nodes: int = _QUADRATURE_NODES):
+    """Nodes and weights on [0, 1]."""
+    import numpy as np
+
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    return jnp.asarray(0.5 * (x + 1.0)), jnp.asarray(0.5 * w)
+
+
+def branch_force(law: ContactLaw, branch: Branch, radius):
+    """Force while the contact radius rides the branch: d = h(a)."""
+    return law.force(radius, branch.level(law, radius))
+
+
+def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
+    """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da."""
+    nodes, weights = gauss_legendre()
+    span = end_radius - start_radius
+    radii = start_radius + span * nodes
+    integrand = branch_force(law, branch, radii) * law.edge_slope(radii, branch.coefficient)
+    return span * jnp.sum(weights * integrand)
+
+
+def hold_work(law: ContactLaw, radius, start, end):
+    """∫F dd at a fixed contact radius: F = 2(a·d − G(a)) is linear in d."""
+    return radius * (end**2 - start**2) - 2.0 * law.G(radius) * (end - start)
+
+
+def extremes(function, lower, upper):
+    """(min, max) of a scalar function on [lower, upper]: a scan, then golden sections."""
+    grid = jnp.linspace(0.0, 1.0, _SCAN_POINTS)
+    points = lower + (upper - lower) * grid
+    values = function(points)
+    step = (upper - lower) / (_SCAN_POINTS - 1)
+
+    def refine(sign):
+        best = jnp.argmin(sign * values)
+        lo = jnp.maximum(points[best] - step, jnp.minimum(lower, upper))
+        hi = jnp.minimum(points[best] + step, jnp.maximum(lower, upper))
+        ratio = 0.5 * (jnp.sqrt(5.0) - 1.0)
+
+        def golden(_, bracket):
+            a, b = bracket
+            c = b - ratio * (b - a)
+            e = a + ratio * (b - a)
+            keep_left = sign * function(c) < sign * function(e)
+            return jnp.where(keep_left, a, c), jnp.where(keep_left, e, b)
+
+        a, b = jax.lax.fori_loop(0, _GOLDEN_STEPS, golden, (lo, hi))
+        return sign * jnp.minimum(sign * function(0.5 * (a + b)), sign * values[best])
+
+    return refine(1.0), refine(-1.0)
+
+
+def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start, end):
+    """Work ∫F dd, the force range and the deepest indentation of one contact phase.
+
+    `riding`: the radius follows the branch (else it is held fixed at radii[0]);
+    `radii` are the contact radii and `start`, `end` the (d, v) at the two ends of the phase.
+    """
+    a_start, a_end = radii
+    d_start, v_start = start
+    d_end, _ = end
+
+    work_riding = branch_work(law, branch, a_start, a_end)
+    low_riding, high_riding = extremes(lambda a: branch_force(law, branch, a), a_start, a_end)
+
+    # Hold: a harmonic arc about d_eq; if it starts inward it turns at d_eq + amplitude.
+    stiffness = 2.0 * jnp.maximum(a_start, 1e-300)
+    balance = (2.0 * law.G(a_start) + gravity) / stiffness
+    turn = balance + jnp.sqrt((d_start - balance) ** 2 + v_start**2 / stiffness)
+    deepest_hold = jnp.where(v_start > 0.0, jnp.maximum(turn, d_start), jnp.maximum(d_start, d_end))
+    forces_hold = law.force(a_start, jnp.stack([jnp.minimum(d_start, d_end), deepest_hold]))
+    work_hold = hold_work(law, a_start, d_start, d_end)
+
+    work = jnp.where(riding, work_riding, work_hold)
+    low = jnp.where(riding, low_riding, forces_hold[0])
+    high = jnp.where(riding, high_riding, forces_hold[1])
+    deepest = jnp.where(riding, jnp.maximum(d_start, d_end), deepest_hold)
+    return work, low, high, deepest
+
+
+def active_branch(mode, attach: Branch, detach: Branch) -> Branch:
+    """Loading rides the attach branch; hold and unloading answer to the detach branch."""
+    return jax.tree.map(lambda a, d: jnp.where(mode == ADVANCE, a, d), attach, detach)
+
+
+class Carry(eqx.Module):
+    t: jax.Array
+    d: jax.Array
+    v: jax.Array
+    mode: jax.Array
+    segment: jax.Array
+    radius: jax.Array  # contact radius at the start of the current phase
+    phases: jax.Array
+    contacts: jax.Array
+    status: jax.Array
+    stuck: jax.Array
+    touch_velocity: jax.Array
+    separation_velocity: jax.Array
+    touch_time: jax.Array
+    separation_time: jax.Array
+    max_indentation: jax.Array
+    max_force: jax.Array
+    min_force: jax.Array
+    contact_work: jax.Array
+    first_contact_work: jax.Array
+    steps: jax.Array
+    accepted: jax.Array
+    rejected: jax.Array
+    event_times: jax.Array
+    event_kinds: jax.Array
+    event_count: jax.Array
+    trajectory: jax.Array
+
+
+def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
+    events = EVENTS_PER_PHASE * numerics.max_phases
+    rows = numerics.samples_per_phase * numerics.max_phases
+    zero, inf = jnp.zeros(()), jnp.asarray(jnp.inf)
+    return Carry(
+        t=zero,
+        d=jnp.asarray(problem.start_indentation, jnp.float64),
+        v=jnp.asarray(problem.start_velocity, jnp.float64),
+        mode=jnp.asarray(FLIGHT, int),
+        segment=jnp.zeros((), int),
+        radius=zero,
+        phases=jnp.zeros((), int),
+        contacts=jnp.zeros((), int),
+        status=jnp.asarray(RESULT_CODE["separated"], int),
+        stuck=jnp.asarray(False),
+        touch_velocity=zero,
+        separation_velocity=zero,
+        touch_time=inf,
+        separation_time=inf,
+        max_indentation=-inf,
+        max_force=-inf,
+        min_force=inf,
+        contact_work=zero,
+        first_contact_work=zero,
+        steps=jnp.zeros((), int),
+        accepted=jnp.zeros((), int),
+        rejected=jnp.zeros((), int),
+        event_times=jnp.full(events, jnp.nan),
+        event_kinds=jnp.full(events, -1, int),
+        event_count=jnp.zeros((), int),
+        trajectory=jnp.full((rows, 5), jnp.nan),
+    )
+
+
+def log_event(c: Carry, time, kind, valid=True) -> Carry:
+    """Append an event (time, kind code) when `valid`."""
+    index = jnp.minimum(c.event_count, c.event_times.shape[0] - 1)
+    times = c.event_times.at[index].set(jnp.where(valid, time, c.event_times[index]))
+    kinds = c.event_kinds.at[index].set(jnp.where(valid, kind, c.event_kinds[index]))
+    count = c.event_count + jnp.asarray(valid, int)
+    return eqx.tree_at(lambda s: (s.event_times, s.event_kinds, s.event_count), c, (times, kinds, count))
+
+
+def store_samples(c: Carry, numerics: Numerics, rows) -> Carry:
+    """Write this phase's trajectory samples ([P, 5]) in its block of the buffer."""
+    if numerics.samples_per_phase == 0:
+        return c
+    start = jnp.minimum(c.phases, numerics.max_phases - 1) * numerics.samples_per_phase
+    trajectory = jax.lax.dynamic_update_slice(c.trajectory, rows, (start, jnp.zeros((), int)))
+    return eqx.tree_at(lambda s: s.trajectory, c, trajectory)
+
+
+def finish(c: Carry) -> Outcome:
+    """Close the books: a run cut off by the phase bound says so."""
+    cut = c.mode != DONE
+    return Outcome(
+        status=jnp.where(cut, RESULT_CODE["phase_limit"], c.status),
+        stuck=c.stuck,
+        touch_velocity=c.touch_velocity,
+        separation_velocity=c.separation_velocity,
+        touch_time=c.touch_time,
+        separation_time=c.separation_time,
+        contacts=c.contacts,
+        max_indentation=c.max_indentation,
+        max_force=c.max_force,
+        min_force=c.min_force,
+        first_contact_work=c.first_contact_work,
+        end_time=c.t,
+        end_indentation=c.d,
+        end_velocity=c.v,
+        steps=c.steps,
+        accepted_steps=c.accepted,
+        rejected_steps=c.rejected,
+        event_times=c.event_times,
+        event_kinds=c.event_kinds,
+        trajectory=c.trajectory,
+    )

@@ -1,0 +1,38 @@
+"""Names of the motion phases, events and result codes shared by the integrators."""
+
+# Motion phases (the contact radius a(d) of each is smooth; changes between them are events).
+FLIGHT = 0  # no contact: analytic free flight or ballistic arc
+ADVANCE = 1  # a on an increasing segment of the attach edge function (loading)
+HOLD = 2  # a fixed at its largest value (or at the body's wall)
+RECEDE = 3  # a on an increasing segment of the detach edge function (unloading)
+DONE = 4
+
+# Event kinds, in the order of their codes.
+EVENT_KINDS = (
+    "touch",  # first contact of a bounce (with the jump-in, if any)
+    "max_indentation",  # turnaround while loading: loading → hold
+    "detach_start",  # hold → unloading: the edge spring reaches Δl(a)
+    "snap_in",  # outward cascade: the contact radius jumps out
+    "snap_out",  # inward cascade: the contact radius jumps in
+    "separation",  # the last spring lets go
+    "capture",  # turnaround while unloading: the body can never leave
+    "limit",  # a bound on bounces, time or phases ended the run
+)
+EVENT_CODE = {kind: code for code, kind in enumerate(EVENT_KINDS)}
+
+# Result codes of a simulation; the first two are successful outcomes.
+RESULT_CODES = (
+    "separated",  # the body left the surface (without gravity: for good)
+    "captured",  # the body is stuck: restitution 0
+    "bounce_limit",  # gravity: max_bounces contacts were simulated, still bouncing
+    "time_limit",  # t_max reached
+    "solver_failure",  # the ODE solver failed (max_steps, step size)
+    "radius_overflow",  # the contact radius left the tabulated range of the profile
+    "phase_limit",  # more phases than the run holds
+)
+RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
+
+
+def is_success(code) -> bool:
+    """Whether a result code is a physical outcome (separated or captured)."""
+    return int(code) in (RESULT_CODE["separated"], RESULT_CODE["captured"])

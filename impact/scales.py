@@ -1,0 +1,91 @@
+"""Internal units of a scene: lengths, force and time chosen so the contact problem is O(1).
+
+With adhesion the radial unit is the jump-in radius a0 (g(a0) = Δl(a0)) and the normal unit
+Δl(a0), so the Heß criterion reads Δl̂(x̂) = √x̂. Without adhesion the units follow from the
+impact energy: E*·ℓx·ℓz² = ½·m·v². In both cases the force unit is E*·ℓx·ℓz and the time unit
+√(m/(E*·ℓx)), which makes the scaled mass 1.
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .profiles import Profile
+
+_BISECTION_STEPS = 100
+_BRACKET_DECADES = 15.0
+
+
+class Scales(eqx.Module):
+    """SI values of the internal units."""
+
+    radial: jax.Array  # ℓx (m)
+    normal: jax.Array  # ℓz (m)
+    force: jax.Array  # E*·ℓx·ℓz (N)
+    time: jax.Array  # √(m/(E*·ℓx)) (s)
+
+    @property
+    def velocity(self):
+        """Velocity unit ℓz/t (m/s)."""
+        return self.normal / self.time
+
+    @property
+    def energy(self):
+        """Energy unit F·ℓz (J)."""
+        return self.force * self.normal
+
+
+def _log_bisect(excess, lower, upper):
+    """Crossing of `excess` (negative at `lower`) between two radii, bisected in log x.
+
+    Returns `upper` when `excess` does not change sign on the bracket.
+    """
+    log_lo, log_hi = jnp.log(lower), jnp.log(upper)
+    sign_lo = jnp.sign(excess(lower))
+    crosses = sign_lo != jnp.sign(excess(upper))
+
+    def step(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        same = jnp.sign(excess(jnp.exp(mid))) == sign_lo
+        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
+
+    log_lo, log_hi = jax.lax.fori_loop(0, _BISECTION_STEPS, step, (log_lo, log_hi))
+    return jnp.where(crosses, jnp.exp(0.5 * (log_lo + log_hi)), upper)
+
+
+def _bracket(profile: Profile):
+    reference = profile.radius_scale()
+    lower = reference * 10.0 ** (-_BRACKET_DECADES)
+    upper = jnp.minimum(profile.extent(), reference * 10.0**_BRACKET_DECADES)
+    return lower, upper
+
+
+def adhesive_scales(profile: Profile, E_star, work_of_adhesion, mass) -> Scales:
+    """Units from the jump-in radius: g(ℓx) = √(2π·ℓx·Δγ/E*), ℓz = that elongation."""
+
+    def elongation(x):
+        return jnp.sqrt(2.0 * jnp.pi * x * work_of_adhesion / E_star)
+
+    lower, upper = _bracket(profile)
+    radial = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
+    normal = elongation(radial)
+    return _complete(radial, normal, E_star, mass)
+
+
+def energy_scales(profile: Profile, E_star, mass, touch_velocity) -> Scales:
+    """Units from the impact energy: E*·ℓx·g(ℓx)² = ½·m·v²."""
+    energy = 0.5 * mass * touch_velocity**2
+    lower, upper = _bracket(profile)
+    radial = _log_bisect(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper)
+    normal = jnp.sqrt(energy / (E_star * radial))
+    return _complete(radial, normal, E_star, mass)
+
+
+def _complete(radial, normal, E_star, mass) -> Scales:
+    return Scales(
+        radial=radial,
+        normal=normal,
+        force=E_star * radial * normal,
+        time=jnp.sqrt(mass / (E_star * radial)),
+    )

@@ -1,0 +1,275 @@
+"""The scene file: a validated description of one impact, in SI units.
+
+Every section forbids unknown keys. Numbers may be written as YAML numbers or numeric strings
+(PyYAML reads `1e-3` as a string). `load_scene` turns a YAML file or a mapping into a `Scene`,
+or raises `SceneError` naming each bad field by its dotted path.
+"""
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Literal
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from .profile_schema import Number, ProfileSpec
+
+SOLVER_METHODS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
+
+
+class SceneError(ValueError):
+    """A scene that cannot be run; `problems` lists (dotted.path, message) pairs."""
+
+    def __init__(self, problems: list[tuple[str, str]]):
+        self.problems = problems
+        super().__init__("\n".join(f"{path}: {message}" if path else message for path, message in problems))
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+def _poisson(meaning: str):
+    return Field(None, gt=-1.0, lt=0.5, description=f"Poisson's ratio of {meaning}, in (-1, 0.5)")
+
+
+class Body(_Section):
+    """The rigid falling body: its profile and its mass (or density)."""
+
+    profile: ProfileSpec
+    mass: Number | None = Field(None, gt=0, description="mass (kg), > 0")
+    density: Number | None = Field(
+        None, gt=0, description="density (kg/m³); mass = density × volume of the closed body"
+    )
+
+    @model_validator(mode="after")
+    def _one_of_mass_and_density(self):
+        if (self.mass is None) == (self.density is None):
+            raise ValueError("give exactly one of mass (kg) and density (kg/m³)")
+        if self.density is not None and body_volume(self.profile) is None:
+            raise ValueError(
+                f"density needs a closed body, and shape {self.profile.shape!r} has no volume; give mass instead"
+            )
+        return self
+
+    @property
+    def resolved_mass(self) -> float:
+        """Mass in kg (from density and volume if needed)."""
+        if self.mass is not None:
+            return self.mass
+        return self.density * body_volume(self.profile)
+
+
+def body_volume(profile) -> float | None:
+    """Volume (m³) of the closed body a profile belongs to: a sphere of radius R for the
+    paraboloid and the sphere, the spheroid of semi-axes 1/k, 1/k, R for the ellipsoid."""
+    if profile.shape in ("paraboloid", "sphere"):
+        return 4.0 / 3.0 * math.pi * profile.R**3
+    if profile.shape == "ellipsoid":
+        return 4.0 / 3.0 * math.pi * profile.R / profile.k**2
+    return None
+
+
+class Material(_Section):
+    """The elastic half-space (and body): E* directly, or Young's moduli and Poisson's ratios."""
+
+    E_star: Number | None = Field(None, gt=0, description="effective modulus E* (Pa), > 0")
+    E: Number | None = Field(None, gt=0, description="Young's modulus of the half-space (Pa), > 0")
+    nu: Number | None = _poisson("the half-space")
+    E_body: Number | None = Field(
+        None, gt=0, description="Young's modulus of the body (Pa), > 0; omit for a rigid body"
+    )
+    nu_body: Number | None = _poisson("the body")
+
+    @model_validator(mode="after")
+    def _one_description(self):
+        moduli = (self.E, self.nu, self.E_body, self.nu_body)
+        if self.E_star is not None:
+            if any(value is not None for value in moduli):
+                raise ValueError("give either E_star or E and nu (with E_body and nu_body), not both")
+            return self
+        if self.E is None or self.nu is None:
+            raise ValueError("give E_star, or E and nu of the half-space")
+        if (self.E_body is None) != (self.nu_body is None):
+            raise ValueError("give E_body and nu_body together (omit both for a rigid body)")
+        return self
+
+    @property
+    def effective_modulus(self) -> float:
+        """E* (Pa): 1/E* = (1 − ν²)/E + (1 − ν_body²)/E_body."""
+        if self.E_star is not None:
+            return self.E_star
+        compliance = (1.0 - self.nu**2) / self.E
+        if self.E_body is not None:
+            compliance += (1.0 - self.nu_body**2) / self.E_body
+        return 1.0 / compliance
+
+
+class Initial(_Section):
+    """Where the body starts: its approach speed and its distance from the surface."""
+
+    velocity: Number = Field(ge=0, description="approach speed towards the surface (m/s), > 0")
+    gap: Number = Field(0.0, ge=0, description="initial distance between tip and surface (m), >= 0")
+
+
+class Adhesion(_Section):
+    """JKR adhesion (zero range) by the rule of Heß, with hysteretic attachment."""
+
+    work_of_adhesion: Number = Field(
+        ge=0, description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
+    )
+    approach_work_of_adhesion: Number | None = Field(
+        None,
+        ge=0,
+        description="work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; default Δγ (JKR jump-in); 0 attaches on touch",
+    )
+
+    @model_validator(mode="after")
+    def _approach_not_above(self):
+        if self.approach_work_of_adhesion is not None and self.approach_work_of_adhesion > self.work_of_adhesion:
+            raise ValueError("approach_work_of_adhesion must not exceed work_of_adhesion")
+        return self
+
+    @property
+    def approach(self) -> float:
+        """Δγa (J/m²), defaulting to Δγ."""
+        return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
+
+
+class Gravity(_Section):
+    g: Number = Field(9.81, gt=0, description="gravitational acceleration towards the surface (m/s²)")
+
+
+class Effects(_Section):
+    """The effects the scene names; those left out are not simulated at all."""
+
+    adhesion: Adhesion | None = None
+    gravity: Gravity | None = None
+
+
+class Contact(_Section):
+    """How the MDR spring foundation is discretised."""
+
+    springs: Literal["continuum"] | int = Field(
+        "continuum", description="'continuum' (N → ∞) or the number N >= 1 of springs of the array"
+    )
+    length: Number | None = Field(
+        None, gt=0, description="radius covered by the spring array (m); default: the body's extent or twice the energy radius"
+    )
+
+    @model_validator(mode="after")
+    def _springs_positive(self):
+        if isinstance(self.springs, int) and self.springs < 1:
+            raise ValueError("springs must be 'continuum' or an integer >= 1")
+        return self
+
+
+class Solver(_Section):
+    """Integrator of the continuum law (diffrax) and its tolerances, in scaled units."""
+
+    method: Literal[SOLVER_METHODS] = "tsit5"
+    rtol: Number = Field(1e-8, gt=0, lt=1, description="relative tolerance, in (0, 1)")
+    atol: Number = Field(1e-10, gt=0, description="absolute tolerance in scaled units, > 0")
+    max_steps: int = Field(4096, ge=16, description="solver steps allowed per phase")
+
+
+class Limits(_Section):
+    """Bounds that end a run which would otherwise not end (e.g. elastic bouncing)."""
+
+    max_bounces: int = Field(64, ge=1, description="contacts simulated at most")
+    duration: Number | None = Field(None, gt=0, description="simulated time at most (s); default: no bound")
+
+
+class Scene(_Section):
+    """One impact: body, material, initial state, effects and numerics."""
+
+    name: str = Field("scene", pattern=r"^[A-Za-z0-9_.-]+$", description="name of the run (file-name safe)")
+    body: Body
+    material: Material
+    initial: Initial
+    effects: Effects = Effects()
+    contact: Contact = Contact()
+    solver: Solver = Solver()
+    limits: Limits = Limits()
+
+    @model_validator(mode="after")
+    def _reaches_the_surface(self):
+        falls = self.effects.gravity is not None and self.initial.gap > 0
+        if self.initial.velocity <= 0 and not falls:
+            raise ValueError("initial.velocity must be > 0 (or gravity and a gap > 0, to drop the body)")
+        return self
+
+    @property
+    def adhesive(self) -> bool:
+        """Whether adhesion is simulated (named, with Δγ > 0)."""
+        adhesion = self.effects.adhesion
+        return adhesion is not None and adhesion.work_of_adhesion > 0
+
+
+def _dotted(location: tuple) -> str:
+    parts = [str(part) for part in location if not (isinstance(part, str) and part in _UNION_TAGS)]
+    return ".".join(parts)
+
+
+# Tags pydantic inserts into error locations for unions; they are not scene keys.
+_UNION_TAGS = {
+    "paraboloid", "sphere", "ellipsoid", "cone", "power_law", "flat_punch", "truncated_cone",
+    "truncated_paraboloid", "capped_flat_punch", "capped_cone", "capped_paraboloid",
+    "rounded_flat_punch", "wavy_paraboloid", "tabulated", "int", "literal['continuum']",
+    "function-after[_springs_positive(), Contact]",
+}
+
+
+def _message(error) -> str:
+    text = error["msg"]
+    if text.startswith("Value error, "):
+        text = text[len("Value error, "):]
+    if error["type"] == "extra_forbidden":
+        return "unknown key"
+    if error["type"] == "missing":
+        return "missing (required)"
+    if error["type"] == "union_tag_invalid":
+        return f"unknown shape {error['input']!r}; known shapes: {', '.join(sorted(_UNION_TAGS - {'int', 'literal[' + repr('continuum') + ']', 'function-after[_springs_positive(), Contact]'}))}"
+    return text
+
+
+def problems_of(error: ValidationError) -> list[tuple[str, str]]:
+    """(dotted.path, message) for each error of a pydantic validation."""
+    seen, problems = set(), []
+    for item in error.errors():
+        entry = (_dotted(item["loc"]), _message(item))
+        if entry not in seen:
+            seen.add(entry)
+            problems.append(entry)
+    return problems
+
+
+def read_yaml(path: str | Path) -> dict:
+    """A YAML mapping from a file, or SceneError (missing file, invalid YAML, not a mapping)."""
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError([("", f"no such file: {path}")])
+    try:
+        data = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as error:
+        raise SceneError([("", f"invalid YAML in {path}: {error}")]) from None
+    if not isinstance(data, dict):
+        raise SceneError([("", f"{path} must hold a mapping of scene keys")])
+    return data
+
+
+def load_scene(source: "str | Path | Mapping | Scene") -> Scene:
+    """A validated Scene from a YAML file path, a mapping, or a Scene."""
+    if isinstance(source, Scene):
+        return source
+    data = dict(source) if isinstance(source, Mapping) else read_yaml(source)
+    try:
+        return Scene.model_validate(data)
+    except ValidationError as error:
+        raise SceneError(problems_of(error)) from None
+
+
+def scene_yaml(scene: Scene) -> str:
+    """The resolved scene (defaults filled in) as YAML."""
+    return yaml.safe_dump(scene.model_dump(mode="json", exclude_none=True), sort_keys=False)

@@ -1,0 +1,133 @@
+"""From SI parameters to the scaled problem the integrators solve."""
+
+from dataclasses import dataclass
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .branches import Branch, build_branch, top_radius
+from .law import ContactLaw
+from .profiles import Profile
+from .scales import Scales, adhesive_scales, energy_scales
+
+# The tables reach to where ĝ exceeds this many times the energy estimate of the indentation.
+_INDENTATION_CAP_FACTOR = 8.0
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Static choices of a run: what physics is switched on and how it is integrated.
+
+    Changing any of these recompiles; parameter values (in `Physics`) do not.
+    """
+
+    adhesive: bool
+    gravity: bool
+    method: str = "dopri8"  # diffrax solver for the continuum law
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    springs: int | None = None  # None: continuum law
+    timed_loading: bool = True  # loading may start at a = 0 (no jump-in): compile its time path
+    max_steps: int = 4096  # per phase
+    max_bounces: int = 64
+    max_turns: int = 4  # turning points of an edge function the branches hold
+    turn_grid: int = 384  # points searched for turning points (more for wavy profiles)
+    table_size: int = 129  # radius table per segment, kept only for timed loading
+    samples_per_phase: int = 0  # trajectory samples per phase; 0 keeps no trajectory
+
+    @property
+    def max_phases(self) -> int:
+        """Phases a run may hold: four per bounce and every branch jump, plus flights."""
+        return 4 * self.max_bounces + 2 * self.max_turns + 8
+
+
+class Physics(eqx.Module):
+    """SI parameters of one impact (traced: sweeps vary them without recompiling)."""
+
+    profile: Profile
+    E_star: jax.Array  # Pa
+    mass: jax.Array  # kg
+    velocity: jax.Array  # approach speed at the start (m/s)
+    gap: jax.Array  # initial separation (m)
+    work_of_adhesion: jax.Array  # Δγ (J/m²); unused without adhesion
+    approach_work_of_adhesion: jax.Array  # Δγa ≤ Δγ (J/m²)
+    gravity: jax.Array  # m/s²; unused without gravity
+    time_limit: jax.Array  # s
+    spring_length: jax.Array  # radius covered by a spring array (m); nan: the default
+
+
+class Problem(eqx.Module):
+    """The scaled impact: contact law, its two branches and the initial state."""
+
+    law: ContactLaw
+    attach: Branch
+    detach: Branch
+    gravity: jax.Array  # scaled acceleration towards the surface
+    start_indentation: jax.Array  # −gap (scaled)
+    start_velocity: jax.Array  # scaled
+    touch_speed: jax.Array  # scaled speed at the first touch
+    time_limit: jax.Array  # scaled
+
+    @property
+    def scales(self) -> Scales:
+        return self.law.scales
+
+
+def touch_velocity(physics: Physics, numerics: Numerics):
+    """Speed at first touch (m/s): the fall over the gap adds to v0 under gravity."""
+    if not numerics.gravity:
+        return physics.velocity
+    return jnp.sqrt(physics.velocity**2 + 2.0 * physics.gravity * physics.gap)
+
+
+def build_problem(physics: Physics, numerics: Numerics) -> Problem:
+    """Scale the physics, tabulate the branches and state the initial condition."""
+    profile = physics.profile
+    if numerics.adhesive:
+        scales = adhesive_scales(profile, physics.E_star, physics.work_of_adhesion, physics.mass)
+        detach_coefficient = jnp.sqrt(
+            2.0 * jnp.pi * scales.radial * physics.work_of_adhesion / physics.E_star
+        ) / scales.normal
+        attach_coefficient = detach_coefficient * jnp.sqrt(
+            physics.approach_work_of_adhesion / physics.work_of_adhesion
+        )
+    else:
+        scales = energy_scales(profile, physics.E_star, physics.mass, touch_velocity(physics, numerics))
+        detach_coefficient = attach_coefficient = jnp.zeros(())
+    law = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, numerics.adhesive)
+
+    gravity = physics.gravity * scales.time**2 / scales.normal if numerics.gravity else jnp.zeros(())
+    start_velocity = physics.velocity / scales.velocity
+    start_indentation = -physics.gap / scales.normal
+    touch_speed = touch_velocity(physics, numerics) / scales.velocity
+    energy = touch_energy(touch_speed)
+    cap = _INDENTATION_CAP_FACTOR * (1.0 + law.g(energy_radius(law, energy)))
+    top = top_radius(law, cap)
+    table = numerics.table_size if numerics.timed_loading else 0
+    attach = build_branch(law, attach_coefficient, top, numerics.max_turns, numerics.turn_grid, table)
+    detach = build_branch(law, detach_coefficient, top, numerics.max_turns, numerics.turn_grid, 0)
+    return Problem(
+        law=law,
+        attach=attach,
+        detach=detach,
+        gravity=gravity,
+        start_indentation=start_indentation,
+        start_velocity=start_velocity,
+        touch_speed=touch_speed,
+        time_limit=physics.time_limit / scales.time,
+    )
+
+
+def touch_energy(speed):
+    """Scaled energy bound for the radius estimates: ½v² plus the adhesion scale 1."""
+    return 0.5 * speed**2 + 1.0
+
+
+def energy_radius(law: ContactLaw, energy):
+    """Radius where x·ĝ(x)² reaches the scaled energy (doubling, then capped by the extent)."""
+
+    def grow(_, x):
+        return jnp.where(x * law.g(x) ** 2 < energy, 2.0 * x, x)
+
+    return jnp.minimum(jax.lax.fori_loop(0, 256, grow, jnp.asarray(1.0)), law.extent())
