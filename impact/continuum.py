@@ -12,7 +12,8 @@ its order. So those phases take the radius itself as state, with a pseudo-time s
 
 smooth through turnarounds (v = 0) and critical points (h' = 0) alike, and free of any root
 solve: d = h(a) is explicit. Only a hold (a fixed, F linear in d) and loading that starts from
-a = 0 (no jump-in; h' may be infinite there) are integrated in time with d as state.
+a = 0 on a steep tip (h' → ∞ as a → 0, power laws n < 1, no jump-in) are integrated in time
+with d as state.
 """
 
 import diffrax as dfx
@@ -150,7 +151,7 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     law = problem.law
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
-    riding = (c.mode == RECEDE) | ((c.mode == ADVANCE) & (c.radius > 0.0))
+    riding = (c.mode == RECEDE) | ((c.mode == ADVANCE) & ((c.radius > 0.0) | ~problem.steep_tip))
     # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
     # detach edge of the held radius.
     segment_end = jnp.where(c.mode == ADVANCE, branch.nodes[c.segment + 1], branch.nodes[c.segment])
@@ -192,6 +193,8 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         throw=False,
     )
     x_end, v_end, t_end = solution.ys[-1, 0], solution.ys[-1, 1], solution.ys[-1, 2]
+    # A located event may overshoot the segment end by round-off: the radius stays on it.
+    x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(
         riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment))

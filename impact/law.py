@@ -42,9 +42,16 @@ class ContactLaw(eqx.Module):
             return self.g(x)
         return self.g(x) - coefficient * jnp.sqrt(x)
 
+    def g_slope(self, x):
+        """dĝ/dx̂."""
+        return jax.jvp(self.g, (x,), (jnp.ones_like(x),))[1]
+
     def edge_slope(self, x, coefficient):
-        """dh/dx̂."""
-        return jax.jvp(lambda s: self.edge(s, coefficient), (x,), (jnp.ones_like(x),))[1]
+        """dh/dx̂ (the Heß term's slope written out: 0 when its coefficient is 0, even at x̂ = 0)."""
+        if not self.adhesive:
+            return self.g_slope(x)
+        hess = jnp.where(coefficient > 0.0, 0.5 * coefficient / jnp.sqrt(jnp.where(coefficient > 0.0, x, 1.0)), 0.0)
+        return self.g_slope(x) - hess
 
     def force(self, radius, indentation):
         """Scaled force 2·(a·d − Ĝ(a)) (3.28); compressive positive."""

@@ -55,12 +55,27 @@ def branch_force(law: ContactLaw, branch: Branch, radius):
 
 
 def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
-    """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da."""
+    """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da.
+
+    Gauss–Legendre in u = ln a, where power-law behaviour a^p becomes exponential (an
+    interval [a0, 40·a0] is no harder than [a0, 2·a0]); from a = 0, in s with a = a1·s².
+    """
     nodes, weights = gauss_legendre()
-    span = end_radius - start_radius
-    radii = start_radius + span * nodes
-    integrand = branch_force(law, branch, radii) * law.edge_slope(radii, branch.coefficient)
-    return span * jnp.sum(weights * integrand)
+
+    def integrand(radii):
+        return branch_force(law, branch, radii) * law.edge_slope(radii, branch.coefficient)
+
+    low = jnp.minimum(start_radius, end_radius)
+    high = jnp.maximum(start_radius, end_radius)
+    sign = jnp.where(end_radius >= start_radius, 1.0, -1.0)
+    positive = low > 0.0
+    log_low = jnp.log(jnp.where(positive, low, 1.0))
+    log_span = jnp.log(jnp.where(positive, high, 1.0)) - log_low
+    logarithmic = jnp.exp(log_low + log_span * nodes)
+    from_zero = high * nodes**2
+    radii = jnp.where(positive, logarithmic, from_zero)
+    jacobian = jnp.where(positive, log_span * logarithmic, 2.0 * high * nodes)
+    return sign * jnp.sum(weights * jacobian * integrand(radii))
 
 
 def hold_work(law: ContactLaw, radius, start, end):
@@ -69,7 +84,8 @@ def hold_work(law: ContactLaw, radius, start, end):
 
 
 def extremes(function, lower, upper):
-    """(min, max) of a scalar function on [lower, upper]: a scan, then golden sections."""
+    """(min, max) of a scalar function between two points: a scan, then golden sections."""
+    lower, upper = jnp.minimum(lower, upper), jnp.maximum(lower, upper)
     grid = jnp.linspace(0.0, 1.0, _SCAN_POINTS)
     points = lower + (upper - lower) * grid
     values = function(points)
@@ -77,8 +93,8 @@ def extremes(function, lower, upper):
 
     def refine(sign):
         best = jnp.argmin(sign * values)
-        lo = jnp.maximum(points[best] - step, jnp.minimum(lower, upper))
-        hi = jnp.minimum(points[best] + step, jnp.maximum(lower, upper))
+        lo = jnp.maximum(points[best] - step, lower)
+        hi = jnp.minimum(points[best] + step, upper)
         ratio = 0.5 * (jnp.sqrt(5.0) - 1.0)
 
         def golden(_, bracket):

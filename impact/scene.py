@@ -169,8 +169,8 @@ class Solver(_Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units."""
 
     method: Literal[SOLVER_METHODS] = "tsit5"
-    rtol: Number = Field(1e-8, gt=0, lt=1, description="relative tolerance, in (0, 1)")
-    atol: Number = Field(1e-10, gt=0, description="absolute tolerance in scaled units, > 0")
+    rtol: Number = Field(1e-10, gt=0, lt=1, description="relative tolerance, in (0, 1)")
+    atol: Number = Field(1e-12, gt=0, description="absolute tolerance in scaled units, > 0")
     max_steps: int = Field(4096, ge=16, description="solver steps allowed per phase")
 
 

@@ -11,6 +11,8 @@ from .law import ContactLaw
 from .profiles import Profile
 from .scales import Scales, adhesive_scales, energy_scales
 
+# Radii (scaled) at which the edge slope is compared to tell a steep tip.
+_TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # The tables reach to where ĝ exceeds this many times the energy estimate of the indentation.
 _INDENTATION_CAP_FACTOR = 8.0
 
@@ -67,6 +69,7 @@ class Problem(eqx.Module):
     start_indentation: jax.Array  # −gap (scaled)
     start_velocity: jax.Array  # scaled
     touch_speed: jax.Array  # scaled speed at the first touch
+    steep_tip: jax.Array  # the attach edge slope grows without bound towards a = 0 (n < 1)
     time_limit: jax.Array  # scaled
 
     @property
@@ -106,7 +109,7 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     top = top_radius(law, cap)
     table = numerics.table_size if numerics.timed_loading else 0
     attach = build_branch(law, attach_coefficient, top, numerics.max_turns, numerics.turn_grid, table)
-    detach = build_branch(law, detach_coefficient, top, numerics.max_turns, numerics.turn_grid, 0)
+    detach = build_branch(law, detach_coefficient, top, numerics.max_turns, numerics.turn_grid, table)
     return Problem(
         law=law,
         attach=attach,
@@ -115,6 +118,7 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
         start_indentation=start_indentation,
         start_velocity=start_velocity,
         touch_speed=touch_speed,
+        steep_tip=law.edge_slope(_TIP_NEAR, attach_coefficient) > law.edge_slope(_TIP_FAR, attach_coefficient),
         time_limit=physics.time_limit / scales.time,
     )
 

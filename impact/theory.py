@@ -53,6 +53,8 @@ __all__ = [
     "thornton_ning_beta",
     "thornton_ning_restitution",
     "thornton_ning_sticking_velocity",
+    "attach_on_touch_energy_loss",
+    "attach_on_touch_restitution",
     "power_law_hertz_max_indentation",
     "power_law_hertz_max_force",
     "power_law_hertz_contact_time",
@@ -314,6 +316,39 @@ def thornton_ning_sticking_velocity(mass, R, E_star, work_of_adhesion):
 
 
 # --- non-adhesive (Hertz-type) impact -------------------------------------------------------
+
+
+def attach_on_touch_energy_loss(velocity, mass, R, E_star, work_of_adhesion):
+    """Energy lost [J] by a paraboloid that attaches on touch (Δγa = 0) and detaches by Heß.
+
+    Our own reference (not in the chapter). In JKR units (lengths a0 = (2πΔγR²/E*)^(1/3)
+    and a0²/R, energy E*·a0·(a0²/R)²) the loop is: Hertzian loading d = a² up to a_m with
+    (8/15)·a_m⁵ = ½mv0²; a hold at a_m, F = 2(a_m·d − a_m³/3), down to d = a_m² − √a_m; the
+    JKR branch d = a² − √a down to a* = 4^(−2/3) (skipped when a_m < a*, which then
+    separates at once). Each piece integrates in closed form.
+    """
+    a0 = (2.0 * jnp.pi * work_of_adhesion * R**2 / E_star) ** (1.0 / 3.0)
+    depth = a0**2 / R
+    energy_unit = E_star * a0 * depth**2
+    kinetic = 0.5 * mass * velocity**2 / energy_unit
+    a_m = (15.0 * kinetic / 8.0) ** 0.2
+    d_m = a_m**2
+    d_h = a_m**2 - jnp.sqrt(a_m)
+    loading = 8.0 / 15.0 * a_m**5
+    hold = a_m * (d_m**2 - d_h**2) - 2.0 / 3.0 * a_m**3 * (d_m - d_h)
+    a_star = 4.0 ** (-2.0 / 3.0)
+
+    def branch(a):  # ∫ F(a)·h'(a) da with F = (4/3)a³ − 2a^(3/2), h' = 2a − a^(−1/2)/2
+        return 8.0 / 15.0 * a**5 - 4.0 / 3.0 * a**3.5 + 0.5 * a**2
+
+    unloading = jnp.where(a_m > a_star, branch(a_m) - branch(a_star), 0.0)
+    return (loading - hold - unloading) * energy_unit
+
+
+def attach_on_touch_restitution(velocity, mass, R, E_star, work_of_adhesion):
+    """Restitution of the paraboloid with attach on touch (Δγa = 0); 0 when captured."""
+    kinetic = 0.5 * mass * velocity**2
+    return _restitution(attach_on_touch_energy_loss(velocity, mass, R, E_star, work_of_adhesion) / kinetic)
 
 
 def _power_law_stiffness(n, c, E_star):

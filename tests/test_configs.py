@@ -1,0 +1,68 @@
+"""Every example scene in configs/ runs, succeeds, and meets its closed form where one exists."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+import impact
+from impact import theory
+
+CONFIGS = Path(__file__).parents[1] / "configs"
+
+
+def thornton_ning(scene, velocity):
+    """Thornton–Ning restitution (3.50) of a paraboloid scene at a touch velocity (m/s)."""
+    return float(theory.thornton_ning_restitution(
+        velocity, scene.body.resolved_mass, scene.body.profile.R,
+        scene.material.effective_modulus, scene.effects.adhesion.work_of_adhesion,
+    ))
+
+
+def power_law(scene, velocity):
+    """Power-law restitution (3.81) of a cone (n = 1, c = tan θ) or power-law scene."""
+    profile = scene.body.profile
+    n, c = (1.0, math.tan(profile.theta)) if profile.shape == "cone" else (profile.n, profile.c)
+    return float(theory.power_law_restitution(
+        velocity, scene.body.resolved_mass, n, c,
+        scene.material.effective_modulus, scene.effects.adhesion.work_of_adhesion,
+    ))
+
+
+def matches(closed_form, tolerance):
+    def check(result):
+        assert result.restitution == pytest.approx(closed_form(result.scene, result.touch_velocity), abs=tolerance)
+    return check
+
+
+def below_thornton_ning(result):
+    assert 0 < result.restitution < thornton_ning(result.scene, result.touch_velocity)
+
+
+def captured_after_bouncing(result):
+    assert result.stuck and result.status == "captured"
+    assert result.bounces >= 3  # at least two rebounds, then the capturing contact
+
+
+CHECKS = {
+    "thornton_ning": matches(thornton_ning, 1e-6),
+    "cone": matches(power_law, 1e-6),
+    "power_law": matches(power_law, 1e-6),
+    "attach_on_touch": below_thornton_ning,
+    "nanoparticle": matches(thornton_ning, 1e-6),
+    "rubber_ball": matches(thornton_ning, 1e-6),
+    "gravity_bounces": captured_after_bouncing,
+    "spring_array": matches(thornton_ning, 1e-4),
+}
+
+
+def test_every_config_is_checked():
+    assert {path.stem for path in CONFIGS.glob("*.yaml")} == set(CHECKS)
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_config_runs_and_meets_its_reference(name):
+    result = impact.simulate(CONFIGS / f"{name}.yaml", trajectory=False)
+    assert result.success, result.status
+    assert result.scene.name == name
+    CHECKS[name](result)
