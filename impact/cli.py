@@ -76,7 +76,9 @@ def run(
     scene_file: SceneArgument,
     output: Annotated[
         Optional[Path],
-        typer.Option("-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False),
+        typer.Option(
+            "-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False
+        ),
     ] = None,
     assignments: SetOption = None,
     overwrite: Annotated[bool, typer.Option("--overwrite", help="write into an existing output folder")] = False,
@@ -105,7 +107,11 @@ def validate(scene_file: SceneArgument, assignments: SetOption = None) -> None:
 
 
 @app.command()
-def show(run_file: Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]) -> None:
+def show(
+    run_file: Annotated[
+        Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)
+    ],
+) -> None:
     """Print the summary of a stored run (run.h5)."""
     try:
         result = read_run(run_file)
@@ -113,11 +119,9 @@ def show(run_file: Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5
     except (OSError, ValueError) as error:
         _refuse(f"cannot show {run_file}", [("", str(error))])
     _out.print(summary_table(result, provenance["wall_time"]))
+    versions = f"jax {provenance['jax']}, diffrax {provenance['diffrax']}"
     precision = "float64" if provenance["x64"] else "float32"
-    _out.print(
-        Text(f"written by impact {provenance['impact']} (jax {provenance['jax']}, diffrax {provenance['diffrax']}, {precision})"),
-        soft_wrap=True,
-    )
+    _out.print(Text(f"written by impact {provenance['impact']} ({versions}, {precision})"), soft_wrap=True)
 
 
 # --- scene input and --set ------------------------------------------------------------------
@@ -174,9 +178,9 @@ def _models_in(annotation) -> list[type[BaseModel]]:
 
 
 def _of_named_shape(models: list[type[BaseModel]], node) -> list[type[BaseModel]]:
-    if len(models) < 2 or not isinstance(node, dict):
-        return models
-    named = [model for model in models if "shape" in model.model_fields and model.model_fields["shape"].default == node.get("shape")]
+    """Of several models (the profile shapes), the one whose `shape` the mapping names, if any."""
+    shape = node.get("shape") if isinstance(node, dict) else None
+    named = [model for model in models if shape and getattr(model.model_fields.get("shape"), "default", None) == shape]
     return named or models
 
 
@@ -241,11 +245,12 @@ def quantity(value: float, unit: str) -> str:
 def summary_table(result: Result, wall_time: float | None) -> Table:
     """The key results of a run (wall time in s, if known)."""
     stats = result.stats
+    contact_time = result.contact_time
     rows = [
         ("restitution e", f"{result.restitution:.8g}"),
         ("stuck", "yes" if result.stuck else "no"),
         ("status", result.status),
-        ("contact time", quantity(result.contact_time, "s") if math.isfinite(result.contact_time) else "∞ (never let go)"),
+        ("contact time", quantity(contact_time, "s") if math.isfinite(contact_time) else "∞ (never let go)"),
         ("max indentation", quantity(result.max_indentation, "m")),
         ("max force", quantity(result.max_force, "N")),
         ("min force", quantity(result.min_force, "N")),
@@ -267,9 +272,10 @@ def facts_table(scene: Scene) -> Table:
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
     springs = scene.contact.springs
+    density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     rows = [
         ("shape", f"{body.profile.shape} ({parameters})"),
-        ("mass", f"{body.resolved_mass:.6g} kg" + ("" if body.density is None else f" (density {body.density:g} kg/m³)")),
+        ("mass", f"{body.resolved_mass:.6g} kg{density}"),
         ("E*", f"{material.effective_modulus:.6g} Pa" + ("" if material.E_star is not None else " (from E and ν)")),
         ("initial", f"velocity {scene.initial.velocity:g} m/s, gap {scene.initial.gap:g} m"),
         ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),

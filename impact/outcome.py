@@ -107,7 +107,8 @@ def extremes(function, lower, upper):
         a, b = jax.lax.fori_loop(0, _GOLDEN_STEPS, golden, (lo, hi))
         return sign * jnp.minimum(sign * function(0.5 * (a + b)), sign * values[best])
 
-    return refine(1.0), refine(-1.0)
+    low, high = jax.vmap(refine)(jnp.array([1.0, -1.0]))
+    return low, high
 
 
 def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start, end):

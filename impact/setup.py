@@ -108,8 +108,10 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     cap = _INDENTATION_CAP_FACTOR * (1.0 + law.g(energy_radius(law, energy)))
     top = top_radius(law, cap)
     table = numerics.table_size if numerics.timed_loading else 0
-    attach = build_branch(law, attach_coefficient, top, numerics.max_turns, numerics.turn_grid, table)
-    detach = build_branch(law, detach_coefficient, top, numerics.max_turns, numerics.turn_grid, table)
+    both = jax.vmap(lambda coefficient: build_branch(law, coefficient, top, numerics.max_turns, numerics.turn_grid, table))(
+        jnp.stack([attach_coefficient, detach_coefficient])
+    )
+    attach, detach = (jax.tree.map(lambda leaf: leaf[i], both) for i in range(2))
     return Problem(
         law=law,
         attach=attach,

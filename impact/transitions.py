@@ -67,29 +67,32 @@ def advance_from(problem: Problem, radius, indentation, event) -> Next:
     return select(blocked, select(at_wall, held, stuck_table), _next(ADVANCE, segment, wall, event))
 
 
-def after_advance(problem: Problem, segment, radius, indentation, turned) -> Next:
-    """Loading ended: a turnaround starts the hold (or unloading at once), a local maximum of
-    the attach edge makes the contact snap out."""
-    law = problem.law
-    edge = problem.detach.level(law, radius)
-    on_edge = indentation <= edge + _SAME_EDGE * (1.0 + jnp.abs(indentation))
+def after_phase(problem: Problem, mode, segment, radius, indentation, turned) -> Next:
+    """The phase after an event; `radius` is the contact radius when the phase ended.
+
+    Loading ends at a turnaround (hold, or unloading at once when the radius already sits on
+    the detach edge, as in the reversible JKR law) or at a local maximum of the attach edge
+    (outward cascade: snap-in). Hold ends when the edge spring reaches Δl (unloading), and
+    unloading at a local minimum of the detach edge (inward cascade: snap-out or
+    separation). An outward turnaround during hold or unloading is a capture.
+    """
+    law, attach, detach = problem.law, problem.attach, problem.detach
+    advancing = mode == ADVANCE
+    on_edge = indentation <= detach.level(law, radius) + _SAME_EDGE * (1.0 + jnp.abs(indentation))
+    inward_start = jnp.where(mode == RECEDE, detach.nodes[segment], radius)
+    inward_event = jnp.where(
+        mode == HOLD,
+        EVENT_CODE["detach_start"],
+        jnp.where(mode == RECEDE, EVENT_CODE["snap_out"], EVENT_CODE["max_indentation"]),
+    )
+    inward = recede_from(problem, inward_start, indentation, inward_event)
+    outward = advance_from(problem, attach.nodes[segment + 1], indentation, EVENT_CODE["snap_in"])
     hold = _next(HOLD, 0, radius, EVENT_CODE["max_indentation"])
-    unload = recede_from(problem, radius, indentation, EVENT_CODE["max_indentation"])
-    turnaround = select(on_edge, unload, hold)
-    snap = advance_from(problem, problem.attach.nodes[segment + 1], indentation, EVENT_CODE["snap_in"])
-    return select(turned, turnaround, snap)
-
-
-def after_hold(problem: Problem, hold_radius, indentation, turned) -> Next:
-    """Hold ended: the edge spring reached Δl (unloading starts), or the body turned: captured."""
-    unload = recede_from(problem, hold_radius, indentation, EVENT_CODE["detach_start"])
-    return select(turned, capture(), unload)
-
-
-def after_recede(problem: Problem, segment, indentation, turned) -> Next:
-    """Unloading ended: a local minimum of the detach edge starts a cascade, or captured."""
-    cascade = recede_from(problem, problem.detach.nodes[segment], indentation, EVENT_CODE["snap_out"])
-    return select(turned, capture(), cascade)
+    return select(
+        advancing & ~turned,
+        outward,
+        select(advancing & ~on_edge, hold, select(~advancing & turned, capture(), inward)),
+    )
 
 
 def capture() -> Next:
@@ -99,19 +102,6 @@ def capture() -> Next:
     rest at d_turn it cannot come back out below d_turn with any kinetic energy left.
     """
     return _next(DONE, 0, 0.0, EVENT_CODE["capture"], captured=True)
-
-
-def after_phase(problem: Problem, mode, segment, radius, indentation, turned) -> Next:
-    """Dispatch on the phase that ended; `radius` is the contact radius at its end."""
-    return select(
-        mode == ADVANCE,
-        after_advance(problem, segment, radius, indentation, turned),
-        select(
-            mode == HOLD,
-            after_hold(problem, radius, indentation, turned),
-            after_recede(problem, segment, indentation, turned),
-        ),
-    )
 
 
 def flight_to_touch(problem: Problem, indentation, velocity):
