@@ -19,6 +19,9 @@ import jax.numpy as jnp
 
 from .law import ContactLaw
 
+# The search grid starts at the smaller of 1e-8 (scaled: the adhesion scale is 1) and
+# 1e-12·x_top.
+_GRID_LOWEST = 1e-8
 _GRID_DECADES = 12.0
 _BISECTION_STEPS = 64
 _SAFEGUARDED_STEPS = 80
@@ -116,10 +119,11 @@ def build_branch(
         return law.edge_slope(x, coefficient)
 
     logarithmic = grid_size // 3
+    lowest = jnp.log10(jnp.minimum(_GRID_LOWEST, top * 10.0**-_GRID_DECADES))
     grid = jnp.sort(
         jnp.concatenate(
             [
-                top * jnp.logspace(-_GRID_DECADES, 0.0, logarithmic),
+                jnp.logspace(lowest, jnp.log10(top), logarithmic),
                 top * jnp.linspace(0.0, 1.0, grid_size - logarithmic + 1)[1:],
             ]
         )
@@ -168,13 +172,3 @@ def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_siz
     lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, invert, (lower, upper))
     table = jnp.where(increasing[:, None], 0.5 * (lo + hi), lower)
     return table.at[:, 0].set(nodes[:-1]).at[:, -1].set(jnp.where(increasing, nodes[1:], nodes[:-1]))
-
-
-def top_radius(law: ContactLaw, indentation_cap):
-    """x_top: the body's extent, or where ĝ first exceeds `indentation_cap` (doubling)."""
-
-    def grow(_, x):
-        return jnp.where(law.g(x) < indentation_cap, 2.0 * x, x)
-
-    unbounded = jax.lax.fori_loop(0, 256, grow, jnp.asarray(1.0))
-    return jnp.minimum(law.extent(), unbounded)

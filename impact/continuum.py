@@ -20,10 +20,10 @@ import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
-import optimistix as optx
 
 from . import transitions
 from .outcome import Carry, Outcome, active_branch, finish, initial_carry, log_event, phase_summary, store_samples
+from .rootfind import BracketBisection
 from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .setup import Numerics, Problem
 
@@ -39,8 +39,9 @@ SOLVERS = {
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
-# Event times are O(1) in pseudo-time; a tighter absolute bound only meets round-off.
-_ROOT_ATOL = 1e-12
+# Events are located by bisection inside the step that crossed, to a bracket of
+# 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
+_ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 
 
 class PhaseArgs(eqx.Module):
@@ -54,6 +55,8 @@ class PhaseArgs(eqx.Module):
     velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
     level_sign: jax.Array  # branch end: sign·(d − level) crosses zero upwards
     level: jax.Array
+    time_limit: jax.Array
+    speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
 
 
 def timed_radius(d, args: PhaseArgs):
@@ -79,12 +82,21 @@ def _make_vector_field(timed_loading: bool):
     return vector_field
 
 
-def _turned(t, y, args: PhaseArgs, **kwargs):
-    return args.velocity_sign * y[1]
+def _conditions(y, args: PhaseArgs):
+    """The phase's event conditions, each negative until its event and of relative size:
+    turnaround (sign·v), branch end (sign·(x − level)) and time limit (t − t_max)."""
+    return jnp.stack(
+        [
+            args.velocity_sign * y[1] / args.speed_scale,
+            args.level_sign * (y[0] - args.level) / (1.0 + jnp.abs(args.level)),
+            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+        ]
+    )
 
 
-def _left_branch(t, y, args: PhaseArgs, **kwargs):
-    return args.level_sign * (y[0] - args.level)
+def _first_event(t, y, args: PhaseArgs, **kwargs):
+    """Crosses zero upwards when the first of the conditions does (one scalar to bisect)."""
+    return jnp.max(_conditions(y, args))
 
 
 def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
@@ -97,6 +109,7 @@ def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
 
     if numerics.samples_per_phase:
         tau = jnp.linspace(0.0, jnp.where(lands, duration, 0.0), numerics.samples_per_phase)
+        kept = lands | (jnp.arange(numerics.samples_per_phase) == 0)
         rows = jnp.stack(
             [
                 c.t + tau,
@@ -107,7 +120,7 @@ def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
             ],
             axis=1,
         )
-        c = store_samples(c, numerics, rows)
+        c = store_samples(c, numerics, jnp.where(kept[:, None], rows, jnp.nan))
 
     nxt = transitions.touch(problem)
     first = c.contacts == 0
@@ -119,7 +132,8 @@ def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     ended_by_limit = reaches & ~lands
     c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
     c = log_event(c, c.t, EVENT_CODE["limit"], ended_by_limit)
-    c = log_event(c, touch_time, EVENT_CODE["limit"], lands & nxt.overflow)
+    stopped = nxt.stop >= 0
+    c = log_event(c, touch_time, EVENT_CODE["limit"], lands & stopped)
     start_force = problem.law.force(nxt.radius, 0.0)
     return eqx.tree_at(
         lambda s: (
@@ -131,12 +145,12 @@ def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
             jnp.where(lands, touch_time, c.t),
             jnp.where(lands, 0.0, c.d),
             jnp.where(lands, speed, c.v),
-            jnp.where(lands, jnp.where(nxt.overflow, DONE, nxt.mode), DONE),
+            jnp.where(lands, jnp.where(stopped, DONE, nxt.mode), DONE),
             nxt.segment,
             nxt.radius,
             c.phases + 1,
             c.contacts + jnp.asarray(lands, int),
-            jnp.where(lands, jnp.where(nxt.overflow, RESULT_CODE["radius_overflow"], c.status), status),
+            jnp.where(lands, jnp.where(stopped, nxt.stop, c.status), status),
             jnp.where(lands & first, speed, c.touch_velocity),
             jnp.where(lands & first, touch_time, c.touch_time),
             jnp.zeros(()),
@@ -171,6 +185,8 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         velocity_sign=jnp.where(c.mode == ADVANCE, -1.0, 1.0),
         level_sign=jnp.where(c.mode == ADVANCE, 1.0, -1.0),
         level=level,
+        time_limit=problem.time_limit,
+        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
     )
     horizon = jnp.where(in_contact, _PHASE_HORIZON, 1e-9)
     save_dense = numerics.samples_per_phase > 0
@@ -185,8 +201,8 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         saveat=dfx.SaveAt(t1=True, dense=save_dense),
         stepsize_controller=dfx.PIDController(rtol=numerics.rtol, atol=numerics.atol),
         event=dfx.Event(
-            [_turned, _left_branch],
-            root_finder=optx.Newton(rtol=numerics.rtol, atol=max(numerics.atol, _ROOT_ATOL)),
+            _first_event,
+            root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL),
             direction=True,
         ),
         max_steps=numerics.max_steps,
@@ -199,8 +215,9 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     a_end = jnp.where(
         riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment))
     )
-    turned = solution.event_mask[0]
     event_found = solution.result == dfx.RESULTS.event_occurred
+    fired = jnp.argmax(_conditions(solution.ys[-1], args))
+    turned, out_of_time = fired == 0, fired == 2
 
     if save_dense:
         pseudo = jnp.linspace(0.0, solution.ts[-1], numerics.samples_per_phase)
@@ -218,13 +235,20 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     failed = in_contact & ~event_found
     contact_work = c.contact_work + work
     first = c.contacts == 1
-    separated = in_contact & event_found & nxt.separated
-    captured = in_contact & event_found & nxt.captured
-    mode = jnp.where(failed | nxt.overflow, DONE, nxt.mode)
+    in_time = ~out_of_time
+    separated = in_contact & event_found & in_time & nxt.separated
+    captured = in_contact & event_found & in_time & nxt.captured
+    out_of_time = in_contact & event_found & out_of_time
+    stopped = (nxt.stop >= 0) & ~out_of_time
+    mode = jnp.where(failed | stopped | out_of_time, DONE, nxt.mode)
     status = jnp.where(
         failed,
         RESULT_CODE["solver_failure"],
-        jnp.where(nxt.overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        jnp.where(
+            out_of_time,
+            RESULT_CODE["time_limit"],
+            jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        ),
     )
     updated = eqx.tree_at(
         lambda s: (
@@ -247,7 +271,7 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
             c.rejected + solution.stats["num_rejected_steps"],
         ),
     )
-    updated = log_event(updated, t_end, nxt.event, event_found)
+    updated = log_event(updated, t_end, jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
     return jax.tree.map(lambda new, old: jnp.where(in_contact, new, old), updated, c)
 
 

@@ -173,6 +173,11 @@ class Carry(eqx.Module):
     trajectory: jax.Array
 
 
+def tables_overflow(problem: Problem):
+    """The edge functions turn more often than the branches hold: nothing can be trusted."""
+    return problem.attach.overflow | problem.detach.overflow
+
+
 def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
     events = EVENTS_PER_PHASE * numerics.max_phases
     rows = numerics.samples_per_phase * numerics.max_phases
@@ -181,12 +186,12 @@ def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
         t=zero,
         d=jnp.asarray(problem.start_indentation, jnp.float64),
         v=jnp.asarray(problem.start_velocity, jnp.float64),
-        mode=jnp.asarray(FLIGHT, int),
+        mode=jnp.where(tables_overflow(problem), DONE, FLIGHT),
         segment=jnp.zeros((), int),
         radius=zero,
         phases=jnp.zeros((), int),
         contacts=jnp.zeros((), int),
-        status=jnp.asarray(RESULT_CODE["separated"], int),
+        status=jnp.where(tables_overflow(problem), RESULT_CODE["branch_overflow"], RESULT_CODE["separated"]),
         stuck=jnp.asarray(False),
         touch_velocity=zero,
         separation_velocity=zero,

@@ -28,7 +28,9 @@ RESULT_CODES = (
     "time_limit",  # t_max reached
     "solver_failure",  # the ODE solver failed (max_steps, step size)
     "radius_overflow",  # the contact radius left the tabulated range of the profile
+    "unbounded_contact",  # the contact grows without limit on an unbounded body (e.g. n ≤ 1/2, (3.79–80))
     "phase_limit",  # more phases than the run holds
+    "branch_overflow",  # the edge functions turn more often than the branch tables hold
 )
 RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
 

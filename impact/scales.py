@@ -1,7 +1,8 @@
 """Internal units of a scene: lengths, force and time chosen so the contact problem is O(1).
 
 With adhesion the radial unit is the jump-in radius a0 (g(a0) = Δl(a0)) and the normal unit
-Δl(a0), so the Heß criterion reads Δl̂(x̂) = √x̂. Without adhesion the units follow from the
+Δl(a0), so the Heß criterion reads Δl̂(x̂) = √x̂ (where no such radius exists, the energy
+units below). Without adhesion the units follow from the
 impact energy: E*·ℓx·ℓz² = ½·m·v². In both cases the force unit is E*·ℓx·ℓz and the time unit
 √(m/(E*·ℓx)), which makes the scaled mass 1.
 """
@@ -13,7 +14,10 @@ import jax.numpy as jnp
 from .profiles import Profile
 
 _BISECTION_STEPS = 100
-_BRACKET_DECADES = 15.0
+# The bracket around the profile's radius scale, within the float64 range (power laws near
+# n = 1/2 put the jump-in radius dozens of decades away from it).
+_BRACKET_DECADES = 100.0
+_SMALLEST, _LARGEST = 1e-300, 1e300
 
 
 class Scales(eqx.Module):
@@ -36,9 +40,9 @@ class Scales(eqx.Module):
 
 
 def _log_bisect(excess, lower, upper):
-    """Crossing of `excess` (negative at `lower`) between two radii, bisected in log x.
+    """Crossing of `excess` between two radii, bisected in log x: (radius, found).
 
-    Returns `upper` when `excess` does not change sign on the bracket.
+    Returns `upper` (and found = False) when `excess` does not change sign on the bracket.
     """
     log_lo, log_hi = jnp.log(lower), jnp.log(upper)
     sign_lo = jnp.sign(excess(lower))
@@ -51,33 +55,39 @@ def _log_bisect(excess, lower, upper):
         return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
 
     log_lo, log_hi = jax.lax.fori_loop(0, _BISECTION_STEPS, step, (log_lo, log_hi))
-    return jnp.where(crosses, jnp.exp(0.5 * (log_lo + log_hi)), upper)
+    return jnp.where(crosses, jnp.exp(0.5 * (log_lo + log_hi)), upper), crosses
 
 
 def _bracket(profile: Profile):
     reference = profile.radius_scale()
-    lower = reference * 10.0 ** (-_BRACKET_DECADES)
-    upper = jnp.minimum(profile.extent(), reference * 10.0**_BRACKET_DECADES)
+    lower = jnp.maximum(reference * 10.0 ** (-_BRACKET_DECADES), _SMALLEST)
+    upper = jnp.minimum(profile.extent(), jnp.minimum(reference * 10.0**_BRACKET_DECADES, _LARGEST))
     return lower, upper
 
 
-def adhesive_scales(profile: Profile, E_star, work_of_adhesion, mass) -> Scales:
-    """Units from the jump-in radius: g(ℓx) = √(2π·ℓx·Δγ/E*), ℓz = that elongation."""
+def adhesive_scales(profile: Profile, E_star, work_of_adhesion, mass, touch_velocity) -> Scales:
+    """Units from the jump-in radius: g(ℓx) = √(2π·ℓx·Δγ/E*), ℓz = that elongation.
+
+    A profile with g ∝ √x (power law n = 1/2) or g = 0 up to a wall (flat punch) has no such
+    radius: the punch uses its radius, the n = 1/2 law the energy units.
+    """
 
     def elongation(x):
         return jnp.sqrt(2.0 * jnp.pi * x * work_of_adhesion / E_star)
 
     lower, upper = _bracket(profile)
-    radial = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
-    normal = elongation(radial)
-    return _complete(radial, normal, E_star, mass)
+    radial, found = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
+    walled = jnp.isfinite(profile.extent())
+    adhesive = _complete(radial, elongation(radial), E_star, mass)
+    energetic = energy_scales(profile, E_star, mass, touch_velocity)
+    return jax.tree.map(lambda a, e: jnp.where(found | walled, a, e), adhesive, energetic)
 
 
 def energy_scales(profile: Profile, E_star, mass, touch_velocity) -> Scales:
     """Units from the impact energy: E*·ℓx·g(ℓx)² = ½·m·v²."""
     energy = 0.5 * mass * touch_velocity**2
     lower, upper = _bracket(profile)
-    radial = _log_bisect(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper)
+    radial, _ = _log_bisect(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper)
     normal = jnp.sqrt(energy / (E_star * radial))
     return _complete(radial, normal, E_star, mass)
 

@@ -5,16 +5,17 @@ from dataclasses import dataclass
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 
-from .branches import Branch, build_branch, top_radius
+from .branches import Branch, build_branch
 from .law import ContactLaw
 from .profiles import Profile
 from .scales import Scales, adhesive_scales, energy_scales
 
 # Radii (scaled) at which the edge slope is compared to tell a steep tip.
 _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
-# The tables reach to where ĝ exceeds this many times the energy estimate of the indentation.
-_INDENTATION_CAP_FACTOR = 8.0
+# The branch tables reach this many times the bound on the largest contact radius.
+_TOP_MARGIN = 4.0
 
 
 @dataclass(frozen=True)
@@ -26,7 +27,8 @@ class Numerics:
 
     adhesive: bool
     gravity: bool
-    method: str = "dopri8"  # diffrax solver for the continuum law
+    method: str = "dopri8"  # diffrax solver for the continuum law; "verlet": fixed-step springs
+    dt: float | None = None  # time step (s) of method "verlet"
     rtol: float = 1e-10
     atol: float = 1e-12
     springs: int | None = None  # None: continuum law
@@ -88,7 +90,9 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     """Scale the physics, tabulate the branches and state the initial condition."""
     profile = physics.profile
     if numerics.adhesive:
-        scales = adhesive_scales(profile, physics.E_star, physics.work_of_adhesion, physics.mass)
+        scales = adhesive_scales(
+            profile, physics.E_star, physics.work_of_adhesion, physics.mass, touch_velocity(physics, numerics)
+        )
         detach_coefficient = jnp.sqrt(
             2.0 * jnp.pi * scales.radial * physics.work_of_adhesion / physics.E_star
         ) / scales.normal
@@ -104,9 +108,8 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     start_velocity = physics.velocity / scales.velocity
     start_indentation = -physics.gap / scales.normal
     touch_speed = touch_velocity(physics, numerics) / scales.velocity
-    energy = touch_energy(touch_speed)
-    cap = _INDENTATION_CAP_FACTOR * (1.0 + law.g(energy_radius(law, energy)))
-    top = top_radius(law, cap)
+    reach = radius_bound(law, attach_coefficient, touch_speed)
+    top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
     table = numerics.table_size if numerics.timed_loading else 0
     both = jax.vmap(lambda coefficient: build_branch(law, coefficient, top, numerics.max_turns, numerics.turn_grid, table))(
         jnp.stack([attach_coefficient, detach_coefficient])
@@ -125,15 +128,49 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     )
 
 
-def touch_energy(speed):
-    """Scaled energy bound for the radius estimates: ½v² plus the adhesion scale 1."""
-    return 0.5 * speed**2 + 1.0
+_BOUND_STEPS_PER_OCTAVE = 4
+_BOUND_OCTAVES = (-12, 120)  # the grid 2^(k/4) reaches from 2^-12 to 2^120 (scaled)
+_BOUND_NODES = 4
 
 
-def energy_radius(law: ContactLaw, energy):
-    """Radius where x·ĝ(x)² reaches the scaled energy (doubling, then capped by the extent)."""
+def radius_bound(law: ContactLaw, coefficient, speed):
+    """A radius beyond the largest contact radius an impact at scaled speed v reaches.
 
-    def grow(_, x):
-        return jnp.where(x * law.g(x) ** 2 < energy, 2.0 * x, x)
+    Loading along the attach edge h stores W(a) = [a·h² − 2G·h − λ²a²/2] + ∫g² da from the
+    adhesion scale a = 1 (integrate ∫F dh by parts with F = 2(a·h − G)); the bound is where W
+    first exceeds ½v² + 1 with a > 1 (the +1 covers the adhesion scale). W is tabulated on
+    a_k = 2^(k/4) (Gauss–Legendre on each step), then bisected inside the step. Capped by the
+    body's extent; an edge that never stores enough (n ≤ 1/2) returns the grid's end.
+    """
+    energy = 0.5 * speed**2 + 1.0
+    nodes, weights = (jnp.asarray(v) for v in np.polynomial.legendre.leggauss(_BOUND_NODES))
 
-    return jnp.minimum(jax.lax.fori_loop(0, 256, grow, jnp.asarray(1.0)), law.extent())
+    def boundary(a):
+        h = law.edge(a, coefficient)
+        return a * h**2 - 2.0 * law.G(a) * h - coefficient**2 * a**2 / 2.0
+
+    def squared_area(lo, hi):  # ∫_lo^hi g² da
+        mid, half = 0.5 * (hi + lo), 0.5 * (hi - lo)
+        points = mid[..., None] + half[..., None] * nodes
+        return half * jnp.sum(weights * law.g(points) ** 2, axis=-1)
+
+    low, high = _BOUND_OCTAVES
+    grid = 2.0 ** (jnp.arange(low * _BOUND_STEPS_PER_OCTAVE, high * _BOUND_STEPS_PER_OCTAVE + 1) / _BOUND_STEPS_PER_OCTAVE)
+    grid = jnp.minimum(grid, law.extent())
+    areas = jnp.concatenate([jnp.zeros(1), jnp.cumsum(squared_area(grid[:-1], grid[1:]))])
+    one = -low * _BOUND_STEPS_PER_OCTAVE  # index of a = 1
+    work = boundary(grid) - boundary(grid[one]) + areas - areas[one]
+    enough = (work >= energy) & (grid > 1.0)
+    index = jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)
+    start, start_work = grid[index - 1], work[index - 1]
+
+    def short(a):
+        return start_work + boundary(a) - boundary(start) + squared_area(start, a) < energy
+
+    def bisect(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        return jnp.where(short(mid), mid, lo), jnp.where(short(mid), hi, mid)
+
+    _, bound = jax.lax.fori_loop(0, 60, bisect, (start, grid[index]))
+    return jnp.minimum(jnp.where(jnp.any(enough), bound, grid[-1]), law.extent())

@@ -17,10 +17,10 @@ import jax.numpy as jnp
 from . import transitions
 from .outcome import Carry, Outcome, finish, initial_carry, log_event
 from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
-from .setup import Numerics, Problem, energy_radius, touch_energy
+from .setup import Numerics, Problem, radius_bound
 
-# Default array length: the body's extent, or this many energy radii (see setup.energy_radius).
-_LENGTH_IN_ENERGY_RADII = 2.0
+# Default array length: the body's extent, or this margin over the bound on the contact radius.
+_LENGTH_MARGIN = 1.25
 
 
 class SpringArray(eqx.Module):
@@ -65,8 +65,7 @@ def build_array(problem: Problem, count: int, length) -> SpringArray:
     """Midpoint springs on [0, L]; L is `length` (m) if given, else the default."""
     law = problem.law
     default = jnp.minimum(
-        law.extent(),
-        _LENGTH_IN_ENERGY_RADII * energy_radius(law, touch_energy(problem.touch_speed)),
+        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.touch_speed)
     )
     scaled = jnp.where(jnp.isnan(length), default, length / problem.scales.radial)
     spacing = scaled / count
@@ -187,24 +186,31 @@ def integrate(problem: Problem, numerics: Numerics, length) -> Outcome:
         level = jnp.where(inward, next_attach, edge_detach)
         duration, d, v, turned = _arc(k, array.spacing, array.prefix, problem.gravity, c.d, c.v, level, inward)
         work = array.work(k, c.d, d)
+        t = c.t + duration
+        out_of_time = t > problem.time_limit
         # What the event does to the contact.
         attached_more = array.attach_cascade(jnp.minimum(k + 1, count), d)
         detached = array.detach_cascade(k - 1, d)
-        overflow = inward & ~turned & beyond
+        overflow = inward & ~turned & beyond  # the contact outgrew the array
         new_k = jnp.where(turned, k, jnp.where(inward, attached_more, detached))
         separated = ~inward & ~turned & (new_k == 0)
         captured = ~inward & turned
         mode = jnp.where(
-            inward,
-            jnp.where(turned, RECEDE, jnp.where(overflow, DONE, ADVANCE)),
-            jnp.where(captured, DONE, jnp.where(separated, FLIGHT, RECEDE)),
+            out_of_time,
+            DONE,
+            jnp.where(
+                inward,
+                jnp.where(turned, RECEDE, jnp.where(overflow, DONE, ADVANCE)),
+                jnp.where(captured, DONE, jnp.where(separated, FLIGHT, RECEDE)),
+            ),
         )
-        t = c.t + duration
         first = c.contacts == 1
         contact_work = c.contact_work + work
         forces = jnp.stack([array.force(k, d), array.force(new_k, d)])
         status = jnp.where(
-            overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)
+            out_of_time,
+            RESULT_CODE["time_limit"],
+            jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
         )
         c = log_event(c, t, EVENT_CODE["max_indentation"], inward & turned)
         c = log_event(c, t, EVENT_CODE["separation"], separated)

@@ -8,7 +8,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE
+from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .setup import Problem
 
 # Relative gap under which a turnaround that lands on the detach edge starts unloading at once
@@ -25,10 +25,10 @@ class Next(eqx.Module):
     event: jax.Array  # event code logged for this transition
     separated: jax.Array
     captured: jax.Array
-    overflow: jax.Array
+    stop: jax.Array  # a result code that ends the run, or −1
 
 
-def _next(mode, segment, radius, event, separated=False, captured=False, overflow=False):
+def _next(mode, segment, radius, event, separated=False, captured=False, stop=-1):
     return Next(
         mode=jnp.asarray(mode, int),
         segment=jnp.asarray(segment, int),
@@ -36,7 +36,7 @@ def _next(mode, segment, radius, event, separated=False, captured=False, overflo
         event=jnp.asarray(event, int),
         separated=jnp.asarray(separated),
         captured=jnp.asarray(captured),
-        overflow=jnp.asarray(overflow),
+        stop=jnp.asarray(stop, int),
     )
 
 
@@ -63,8 +63,15 @@ def advance_from(problem: Problem, radius, indentation, event) -> Next:
     wall, segment, blocked = attach.cascade_out(law, radius, indentation)
     at_wall = blocked & (attach.nodes[-1] >= law.extent())
     held = _next(HOLD, 0, wall, event)
-    stuck_table = _next(DONE, 0, 0.0, event, overflow=True)
-    return select(blocked, select(at_wall, held, stuck_table), _next(ADVANCE, segment, wall, event))
+    # No spring beyond holds: the attach edge falls for good (n ≤ 1/2), or the tables end.
+    falling = ~attach.increasing[-1]
+    grows = _next(DONE, 0, wall, event, stop=RESULT_CODE["unbounded_contact"])
+    beyond = _next(DONE, 0, wall, event, stop=RESULT_CODE["radius_overflow"])
+    return select(
+        blocked,
+        select(at_wall, held, select(falling & ~jnp.isfinite(law.extent()), grows, beyond)),
+        _next(ADVANCE, segment, wall, event),
+    )
 
 
 def after_phase(problem: Problem, mode, segment, radius, indentation, turned) -> Next:
