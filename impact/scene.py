@@ -8,14 +8,16 @@ or raises `SceneError` naming each bad field by its dotted path.
 import math
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Literal
+from typing import Literal, get_args
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from .profile_schema import Number, ProfileSpec
 
 SOLVER_METHODS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
+# Fixed-step integrators of the spring array (contact.springs: N).
+SPRING_METHODS = ("verlet",)
 
 
 class SceneError(ValueError):
@@ -24,6 +26,14 @@ class SceneError(ValueError):
     def __init__(self, problems: list[tuple[str, str]]):
         self.problems = problems
         super().__init__("\n".join(f"{path}: {message}" if path else message for path, message in problems))
+
+
+class FieldProblem(ValueError):
+    """A cross-field check's complaint about one field, named relative to the section."""
+
+    def __init__(self, field: str, message: str):
+        super().__init__(message)
+        self.field = field
 
 
 class _Section(BaseModel):
@@ -109,7 +119,9 @@ class Material(_Section):
 class Initial(_Section):
     """Where the body starts: its approach speed and its distance from the surface."""
 
-    velocity: Number = Field(ge=0, description="approach speed towards the surface (m/s), > 0")
+    velocity: Number = Field(
+        ge=0, description="approach speed towards the surface (m/s), > 0 (0 allowed when gravity drops the body from a gap)"
+    )
     gap: Number = Field(0.0, ge=0, description="initial distance between tip and surface (m), >= 0")
 
 
@@ -128,7 +140,7 @@ class Adhesion(_Section):
     @model_validator(mode="after")
     def _approach_not_above(self):
         if self.approach_work_of_adhesion is not None and self.approach_work_of_adhesion > self.work_of_adhesion:
-            raise ValueError("approach_work_of_adhesion must not exceed work_of_adhesion")
+            raise FieldProblem("approach_work_of_adhesion", "must not exceed work_of_adhesion")
         return self
 
     @property
@@ -158,20 +170,31 @@ class Contact(_Section):
         None, gt=0, description="radius covered by the spring array (m); default: the body's extent or twice the energy radius"
     )
 
-    @model_validator(mode="after")
-    def _springs_positive(self):
-        if isinstance(self.springs, int) and self.springs < 1:
+    @field_validator("springs")
+    @classmethod
+    def _springs_positive(cls, springs):
+        if isinstance(springs, int) and springs < 1:
             raise ValueError("springs must be 'continuum' or an integer >= 1")
-        return self
+        return springs
 
 
 class Solver(_Section):
-    """Integrator of the continuum law (diffrax) and its tolerances, in scaled units."""
+    """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
+    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
 
-    method: Literal[SOLVER_METHODS] = "tsit5"
+    method: Literal[SOLVER_METHODS + SPRING_METHODS] = "tsit5"
     rtol: Number = Field(1e-10, gt=0, lt=1, description="relative tolerance, in (0, 1)")
     atol: Number = Field(1e-12, gt=0, description="absolute tolerance in scaled units, > 0")
     max_steps: int = Field(4096, ge=16, description="solver steps allowed per phase")
+    dt: Number | None = Field(None, gt=0, description="time step (s) of method 'verlet', > 0; only for it")
+
+    @model_validator(mode="after")
+    def _step_with_verlet_only(self):
+        if self.method == "verlet" and self.dt is None:
+            raise ValueError("method 'verlet' needs dt, its fixed time step (s)")
+        if self.method != "verlet" and self.dt is not None:
+            raise ValueError(f"dt is the time step of method 'verlet' only; method {self.method!r} is adaptive (rtol, atol)")
+        return self
 
 
 class Limits(_Section):
@@ -197,7 +220,16 @@ class Scene(_Section):
     def _reaches_the_surface(self):
         falls = self.effects.gravity is not None and self.initial.gap > 0
         if self.initial.velocity <= 0 and not falls:
-            raise ValueError("initial.velocity must be > 0 (or gravity and a gap > 0, to drop the body)")
+            raise FieldProblem("initial.velocity", "must be > 0 (or name gravity and a gap > 0 to drop the body)")
+        return self
+
+    @model_validator(mode="after")
+    def _verlet_steps_springs(self):
+        if self.solver.method == "verlet" and self.contact.springs == "continuum":
+            raise ValueError(
+                "solver.method 'verlet' steps a spring array: set contact.springs to a number of springs N "
+                "(the continuum law takes a diffrax method: " + ", ".join(SOLVER_METHODS) + ")"
+            )
         return self
 
     @property
@@ -207,40 +239,46 @@ class Scene(_Section):
         return adhesion is not None and adhesion.work_of_adhesion > 0
 
 
-def _dotted(location: tuple) -> str:
-    parts = [str(part) for part in location if not (isinstance(part, str) and part in _UNION_TAGS)]
-    return ".".join(parts)
+def _profile_shapes() -> tuple[str, ...]:
+    union = get_args(ProfileSpec)[0]
+    return tuple(model.model_fields["shape"].default for model in get_args(union))
 
 
 # Tags pydantic inserts into error locations for unions; they are not scene keys.
-_UNION_TAGS = {
-    "paraboloid", "sphere", "ellipsoid", "cone", "power_law", "flat_punch", "truncated_cone",
-    "truncated_paraboloid", "capped_flat_punch", "capped_cone", "capped_paraboloid",
-    "rounded_flat_punch", "wavy_paraboloid", "tabulated", "int", "literal['continuum']",
-    "function-after[_springs_positive(), Contact]",
-}
+_UNION_TAGS = set(_profile_shapes()) | {"int", "literal['continuum']"}
 
 
-def _message(error) -> str:
+def _dotted(location: tuple) -> str:
+    return ".".join(str(part) for part in location if not (isinstance(part, str) and part in _UNION_TAGS))
+
+
+def _path_and_message(error) -> tuple[str, str]:
+    path = _dotted(error["loc"])
+    cause = error.get("ctx", {}).get("error")
+    if isinstance(cause, FieldProblem):
+        return ".".join(part for part in (path, cause.field) if part), str(cause)
     text = error["msg"]
     if text.startswith("Value error, "):
         text = text[len("Value error, "):]
     if error["type"] == "extra_forbidden":
-        return "unknown key"
-    if error["type"] == "missing":
-        return "missing (required)"
-    if error["type"] == "union_tag_invalid":
-        return f"unknown shape {error['input']!r}; known shapes: {', '.join(sorted(_UNION_TAGS - {'int', 'literal[' + repr('continuum') + ']', 'function-after[_springs_positive(), Contact]'}))}"
-    return text
+        text = "unknown key"
+    elif error["type"] == "missing":
+        text = "missing (required)"
+    elif error["type"] == "union_tag_invalid":
+        text = f"unknown shape {error['ctx']['tag']!r}; known shapes: {', '.join(_profile_shapes())}"
+        path = ".".join(part for part in (path, "shape") if part)
+    elif error["type"] == "union_tag_not_found":
+        text = f"missing shape; known shapes: {', '.join(_profile_shapes())}"
+        path = ".".join(part for part in (path, "shape") if part)
+    return path, text
 
 
 def problems_of(error: ValidationError) -> list[tuple[str, str]]:
     """(dotted.path, message) for each error of a pydantic validation."""
-    seen, problems = set(), []
+    problems = []
     for item in error.errors():
-        entry = (_dotted(item["loc"]), _message(item))
-        if entry not in seen:
-            seen.add(entry)
+        entry = _path_and_message(item)
+        if entry not in problems:
             problems.append(entry)
     return problems
 

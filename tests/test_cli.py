@@ -126,7 +126,7 @@ TABULATED = {"shape": "tabulated", "r": [0.0, 1e-6, 2e-6], "f": [0.0, 1e-9, 4e-9
 BAD_SCENES = [
     ("unknown top-level key", {"colour": "red"}, "colour", "unknown key"),
     ("unknown nested key", {"initial.speed": 0.6}, "initial.speed", "unknown key"),
-    ("unknown shape", {"body.profile.shape": "banana"}, "body.profile", "unknown shape"),
+    ("unknown shape", {"body.profile.shape": "banana"}, "body.profile.shape", "unknown shape 'banana'"),
     ("missing shape parameter", {"body.profile.R": DELETE}, "body.profile.R", "missing"),
     ("string for a number", {"material.E_star": "stiff"}, "material.E_star", "expected a number"),
     ("zero mass", {"body.mass": 0}, "body.mass", "greater than 0"),
@@ -139,7 +139,7 @@ BAD_SCENES = [
     ("nu = 0.5", {"material": {"E": 1e9, "nu": 0.5}}, "material.nu", "less than 0.5"),
     ("nu = -1", {"material": {"E": 1e9, "nu": -1}}, "material.nu", "greater than -1"),
     ("approach above work of adhesion", {"effects.adhesion.approach_work_of_adhesion": 0.1},
-     "effects.adhesion", "approach_work_of_adhesion must not exceed work_of_adhesion"),
+     "effects.adhesion.approach_work_of_adhesion", "must not exceed work_of_adhesion"),
     ("negative work of adhesion", {"effects.adhesion.work_of_adhesion": -0.05},
      "effects.adhesion.work_of_adhesion", "greater than or equal to 0"),
     ("power law n = 0", {"body.profile": {"shape": "power_law", "n": 0, "c": 300.0}},
@@ -151,7 +151,7 @@ BAD_SCENES = [
     ("tabulated f not from 0", {"body.profile": {**TABULATED, "f": [1e-9, 2e-9, 4e-9]}},
      "body.profile.f", "start at 0"),
     ("mass and density", {"body.density": 2500}, "body", "exactly one of mass"),
-    ("springs < 1", {"contact.springs": 0}, "contact", "springs must be 'continuum' or an integer >= 1"),
+    ("springs < 1", {"contact.springs": 0}, "contact.springs", "springs must be 'continuum' or an integer >= 1"),
     ("rtol = 0", {"solver.rtol": 0}, "solver.rtol", "greater than 0"),
 ]
 
