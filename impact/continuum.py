@@ -39,6 +39,8 @@ SOLVERS = {
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
+# Radii (scaled) at which the edge slope is compared to tell a steep tip.
+_TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # Events are located by bisection inside the step that crossed, to a bracket of
 # 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
 _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
@@ -53,8 +55,8 @@ class PhaseArgs(eqx.Module):
     radius: jax.Array  # held radius (HOLD)
     gravity: jax.Array
     velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
-    level_sign: jax.Array  # branch end: sign·(d − level) crosses zero upwards
-    level: jax.Array
+    level_sign: jax.Array  # branch end: sign·(distance to the end) crosses zero upwards
+    level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
     time_limit: jax.Array
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
 
@@ -69,9 +71,10 @@ def _make_vector_field(timed_loading: bool):
     def vector_field(s, y, args: PhaseArgs):
         x, v = y[0], y[1]
         law, branch = args.law, args.branch
-        slope = law.edge_slope(x, branch.coefficient)
+        radius = jnp.maximum(x, 0.0)  # a stage may step a hair past a = 0
+        slope = law.edge_slope(radius, branch.coefficient)
         pace = 1.0 / jnp.sqrt(1.0 + slope**2)
-        force = law.force(x, branch.level(law, x))
+        force = law.force(radius, branch.level(law, radius))
         riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
         held = law.force(args.radius, x)
         if timed_loading:
@@ -82,13 +85,27 @@ def _make_vector_field(timed_loading: bool):
     return vector_field
 
 
+def _distance_to_end(y, args: PhaseArgs):
+    """How far the state is from the phase's end, of relative size and sign-normalised.
+
+    Timed phases end at a depth d. Riding phases end at a segment end p, where a − p
+    crosses linearly at a turning point of h (h − h(p) only touches) and h − h(p) crosses
+    linearly at a steep tip (a ∝ (s_end − s)² only touches): their sum crosses in both.
+    """
+    x = y[0]
+    edge = args.branch.level(args.law, jnp.maximum(x, 0.0)) - args.branch.level(args.law, args.level)
+    riding = (x - args.level) + edge
+    distance = jnp.where(args.riding, riding, x - args.level)
+    return args.level_sign * distance / (1.0 + jnp.abs(args.level))
+
+
 def _conditions(y, args: PhaseArgs):
     """The phase's event conditions, each negative until its event and of relative size:
-    turnaround (sign·v), branch end (sign·(x − level)) and time limit (t − t_max)."""
+    turnaround (sign·v), phase end and time limit (t − t_max)."""
     return jnp.stack(
         [
             args.velocity_sign * y[1] / args.speed_scale,
-            args.level_sign * (y[0] - args.level) / (1.0 + jnp.abs(args.level)),
+            _distance_to_end(y, args),
             (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
         ]
     )
@@ -165,7 +182,12 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     law = problem.law
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
-    riding = (c.mode == RECEDE) | ((c.mode == ADVANCE) & ((c.radius > 0.0) | ~problem.steep_tip))
+    # A segment rising from a steep tip (h' → ∞ at a = 0, power laws n < 1) is integrated in
+    # time: in a, the pace q ∝ √a would never let a reach 0.
+    steep = (branch.nodes[c.segment] == 0.0) & (
+        law.edge_slope(_TIP_NEAR, branch.coefficient) > law.edge_slope(_TIP_FAR, branch.coefficient)
+    )
+    riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
     # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
     # detach edge of the held radius.
     segment_end = jnp.where(c.mode == ADVANCE, branch.nodes[c.segment + 1], branch.nodes[c.segment])

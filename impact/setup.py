@@ -12,8 +12,6 @@ from .law import ContactLaw
 from .profiles import Profile
 from .scales import Scales, adhesive_scales, energy_scales
 
-# Radii (scaled) at which the edge slope is compared to tell a steep tip.
-_TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # The branch tables reach this many times the bound on the largest contact radius.
 _TOP_MARGIN = 4.0
 
@@ -71,7 +69,7 @@ class Problem(eqx.Module):
     start_indentation: jax.Array  # −gap (scaled)
     start_velocity: jax.Array  # scaled
     touch_speed: jax.Array  # scaled speed at the first touch
-    steep_tip: jax.Array  # the attach edge slope grows without bound towards a = 0 (n < 1)
+    bounded: jax.Array  # loading stores the impact energy at a finite contact radius (or a wall)
     time_limit: jax.Array  # scaled
 
     @property
@@ -108,7 +106,7 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     start_velocity = physics.velocity / scales.velocity
     start_indentation = -physics.gap / scales.normal
     touch_speed = touch_velocity(physics, numerics) / scales.velocity
-    reach = radius_bound(law, attach_coefficient, touch_speed)
+    reach, bounded = radius_bound(law, attach_coefficient, touch_speed)
     top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
     table = numerics.table_size if numerics.timed_loading else 0
     both = jax.vmap(lambda coefficient: build_branch(law, coefficient, top, numerics.max_turns, numerics.turn_grid, table))(
@@ -123,7 +121,7 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
         start_indentation=start_indentation,
         start_velocity=start_velocity,
         touch_speed=touch_speed,
-        steep_tip=law.edge_slope(_TIP_NEAR, attach_coefficient) > law.edge_slope(_TIP_FAR, attach_coefficient),
+        bounded=bounded | jnp.isfinite(law.extent()),
         time_limit=physics.time_limit / scales.time,
     )
 
@@ -140,7 +138,8 @@ def radius_bound(law: ContactLaw, coefficient, speed):
     adhesion scale a = 1 (integrate ∫F dh by parts with F = 2(a·h − G)); the bound is where W
     first exceeds ½v² + 1 with a > 1 (the +1 covers the adhesion scale). W is tabulated on
     a_k = 2^(k/4) (Gauss–Legendre on each step), then bisected inside the step. Capped by the
-    body's extent; an edge that never stores enough (n ≤ 1/2) returns the grid's end.
+    body's extent. Returns (radius, found): an edge that never stores enough (n < 1/2, or
+    n = 1/2 with a force attractive at every radius) pulls the contact open without limit.
     """
     energy = 0.5 * speed**2 + 1.0
     nodes, weights = (jnp.asarray(v) for v in np.polynomial.legendre.leggauss(_BOUND_NODES))
@@ -173,4 +172,4 @@ def radius_bound(law: ContactLaw, coefficient, speed):
         return jnp.where(short(mid), mid, lo), jnp.where(short(mid), hi, mid)
 
     _, bound = jax.lax.fori_loop(0, 60, bisect, (start, grid[index]))
-    return jnp.minimum(jnp.where(jnp.any(enough), bound, grid[-1]), law.extent())
+    return jnp.minimum(jnp.where(jnp.any(enough), bound, grid[-1]), law.extent()), jnp.any(enough)

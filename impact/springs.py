@@ -65,7 +65,7 @@ def build_array(problem: Problem, count: int, length) -> SpringArray:
     """Midpoint springs on [0, L]; L is `length` (m) if given, else the default."""
     law = problem.law
     default = jnp.minimum(
-        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.touch_speed)
+        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.touch_speed)[0]
     )
     scaled = jnp.where(jnp.isnan(length), default, length / problem.scales.radial)
     spacing = scaled / count
