@@ -55,11 +55,35 @@ class Branch(eqx.Module):
         upper = self.table[segment, index + 1]
         start = lower + (position - index) * (upper - lower)
 
+        # Next to a tip at x = 0 with h(0) = 0, h behaves like a power of x (possibly with an
+        # infinite slope): there Newton runs on log h against log x, a nearly straight line.
+        at_tip = (lower == 0.0) & (low_level == 0.0) & (indentation > 0.0)
+        tip_start = self._power_start(law, upper, indentation)
+        start = jnp.where(at_tip, tip_start, start)
+
         def bracketed(_, x):
-            return jnp.clip(self._newton(law, x, indentation), lower, upper)
+            step = jnp.where(at_tip, self._log_newton(law, x, indentation), self._newton(law, x, indentation))
+            return jnp.clip(step, lower, upper)
 
         refined = jax.lax.stop_gradient(jax.lax.fori_loop(0, _NEWTON_STEPS, bracketed, start))
-        return jnp.clip(self._newton(law, refined, indentation), lower, upper)
+        final = jnp.where(at_tip, self._log_newton(law, refined, indentation), self._newton(law, refined, indentation))
+        return jnp.clip(final, lower, upper)
+
+    def _power_start(self, law: ContactLaw, node, indentation):
+        """Root of h = d below `node` if h ∝ x^p with the local exponent p at the node."""
+        level = self.level(law, node)
+        exponent = node * law.edge_slope(node, self.coefficient) / jnp.where(level > 0.0, level, 1.0)
+        ratio = indentation / jnp.where(level > 0.0, level, 1.0)
+        return node * jnp.where((level > 0.0) & (exponent > 0.0), ratio ** (1.0 / jnp.where(exponent > 0.0, exponent, 1.0)), 0.0)
+
+    def _log_newton(self, law: ContactLaw, x, indentation):
+        """One Newton step on log h(x) = log d in the variable log x."""
+        safe = jnp.maximum(x, 1e-300)
+        level = self.level(law, safe)
+        exponent = safe * law.edge_slope(safe, self.coefficient) / jnp.where(level > 0.0, level, 1.0)
+        usable = (level > 0.0) & (exponent > 0.0)
+        log_step = (jnp.log(jnp.where(usable, level, 1.0)) - jnp.log(indentation)) / jnp.where(usable, exponent, 1.0)
+        return jnp.where(usable, safe * jnp.exp(-log_step), x)
 
     def _newton(self, law: ContactLaw, x, indentation):
         slope = law.edge_slope(x, self.coefficient)

@@ -1,8 +1,8 @@
 """Internal units of a scene: lengths, force and time chosen so the contact problem is O(1).
 
 With adhesion the radial unit is the jump-in radius a0 (g(a0) = Δl(a0)) and the normal unit
-Δl(a0), so the Heß criterion reads Δl̂(x̂) = √x̂ (where no such radius exists, the energy
-units below). Without adhesion the units follow from the
+Δl(a0), so the Heß criterion reads Δl̂(x̂) = √x̂ — unless the impact energy reaches further, or
+there is no jump-in: then the energy units below. Without adhesion the units follow from the
 impact energy: E*·ℓx·ℓz² = ½·m·v². In both cases the force unit is E*·ℓx·ℓz and the time unit
 √(m/(E*·ℓx)), which makes the scaled mass 1.
 """
@@ -65,22 +65,23 @@ def _bracket(profile: Profile):
     return lower, upper
 
 
-def adhesive_scales(profile: Profile, E_star, work_of_adhesion, mass, touch_velocity) -> Scales:
-    """Units from the jump-in radius: g(ℓx) = √(2π·ℓx·Δγ/E*), ℓz = that elongation.
-
-    A profile with g ∝ √x (power law n = 1/2) or g = 0 up to a wall (flat punch) has no such
-    radius: the punch uses its radius, the n = 1/2 law the energy units.
+def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, touch_velocity) -> Scales:
+    """Units of an adhesive impact: the jump-in radius on approach, g(ℓx) = √(2π·ℓx·Δγa/E*),
+    with ℓz that elongation (so the Heß rule reads √x̂), unless the impact energy reaches a
+    larger radius: then the energy units. Without a jump-in (Δγa = 0, attach on touch) or a
+    jump-in radius (g ∝ √x, power law n = 1/2), the energy units; a flat punch uses its radius.
     """
 
     def elongation(x):
-        return jnp.sqrt(2.0 * jnp.pi * x * work_of_adhesion / E_star)
+        return jnp.sqrt(2.0 * jnp.pi * x * approach_work_of_adhesion / E_star)
 
     lower, upper = _bracket(profile)
     radial, found = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
     walled = jnp.isfinite(profile.extent())
-    adhesive = _complete(radial, elongation(radial), E_star, mass)
+    jump_in = _complete(radial, elongation(radial), E_star, mass)
     energetic = energy_scales(profile, E_star, mass, touch_velocity)
-    return jax.tree.map(lambda a, e: jnp.where(found | walled, a, e), adhesive, energetic)
+    use_jump_in = (found | walled) & (approach_work_of_adhesion > 0.0) & (radial >= energetic.radial)
+    return jax.tree.map(lambda a, e: jnp.where(use_jump_in, a, e), jump_in, energetic)
 
 
 def energy_scales(profile: Profile, E_star, mass, touch_velocity) -> Scales:

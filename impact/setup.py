@@ -89,7 +89,7 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     profile = physics.profile
     if numerics.adhesive:
         scales = adhesive_scales(
-            profile, physics.E_star, physics.work_of_adhesion, physics.mass, touch_velocity(physics, numerics)
+            profile, physics.E_star, physics.approach_work_of_adhesion, physics.mass, touch_velocity(physics, numerics)
         )
         detach_coefficient = jnp.sqrt(
             2.0 * jnp.pi * scales.radial * physics.work_of_adhesion / physics.E_star
