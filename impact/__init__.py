@@ -6,7 +6,19 @@ Enable float64 before use (the CLI does): `jax.config.update("jax_enable_x64", T
 from . import profiles, theory
 from .scene import Scene, SceneError, load_scene
 from .simulate import Result, simulate
+from .sweep import SweepResult, sweep
 
 __version__ = "0.1.0"
 
-__all__ = ["Result", "Scene", "SceneError", "load_scene", "profiles", "simulate", "theory", "__version__"]
+__all__ = [
+    "Result",
+    "Scene",
+    "SceneError",
+    "SweepResult",
+    "load_scene",
+    "profiles",
+    "simulate",
+    "sweep",
+    "theory",
+    "__version__",
+]

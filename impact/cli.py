@@ -292,3 +292,13 @@ def _table(title: str, rows: list[tuple[str, str]]) -> Table:
     for name, value in rows:
         table.add_row(Text(name), Text(value))
     return table
+
+
+def _register_commands() -> None:
+    """Commands defined in their own modules: sweeps and merges of shards."""
+    from . import cli_sweep
+
+    cli_sweep.register(app)
+
+
+_register_commands()

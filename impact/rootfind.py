@@ -20,7 +20,9 @@ class BracketBisection(optx.AbstractRootFinder):
 
     @property
     def _inner(self) -> optx.Bisection:
-        return optx.Bisection(rtol=self.rtol, atol=self.atol)
+        # Event conditions cross upwards (direction=True): negative at the bracket's lower end.
+        # flip=False also skips optimistix's runtime check, which fails a whole vmapped batch.
+        return optx.Bisection(rtol=self.rtol, atol=self.atol, flip=False)
 
     def init(self, fn, y, args, options, f_struct, aux_struct, tags):
         return self._inner.init(fn, y, args, options, f_struct, aux_struct, tags)
