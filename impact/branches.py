@@ -24,6 +24,7 @@ from .law import ContactLaw
 _GRID_LOWEST = 1e-8
 _GRID_DECADES = 12.0
 _BISECTION_STEPS = 64
+_TABLE_BISECTION_STEPS = 32  # the table only starts Newton: 2^-32 of a segment is plenty
 _SAFEGUARDED_STEPS = 80
 _NEWTON_STEPS = 3
 
@@ -193,6 +194,6 @@ def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_siz
 
     lower = jnp.broadcast_to(nodes[:-1, None], targets.shape)
     upper = jnp.broadcast_to(nodes[1:, None], targets.shape)
-    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, invert, (lower, upper))
+    lo, hi = jax.lax.fori_loop(0, _TABLE_BISECTION_STEPS, invert, (lower, upper))
     table = jnp.where(increasing[:, None], 0.5 * (lo + hi), lower)
     return table.at[:, 0].set(nodes[:-1]).at[:, -1].set(jnp.where(increasing, nodes[1:], nodes[:-1]))

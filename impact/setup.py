@@ -35,7 +35,7 @@ class Numerics:
     max_bounces: int = 64
     max_turns: int = 4  # turning points of an edge function the branches hold
     turn_grid: int = 384  # points searched for turning points (more for wavy profiles)
-    table_size: int = 129  # radius table per segment, kept only for timed loading
+    table_size: int = 65  # radius table per segment, kept only for timed loading
     samples_per_phase: int = 0  # trajectory samples per phase; 0 keeps no trajectory
 
     @property
