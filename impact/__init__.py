@@ -4,6 +4,7 @@ Enable float64 before use (the CLI does): `jax.config.update("jax_enable_x64", T
 """
 
 from . import profiles, theory
+from .indentation import IndentationResult
 from .scene import Scene, SceneError, load_scene
 from .simulate import Result, simulate
 from .sweep import SweepResult, sweep
@@ -11,6 +12,7 @@ from .sweep import SweepResult, sweep
 __version__ = "0.1.0"
 
 __all__ = [
+    "IndentationResult",
     "Result",
     "Scene",
     "SceneError",

@@ -24,8 +24,11 @@ from rich.table import Table
 from rich.text import Text
 
 from . import __version__
+from .indentation import IndentationResult
 from .io import read_provenance, read_run, write_run, write_text
+from .io_indentation import is_indentation_run, read_indentation, read_indentation_provenance, write_indentation
 from .plots import save_figures, si_prefix
+from .plots_indentation import save_indentation_figures
 from .scene import Scene, SceneError, load_scene, read_yaml, scene_yaml
 from .simulate import Result, simulate
 
@@ -91,7 +94,7 @@ def run(
     result = simulate(scene)
     wall_time = time.perf_counter() - start
     _write_outputs(result, folder, wall_time, overwrite)
-    _out.print(summary_table(result, wall_time))
+    _out.print(result_table(result, wall_time))
     _out.print(Text(f"run written to {folder}"), soft_wrap=True)
     if not result.success:
         _err.print(Text(f"warning: the run ended with status {result.status!r}, not a physical outcome", "yellow"))
@@ -113,12 +116,13 @@ def show(
     ],
 ) -> None:
     """Print the summary of a stored run (run.h5)."""
+    indentation = is_indentation_run(run_file)
     try:
-        result = read_run(run_file)
-        provenance = read_provenance(run_file)
+        result = read_indentation(run_file) if indentation else read_run(run_file)
+        provenance = (read_indentation_provenance if indentation else read_provenance)(run_file)
     except (OSError, ValueError) as error:
         _refuse(f"cannot show {run_file}", [("", str(error))])
-    _out.print(summary_table(result, provenance["wall_time"]))
+    _out.print(result_table(result, provenance["wall_time"]))
     versions = f"jax {provenance['jax']}, diffrax {provenance['diffrax']}"
     precision = "float64" if provenance["x64"] else "float32"
     _out.print(Text(f"written by impact {provenance['impact']} ({versions}, {precision})"), soft_wrap=True)
@@ -205,7 +209,7 @@ def _check_output(folder: Path, overwrite: bool) -> None:
         _refuse("output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the run in it")])
 
 
-def _write_outputs(result: Result, folder: Path, wall_time: float, overwrite: bool) -> None:
+def _write_outputs(result: "Result | IndentationResult", folder: Path, wall_time: float, overwrite: bool) -> None:
     """Create the folder and write config.yaml, run.h5 and the plots, each atomically; a folder
     created here is removed again if a write fails."""
     created = not folder.exists()
@@ -217,8 +221,12 @@ def _write_outputs(result: Result, folder: Path, wall_time: float, overwrite: bo
         _refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
     try:
         write_text(folder / "config.yaml", scene_yaml(result.scene))
-        write_run(result, folder / "run.h5", wall_time=wall_time)
-        save_figures(result, folder)
+        if isinstance(result, IndentationResult):
+            write_indentation(result, folder / "run.h5", wall_time=wall_time)
+            save_indentation_figures(result, folder)
+        else:
+            write_run(result, folder / "run.h5", wall_time=wall_time)
+            save_figures(result, folder)
     except BaseException:
         if created:
             shutil.rmtree(folder, ignore_errors=True)
@@ -240,6 +248,37 @@ def quantity(value: float, unit: str) -> str:
     """A value with an SI prefix: 3.92e-8, "s" → "39.21 ns"."""
     factor, prefix = si_prefix(value)
     return f"{value * factor:.4g} {prefix}{unit}"
+
+
+def result_table(result: "Result | IndentationResult", wall_time: float | None) -> Table:
+    """The key results of an impact or an indentation test."""
+    if isinstance(result, IndentationResult):
+        return indentation_table(result, wall_time)
+    return summary_table(result, wall_time)
+
+
+def indentation_table(result: IndentationResult, wall_time: float | None) -> Table:
+    """The pull-off (last stable state before the contact is lost) and the extremes of a test."""
+    pull_off = result.pull_off
+
+    def value(number: float, unit: str) -> str:
+        return quantity(number, unit) if math.isfinite(number) else "—"
+
+    snaps = sum(kind in ("snap_in", "snap_out") for _, kind in result.events)
+    rows = [
+        ("control", f"{result.scene.control} (ξ = {result.xi})"),
+        ("status", result.status),
+        ("pull-off force", value(pull_off.force, "N")),
+        ("pull-off indentation", value(pull_off.indentation, "m")),
+        ("pull-off contact radius", value(pull_off.contact_radius, "m")),
+        ("max force", quantity(result.max_force, "N")),
+        ("max indentation", quantity(result.max_indentation, "m")),
+        ("max contact radius", quantity(result.max_contact_radius, "m")),
+        ("jumps (snaps, jump-in)", str(snaps)),
+        ("points", str(len(result.force))),
+        ("wall time", "unknown" if wall_time is None else quantity(wall_time, "s")),
+    ]
+    return _table(f"{result.scene.name} (indentation)", rows)
 
 
 def summary_table(result: Result, wall_time: float | None) -> Table:
@@ -272,6 +311,19 @@ def facts_table(scene: Scene) -> Table:
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
     springs = scene.contact.springs
+    if scene.kind == "indentation":
+        program = scene.program
+        unit = "N" if scene.control == "force" else "m"
+        cycles = f", {program.cycles} cycles" + ("" if program.unload_to is None else f" unloading to {program.unload_to:g} {unit}")
+        rows = [
+            ("kind", f"indentation, {scene.control} control"),
+            ("shape", f"{body.profile.shape} ({parameters})"),
+            ("E*", f"{material.effective_modulus:.6g} Pa" + ("" if material.E_star is not None else " (from E and ν)")),
+            ("program", f"peak {program.peak:g} {unit}{cycles if program.cycles > 1 else ''}, then to pull-off"),
+            ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),
+            ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
+        ]
+        return _table(f"{scene.name} (SI units)", rows)
     density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     rows = [
         ("shape", f"{body.profile.shape} ({parameters})"),

@@ -240,6 +240,9 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     event_found = solution.result == dfx.RESULTS.event_occurred
     fired = jnp.argmax(_conditions(solution.ys[-1], args))
     turned, out_of_time = fired == 0, fired == 2
+    # A located turnaround is v = 0: round-off of either sign would make the next phase's
+    # combined condition start positive and mask its other events.
+    v_end = jnp.where(event_found & turned, 0.0, v_end)
 
     if save_dense:
         pseudo = jnp.linspace(0.0, solution.ts[-1], numerics.samples_per_phase)

@@ -28,6 +28,7 @@ __all__ = [
     "CappedParaboloidSpec",
     "RoundedFlatPunchSpec",
     "WavyParaboloidSpec",
+    "ConstantStressSpec",
     "TabulatedSpec",
 ]
 
@@ -223,6 +224,21 @@ class WavyParaboloidSpec(_Spec):
         return profiles.WavyParaboloid(R=self.R, amplitude=self.amplitude, wavelength=self.wavelength)
 
 
+class ConstantStressSpec(_Spec):
+    """Punch of radius `radius` whose concave face f = (σ0 a/E*)[(4/π)E(r/a) − 2] (3.61) carries a
+    uniform tensile stress σ0 against a half-space of modulus E_star (Gao and Yao's optimal tip)."""
+
+    shape: Literal["constant_stress"] = "constant_stress"
+    radius: Number = _length("punch radius a")
+    stress: Number = Field(gt=0, description="uniform tensile stress σ0 the face is designed for (Pa), > 0")
+    E_star: Number = Field(
+        gt=0, description="effective modulus E* the face is designed against (Pa), > 0; use the material's E*"
+    )
+
+    def build(self) -> profiles.ConstantStress:
+        return profiles.ConstantStress(radius=self.radius, stress=self.stress, E_star=self.E_star)
+
+
 class TabulatedSpec(_Spec):
     """Piecewise-linear profile through the points (r, f); continued with its last slope."""
 
@@ -275,6 +291,7 @@ ProfileSpec = Annotated[
         CappedParaboloidSpec,
         RoundedFlatPunchSpec,
         WavyParaboloidSpec,
+        ConstantStressSpec,
         TabulatedSpec,
     ],
     Field(discriminator="shape"),

@@ -41,8 +41,10 @@ __all__ = [
     "CappedParaboloid",
     "RoundedFlatPunch",
     "WavyParaboloid",
+    "ConstantStress",
     "Tabulated",
     "kappa",
+    "ellipe",
     "mdr_transform",
 ]
 
@@ -554,6 +556,68 @@ class WavyParaboloid(Profile):
 
     def radius_scale(self):
         return self.R
+
+
+_AGM_STEPS = 12  # the arithmetic-geometric mean converges quadratically: ~1e-16 at k' ~ 1e-16
+
+
+def ellipe(k: ArrayLike) -> Array:
+    """Complete elliptic integral of the second kind E(k) = ∫_0^{π/2} √(1 − k² sin²φ) dφ (3.62),
+    modulus k in [0, 1], by the arithmetic-geometric mean; differentiable for k < 1."""
+    k = _f64(k)
+    edge = k >= 1
+    ks = jnp.where(edge, 0.5, jnp.abs(k))
+    a, b, c = jnp.ones_like(ks), jnp.sqrt((1 - ks) * (1 + ks)), ks
+    total = 0.5 * c**2
+    weight = 0.5
+    for _ in range(_AGM_STEPS):
+        a, b, c = 0.5 * (a + b), jnp.sqrt(a * b), 0.5 * (a - b)
+        weight = 2 * weight
+        total = total + weight * c**2
+    return jnp.where(edge, 1.0, np.pi / (2 * a) * (1 - total))
+
+
+class ConstantStress(Profile):
+    """The punch of radius a (m) whose whole face carries the uniform tensile stress σ0 (Pa)
+    against a half-space of modulus E* (Pa) (§3.5.6, Gao and Yao):
+
+    f = (σ0 a/E*)[(4/π) E(r/a) − 2] for r <= a (3.61), a concave face (f <= 0: the rim stands
+    out); wall at a (extent a). Its MDR transform is the 1-D line load of a uniform stress,
+    g = (2σ0/E*)(√(a² − x²) − a), and G = (2σ0/E*)[(x√(a² − x²) + a² arcsin(x/a))/2 − a x].
+    At d = −2σ0 a/E* every spring carries E*(d − g) ∝ √(a² − x²): the stress is σ0 everywhere
+    and F = −π σ0 a² (3.63).
+    """
+
+    radius: Array = _param()
+    stress: Array = _param()
+    E_star: Array = _param()
+
+    def _depth(self):
+        return 2 * self.stress / self.E_star
+
+    def f(self, r):
+        r = _f64(r)
+        inside = r <= self.radius
+        k = jnp.where(inside, r / self.radius, 0.0)
+        face = self.stress * self.radius / self.E_star * (4 / np.pi * ellipe(k) - 2)
+        return jnp.where(inside, face, jnp.inf)
+
+    def g(self, x):
+        x = _f64(x)
+        rest = jnp.sqrt(jnp.maximum((self.radius - x) * (self.radius + x), 0.0))
+        return self._depth() * (rest - self.radius)
+
+    def G(self, x):
+        x = _f64(x)
+        rest = jnp.sqrt(jnp.maximum((self.radius - x) * (self.radius + x), 0.0))
+        angle = jnp.arcsin(jnp.clip(x / self.radius, -1.0, 1.0))
+        return self._depth() * (0.5 * (x * rest + self.radius**2 * angle) - self.radius * x)
+
+    def extent(self):
+        return self.radius
+
+    def radius_scale(self):
+        return self.radius
 
 
 class Tabulated(Profile):

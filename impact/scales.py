@@ -77,6 +77,9 @@ def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, t
 
     lower, upper = _bracket(profile)
     radial, found = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
+    # A jump-in needs h = g − Δl below zero inside the radius (for n < 1/2 the crossing is the
+    # far zero of h instead).
+    found = found & (profile.g(lower) < elongation(lower))
     walled = jnp.isfinite(profile.extent())
     jump_in = _complete(radial, elongation(radial), E_star, mass)
     energetic = energy_scales(profile, E_star, mass, touch_velocity)

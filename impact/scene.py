@@ -18,6 +18,7 @@ from .profile_schema import Number, ProfileSpec
 SOLVER_METHODS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 # Fixed-step integrators of the spring array (contact.springs: N).
 SPRING_METHODS = ("verlet",)
+MASS_OR_DENSITY = "give exactly one of mass (kg) and density (kg/m³)"
 
 
 class SceneError(ValueError):
@@ -55,8 +56,9 @@ class Body(_Section):
 
     @model_validator(mode="after")
     def _one_of_mass_and_density(self):
-        if (self.mass is None) == (self.density is None):
-            raise ValueError("give exactly one of mass (kg) and density (kg/m³)")
+        # Neither is refused by the scene for impacts (an indentation needs no mass).
+        if self.mass is not None and self.density is not None:
+            raise ValueError(MASS_OR_DENSITY)
         if self.density is not None and body_volume(self.profile) is None:
             raise ValueError(
                 f"density needs a closed body, and shape {self.profile.shape!r} has no volume; give mass instead"
@@ -191,9 +193,9 @@ class Solver(_Section):
     @model_validator(mode="after")
     def _step_with_verlet_only(self):
         if self.method == "verlet" and self.dt is None:
-            raise ValueError("method 'verlet' needs dt, its fixed time step (s)")
+            raise FieldProblem("dt", "missing: method 'verlet' needs its fixed time step (s)")
         if self.method != "verlet" and self.dt is not None:
-            raise ValueError(f"dt is the time step of method 'verlet' only; method {self.method!r} is adaptive (rtol, atol)")
+            raise FieldProblem("dt", f"only for method 'verlet'; method {self.method!r} is adaptive (rtol, atol)")
         return self
 
 
@@ -204,20 +206,80 @@ class Limits(_Section):
     duration: Number | None = Field(None, gt=0, description="simulated time at most (s); default: no bound")
 
 
+class Program(_Section):
+    """The loading program of a quasi-static indentation: load to the peak, unload; repeated."""
+
+    peak: Number = Field(
+        ge=0, description="largest load of every cycle: force (N) under force control, indentation (m) under displacement control; >= 0"
+    )
+    cycles: int = Field(1, ge=1, description="load–unload cycles; the last one retracts to pull-off")
+    unload_to: Number | None = Field(
+        None, description="where the cycles before the last stop unloading (N or m, below peak); default: each retracts to pull-off"
+    )
+
+    @model_validator(mode="after")
+    def _unload_below_peak(self):
+        if self.unload_to is not None and self.unload_to >= self.peak:
+            raise FieldProblem("unload_to", "must lie below peak")
+        return self
+
+
+# Sections that only an impact reads: an indentation refuses them rather than ignore them.
+_IMPACT_ONLY = {
+    "initial": "an indentation is quasi-static: it has no initial velocity or gap",
+    "solver": "an indentation needs no ODE solver (its march along the branches is exact)",
+    "limits": "an indentation ends at pull-off (no bounces or duration to limit)",
+}
+
+
 class Scene(_Section):
-    """One impact: body, material, initial state, effects and numerics."""
+    """One impact (`kind: impact`, the default) or one quasi-static indentation test
+    (`kind: indentation`: `control` and `program`, no mass, initial state or solver)."""
 
     name: str = Field("scene", pattern=r"^[A-Za-z0-9_.-]+$", description="name of the run (file-name safe)")
+    kind: Literal["impact", "indentation"] = Field(
+        "impact", description="'impact' (a body hits the surface) or 'indentation' (quasi-static loading, §3.3)"
+    )
+    control: Literal["force", "displacement"] | None = Field(
+        None, description="indentation only: what the program drives, 'force' (ξ = 3) or 'displacement' (ξ = 1)"
+    )
+    program: Program | None = Field(None, description="indentation only: the loading program")
     body: Body
     material: Material
-    initial: Initial
+    initial: Initial | None = None
     effects: Effects = Effects()
     contact: Contact = Contact()
     solver: Solver = Solver()
     limits: Limits = Limits()
 
     @model_validator(mode="after")
+    def _sections_of_the_kind(self):
+        if self.kind == "impact":
+            for name in ("control", "program"):
+                if getattr(self, name) is not None:
+                    raise FieldProblem(name, "only for kind 'indentation'")
+            if self.initial is None:
+                raise FieldProblem("initial", "missing (required)")
+            if self.body.mass is None and self.body.density is None:
+                raise FieldProblem("body", MASS_OR_DENSITY)
+            return self
+        for name in ("control", "program"):
+            if getattr(self, name) is None:
+                raise FieldProblem(name, "missing (required for kind 'indentation')")
+        for name, why in _IMPACT_ONLY.items():
+            if name in self.model_fields_set:
+                raise FieldProblem(name, f"not for kind 'indentation': {why}")
+        for name in ("mass", "density"):
+            if getattr(self.body, name) is not None:
+                raise FieldProblem(f"body.{name}", "not for kind 'indentation': a quasi-static test needs no mass")
+        if self.effects.gravity is not None:
+            raise FieldProblem("effects.gravity", "not for kind 'indentation': the program sets the load")
+        return self
+
+    @model_validator(mode="after")
     def _reaches_the_surface(self):
+        if self.kind != "impact":
+            return self
         falls = self.effects.gravity is not None and self.initial.gap > 0
         if self.initial.velocity <= 0 and not falls:
             raise FieldProblem("initial.velocity", "must be > 0 (or name gravity and a gap > 0 to drop the body)")
@@ -226,9 +288,10 @@ class Scene(_Section):
     @model_validator(mode="after")
     def _verlet_steps_springs(self):
         if self.solver.method == "verlet" and self.contact.springs == "continuum":
-            raise ValueError(
-                "solver.method 'verlet' steps a spring array: set contact.springs to a number of springs N "
-                "(the continuum law takes a diffrax method: " + ", ".join(SOLVER_METHODS) + ")"
+            raise FieldProblem(
+                "contact.springs",
+                "solver.method 'verlet' steps a spring array: give the number of springs N "
+                "(the continuum law takes a diffrax method: " + ", ".join(SOLVER_METHODS) + ")",
             )
         return self
 
@@ -310,4 +373,5 @@ def load_scene(source: "str | Path | Mapping | Scene") -> Scene:
 
 def scene_yaml(scene: Scene) -> str:
     """The resolved scene (defaults filled in) as YAML."""
-    return yaml.safe_dump(scene.model_dump(mode="json", exclude_none=True), sort_keys=False)
+    skipped = set(_IMPACT_ONLY) if scene.kind == "indentation" else None  # refused there
+    return yaml.safe_dump(scene.model_dump(mode="json", exclude_none=True, exclude=skipped), sort_keys=False)

@@ -2,6 +2,7 @@
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import equinox as eqx
 import jax.numpy as jnp
@@ -11,6 +12,9 @@ from . import continuum, springs, verlet
 from .phases import EVENT_KINDS, RESULT_CODES, is_success
 from .scene import Scene, load_scene
 from .setup import Numerics, Physics, build_problem
+
+if TYPE_CHECKING:
+    from .indentation import IndentationResult
 
 _SAMPLES_PER_PHASE = 64
 # Profiles whose edge functions may turn many times need more turning points and a finer search.
@@ -105,9 +109,14 @@ def solve(physics: Physics, numerics: Numerics):
     return problem.scales, springs.integrate(problem, numerics, physics.spring_length)
 
 
-def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> Result:
-    """Run one scene. `trajectory=False` skips the time series (faster)."""
+def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> "Result | IndentationResult":
+    """Run one scene. `trajectory=False` skips the time series (faster). A scene of kind
+    `indentation` gives an `indentation.IndentationResult` (its curve is always kept)."""
     scene = load_scene(scene)
+    if scene.kind == "indentation":
+        from .indentation import simulate_indentation
+
+        return simulate_indentation(scene)
     scales, outcome = solve(physics_for(scene), numerics_for(scene, trajectory))
     return to_result(scene, scales, outcome)
 

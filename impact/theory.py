@@ -19,9 +19,22 @@ Misprints found in the chapter (the code uses the corrected forms):
   line and the critical values (3.54)–(3.56) with β = ξ√(πΔγ/(2E*kR²)) are correct).
 - (3.56): √a must read √α. Its F_c also cancels to O(α³) for a_c ≪ R, losing about
   2 log₁₀(R/a_c) digits; ``ellipsoid_critical`` uses an equivalent cancellation-free form.
+- (3.87): the truncated cone's equation has roots for β ≥ 2.1219 (min of (φ + cot φ)/√cos φ), not
+  2.125; (3.110): the capped cone's for β ≥ 1.7967, not 1.795; (3.123) β0 ≈ 2.2 + 3.2 R1/R* is a
+  fit (β0 = 2 at R1/R* = 0): ``*_threshold`` compute the exact minima. Between β = 2 and β0 the
+  capped paraboloid loses contact at the edge of its cap (a = b, where the flank's slope jumps),
+  not at the JKR state of R1 (whose radius then lies beyond b).
+- Where a profile has two critical states (a flat tip or cap and the flank: §3.5.8–3.5.12) the
+  contact is lost at the deeper one, not always at the flank's second root: a displacement-
+  controlled contact snaps from the flank's minimum of d(a) onto the inner branch and survives
+  while that branch reaches lower d (ξ = 1), a force-controlled one while it reaches a lower
+  force (ξ = 3). ``*_pull_off`` pick the state that ends the contact; ``*_critical`` give the
+  chapter's roots.
 (3.51) and (3.82) follow exactly from the energy balance (see ``power_law_energy_loss``), and
 (3.82) reduces to (3.51) at n = 2, c = 1/(2R).
 """
+
+import functools
 
 import jax
 import jax.numpy as jnp
@@ -61,6 +74,35 @@ __all__ = [
     "hertz_max_indentation",
     "hertz_max_force",
     "hertz_contact_time",
+    "truncated_cone_beta",
+    "truncated_cone_threshold",
+    "truncated_cone_critical",
+    "truncated_cone_pull_off",
+    "truncated_paraboloid_beta",
+    "truncated_paraboloid_threshold",
+    "truncated_paraboloid_critical",
+    "truncated_paraboloid_pull_off",
+    "capped_flat_punch_thresholds",
+    "capped_flat_punch_critical",
+    "capped_flat_punch_normalized_force",
+    "capped_cone_beta",
+    "capped_cone_threshold",
+    "capped_cone_critical",
+    "capped_cone_pull_off",
+    "capped_paraboloid_beta",
+    "capped_paraboloid_threshold",
+    "capped_paraboloid_critical",
+    "capped_paraboloid_pull_off",
+    "rounded_flat_punch_beta",
+    "rounded_flat_punch_critical",
+    "wavy_paraboloid_indentation",
+    "wavy_paraboloid_force",
+    "wavy_paraboloid_normalized",
+    "constant_stress_profile",
+    "constant_stress_uniform_state",
+    "constant_stress_pull_off",
+    "kendall_to_optimal_ratio",
+    "power_law_half_threshold",
 ]
 
 _SPHERE_ITERATIONS = 64
@@ -180,6 +222,7 @@ def paraboloid_critical(R, E_star, work_of_adhesion, xi):
     return a_c, d_c, F_c
 
 
+@jax.jit  # one compilation for every β (its loop would recompile on each eager call)
 def _sphere_alpha(beta):
     """Root α ∈ (0, 1) of √α (artanh α + α/(1 − α²)) = β, i.e. (3.54).
 
@@ -392,3 +435,366 @@ def hertz_contact_time(velocity, mass, R, E_star):
     """Hertz impact of a paraboloid, exact constant:
     t_c = 2 (15/16)^(2/5) √π Γ(7/5)/Γ(9/10) (m²/(R E*² v₀))^(1/5) ≈ 2.8682 (…)^(1/5) [s]."""
     return power_law_hertz_contact_time(velocity, mass, 2, 1 / (2 * R), E_star)
+
+
+# --- quasi-static indentation: the profiles of §3.5 with two regimes ---------------------------
+#
+# Each flank equation of §3.5.8–3.5.13 reads ψ(φ) = β with φ = arccos(b/a_c) and ψ a fixed function
+# of the angle: g'(a) = ξ √(πΔγ/(2E*a)) (3.35) written with a = b/cos φ. ψ has one interior
+# minimum (one root pair) or rises monotonically (one root).
+
+_ANGLE_STEPS = 100
+_ANGLE_EDGE = 1e-12
+
+
+def _golden_minimum(psi, lo, hi, steps=_ANGLE_STEPS):
+    """Location of the minimum of a unimodal ψ on [lo, hi] (golden-section search)."""
+    ratio = (jnp.sqrt(5.0) - 1.0) / 2.0
+
+    def step(_, bracket):
+        a, b = bracket
+        left, right = b - ratio * (b - a), a + ratio * (b - a)
+        lower = psi(left) < psi(right)
+        return jnp.where(lower, a, left), jnp.where(lower, right, b)
+
+    a, b = jax.lax.fori_loop(0, steps, step, (lo, hi))
+    return 0.5 * (a + b)
+
+
+def _bisect(fun, lo, hi, steps=_ANGLE_STEPS):
+    """Sign change of `fun` on [lo, hi] (the sign at lo is kept on the left)."""
+    sign = jnp.sign(fun(lo))
+
+    def step(_, bracket):
+        a, b = bracket
+        mid = 0.5 * (a + b)
+        same = jnp.sign(fun(mid)) == sign
+        return jnp.where(same, mid, a), jnp.where(same, b, mid)
+
+    a, b = jax.lax.fori_loop(0, steps, step, (lo, hi))
+    return 0.5 * (a + b)
+
+
+@functools.partial(jax.jit, static_argnums=0)
+def _angle_roots(psi, beta, parameter=0.0):
+    """(φ1, φ2, ψ_min): the roots of ψ(φ, parameter) = β left and right of ψ's minimum (nan where
+    none). Compiled once per ψ (a module-level function)."""
+    beta, parameter = jnp.broadcast_arrays(_float(beta), _float(parameter))
+
+    def shape(phi):
+        return psi(phi, parameter)
+
+    lo = jnp.full_like(beta, _ANGLE_EDGE)
+    hi = jnp.full_like(beta, jnp.pi / 2 - _ANGLE_EDGE)
+    middle = _golden_minimum(shape, lo, hi)
+    least = shape(middle)
+    left = _bisect(lambda p: shape(p) - beta, lo, middle)
+    right = _bisect(lambda p: shape(p) - beta, middle, hi)
+    has_left = (least <= beta) & (shape(lo) >= beta)
+    has_right = least <= beta
+    return jnp.where(has_left, left, jnp.nan), jnp.where(has_right, right, jnp.nan), least
+
+
+def _deeper(xi, first, second):
+    """Of two critical states (a, d, F), the one that ends the contact: the lower indentation
+    under displacement control (ξ = 1), the lower force under force control (ξ = 3); a state
+    with nan values does not exist."""
+    displacement = _float(xi) < 2
+    key1 = jnp.where(displacement, first[1], first[2])
+    key2 = jnp.where(displacement, second[1], second[2])
+    take_second = jnp.isnan(key1) | (key2 < key1)
+    take_second = take_second & ~jnp.isnan(key2)
+    return tuple(jnp.where(take_second, s, f) for f, s in zip(first, second))
+
+
+def _flat_tip(b, E_star, work_of_adhesion):
+    """The state where the contact sits on a flat tip of radius b, (3.90): the flat punch (3.37)."""
+    return flat_punch_critical(b, E_star, work_of_adhesion)
+
+
+def _truncated_cone_psi(phi, _=None):
+    return (phi + 1 / jnp.tan(phi)) / jnp.sqrt(jnp.cos(phi))
+
+
+def truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi):
+    """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the truncated cone (3.88); b [m] flat-tip radius."""
+    return xi / jnp.tan(theta) * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
+
+
+def truncated_cone_threshold():
+    """Smallest β for which (3.87) φ + cot φ = β √cos φ has roots: 2.1219 (printed 2.125)."""
+    return _angle_roots(_truncated_cone_psi, 10.0)[2]
+
+
+def truncated_cone_critical(b, theta, E_star, work_of_adhesion, xi, root=1):
+    """Critical state on the flank of a truncated cone, (3.87)–(3.89): φ = arccos(b/a_c) solves
+    φ + cot φ = β √cos φ; root 0 is the smaller angle, root 1 the larger. Then
+    d_c = a_c tanθ [φ(1 − 2/ξ) − (2/ξ) cot φ],
+    F_c = E* tanθ a_c² [φ(1 − 4/ξ) + cot φ (sin²φ − 4/ξ)]. nan where (3.87) has no root
+    (β < 2.1219). Returns (a_c [m], d_c [m], F_c [N])."""
+    beta = truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi)
+    phi = _angle_roots(_truncated_cone_psi, beta)[root]
+    t = jnp.tan(theta)
+    a = b / jnp.cos(phi)
+    d = a * t * (phi * (1 - 2 / xi) - 2 / xi / jnp.tan(phi))
+    F = E_star * t * a**2 * (phi * (1 - 4 / xi) + (jnp.sin(phi) ** 2 - 4 / xi) / jnp.tan(phi))
+    return a, d, F
+
+
+def truncated_cone_pull_off(b, theta, E_star, work_of_adhesion, xi):
+    """Where a truncated cone loaded past its critical radii loses contact: the deeper of the flat
+    tip (3.90) and the flank's larger root (3.89) (see the module notes). Returns (a, d, F)."""
+    return _deeper(xi, _flat_tip(b, E_star, work_of_adhesion), truncated_cone_critical(b, theta, E_star, work_of_adhesion, xi, 1))
+
+
+def _truncated_paraboloid_psi(phi, _=None):
+    s, c = jnp.sin(phi), jnp.cos(phi)
+    return (1 + s**2) / (s * c) / jnp.sqrt(c)
+
+
+def truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi):
+    """β = (ξR/b) √(πΔγ/(2E* b)) of the truncated paraboloid (3.96)."""
+    return xi * R / b * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
+
+
+def truncated_paraboloid_threshold():
+    """Smallest β for which (3.95) has roots: 3.0945 (printed 3.095)."""
+    return _angle_roots(_truncated_paraboloid_psi, 10.0)[2]
+
+
+def truncated_paraboloid_critical(b, R, E_star, work_of_adhesion, xi, root=1):
+    """Critical state on the flank of a truncated paraboloid, (3.95)–(3.97):
+    (1 + sin²φ)/(sin φ cos φ) = β √cos φ, a_c = b/cos φ,
+    d_c = (a_c²/R) sin φ (1 − 2/ξ − 2/(ξ sin²φ)),
+    F_c = (2E* a_c³/(3R)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]. nan without a root."""
+    beta = truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi)
+    phi = _angle_roots(_truncated_paraboloid_psi, beta)[root]
+    s = jnp.sin(phi)
+    a = b / jnp.cos(phi)
+    d = a**2 / R * s * (1 - 2 / xi - 2 / (xi * s**2))
+    F = 2 * E_star * a**3 / (3 * R) * s * (3 - s**2 - 6 / xi * (1 + 1 / s**2))
+    return a, d, F
+
+
+def truncated_paraboloid_pull_off(b, R, E_star, work_of_adhesion, xi):
+    """The deeper of the flat tip (flat punch, §3.5.9) and the flank's larger root (3.97)."""
+    return _deeper(xi, _flat_tip(b, E_star, work_of_adhesion), truncated_paraboloid_critical(b, R, E_star, work_of_adhesion, xi, 1))
+
+
+def capped_flat_punch_thresholds(b, R, E_star):
+    """(Δγ1, Δγ2) of the flat punch with parabolic cap (3.101): the works of adhesion at which
+    the JKR critical radius of the cap reaches the punch radius b under force control (ξ = 3)
+    and displacement control (ξ = 1): Δγ2 = 9Δγ1 = 8E*b³/(πR²)."""
+    second = 8 * E_star * b**3 / (jnp.pi * R**2)
+    return second / 9, second
+
+
+def capped_flat_punch_critical(b, R, E_star, work_of_adhesion, xi):
+    """Flat punch of radius b with a parabolic cap of radius R (§3.5.10, (3.98)–(3.101)):
+    the JKR critical state (3.45) where its radius lies on the cap, else the punch edge a_c = b
+    with d_c = b²/R − √(2πbΔγ/E*) and F_c = 2E*(d_c b − b³/(3R)) (3.99)."""
+    a_jkr, d_jkr, F_jkr = paraboloid_critical(R, E_star, work_of_adhesion, xi)
+    d_edge = b**2 / R - _detach_length(b, E_star, work_of_adhesion)
+    F_edge = 2 * E_star * (d_edge * b - b**3 / (3 * R))
+    on_cap = a_jkr < b
+    return jnp.where(on_cap, a_jkr, b), jnp.where(on_cap, d_jkr, d_edge), jnp.where(on_cap, F_jkr, F_edge)
+
+
+def capped_flat_punch_normalized_force(d_hat, b_hat):
+    """F̂ = (d̂ b̂ − b̂³)/2 at the punch edge â = b̂ (3.104), normalized as in (3.102)."""
+    return 0.5 * (d_hat * b_hat - b_hat**3)
+
+
+def _capped_cone_psi(phi, _=None):
+    s, c = jnp.sin(phi), jnp.cos(phi)
+    return (2 * (1 - s) / c + phi) / jnp.sqrt(c)
+
+
+def capped_cone_beta(b, theta, E_star, work_of_adhesion, xi):
+    """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the cone with parabolic cap (3.111)."""
+    return truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi)
+
+
+def capped_cone_threshold():
+    """Smallest β for which (3.110) has roots: 1.7967 (printed 1.795); the smaller root exists
+    up to β = 2, where the cap's own JKR critical radius reaches b."""
+    return _angle_roots(_capped_cone_psi, 10.0)[2]
+
+
+def capped_cone_critical(b, theta, E_star, work_of_adhesion, xi, root=1):
+    """Critical state on the conical flank of a cone with parabolic cap (cap radius b/tanθ),
+    (3.110)–(3.113): 2(1 − sin φ)/cos φ + φ = β √cos φ, a_c = b/cos φ,
+    d_c = a_c tanθ [(1 − sin φ)/cos φ (1 − 4/ξ) + φ(1 − 2/ξ)],
+    F_c = E* a_c² tanθ [φ(1 − 4/ξ) + (1 − sin φ)/cos φ (4/3 − 8/ξ) + sin φ cos φ/3].
+    Root 0 (1.7967 ≤ β < 2) or 1 (β ≥ 1.7967); nan where it does not exist."""
+    beta = capped_cone_beta(b, theta, E_star, work_of_adhesion, xi)
+    phi = _angle_roots(_capped_cone_psi, beta)[root]
+    t = jnp.tan(theta)
+    s, c = jnp.sin(phi), jnp.cos(phi)
+    a = b / c
+    d = a * t * ((1 - s) / c * (1 - 4 / xi) + phi * (1 - 2 / xi))
+    F = E_star * a**2 * t * (phi * (1 - 4 / xi) + (1 - s) / c * (4 / 3 - 8 / xi) + s * c / 3)
+    return a, d, F
+
+
+def _on_cap(R, b, E_star, work_of_adhesion, xi):
+    """The JKR critical state (3.45) of a cap of radius R, or nan where it lies beyond b."""
+    a, d, F = paraboloid_critical(R, E_star, work_of_adhesion, xi)
+    inside = a < b
+    return tuple(jnp.where(inside, v, jnp.nan) for v in (a, d, F))
+
+
+def capped_cone_pull_off(b, theta, E_star, work_of_adhesion, xi):
+    """Where a cone with parabolic cap loaded past b loses contact: the deeper of the cap's JKR
+    state (R = b/tanθ, for β < 2) and the flank's larger root (β ≥ 1.7967)."""
+    cap = _on_cap(b / jnp.tan(theta), b, E_star, work_of_adhesion, xi)
+    return _deeper(xi, cap, capped_cone_critical(b, theta, E_star, work_of_adhesion, xi, 1))
+
+
+def _capped_paraboloid_psi(phi, ratio):
+    s, c = jnp.sin(phi), jnp.cos(phi)
+    return (2 + ratio * (1 + s**2) / s) / c / jnp.sqrt(c)
+
+
+def capped_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi):
+    """β = (ξR1/b) √(πΔγ/(2E* b)) of the paraboloid with parabolic cap (3.121)."""
+    return truncated_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi)
+
+
+def capped_paraboloid_threshold(R1, R2):
+    """β0(R1/R*), the smallest β with roots of (3.120), R* = R1R2/(R1 − R2) (3.115); the chapter's
+    fit (3.123) is 2.2 + 3.2 R1/R* (exact: 2 at R1/R* = 0, 3.0945 R1/R* for R1/R* → ∞)."""
+    ratio = R1 / R2 - 1.0
+    return _angle_roots(_capped_paraboloid_psi, 1e300 * jnp.ones_like(_float(ratio)), ratio)[2]
+
+
+def capped_paraboloid_critical(b, R1, R2, E_star, work_of_adhesion, xi, root=1):
+    """Critical state beyond the cap of a paraboloid R2 with a cap R1 ≥ R2 up to b, (3.120)–(3.122):
+    (1/cos φ)(2 + (R1/R*)(1 + sin²φ)/sin φ) = β √cos φ, a_c = b/cos φ,
+    d_c = (a_c²/R1)[1 − 4/ξ + (R1/R*) sin φ (1 − 2/ξ − 2/(ξ sin²φ))],
+    F_c = (4E* a_c³/(3R1)){1 − 6/ξ + (R1/(2R*)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]}."""
+    ratio = R1 / R2 - 1.0
+    beta = capped_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi)
+    phi = _angle_roots(_capped_paraboloid_psi, beta, ratio)[root]
+    s = jnp.sin(phi)
+    a = b / jnp.cos(phi)
+    d = a**2 / R1 * (1 - 4 / xi + ratio * s * (1 - 2 / xi - 2 / (xi * s**2)))
+    F = 4 * E_star * a**3 / (3 * R1) * (1 - 6 / xi + ratio / 2 * s * (3 - s**2 - 6 / xi * (1 + 1 / s**2)))
+    return a, d, F
+
+
+def capped_paraboloid_pull_off(b, R1, R2, E_star, work_of_adhesion, xi):
+    """The deepest of the cap's JKR state (radius R1, for β < 2), the cap's edge a = b (where the
+    flank's slope jumps: d = b²/R1 − Δl(b), F = 4E*b³/(3R1) − √(8πb³E*Δγ)) and the larger root
+    (3.122). For 2 < β < β0 neither root exists and the contact is lost at the edge, not at the
+    JKR state of R1 as §3.5.12 states."""
+    cap = _on_cap(R1, b, E_star, work_of_adhesion, xi)
+    b = _float(b)
+    edge = (b, b**2 / R1 - _detach_length(b, E_star, work_of_adhesion),
+            4 * E_star * b**3 / (3 * R1) - jnp.sqrt(8 * jnp.pi * b**3 * E_star * work_of_adhesion))
+    flank = capped_paraboloid_critical(b, R1, R2, E_star, work_of_adhesion, xi, 1)
+    return _deeper(xi, _deeper(xi, cap, edge), flank)
+
+
+@jax.jit
+def _rounded_angle(beta):
+    """The one root of (2 tan φ − φ)/√cos φ = β (rising from 0 to ∞ on (0, π/2))."""
+    beta = _float(beta)
+    lo = jnp.full_like(beta, _ANGLE_EDGE)
+    hi = jnp.full_like(beta, jnp.pi / 2 - _ANGLE_EDGE)
+    return _bisect(lambda p: (2 * jnp.tan(p) - p) / jnp.sqrt(jnp.cos(p)) - beta, lo, hi)
+
+
+def rounded_flat_punch_beta(b, R, E_star, work_of_adhesion, xi):
+    """β = (ξR/b) √(πΔγ/(2E* b)) of the flat punch with rounded edge (3.130)."""
+    return truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi)
+
+
+def rounded_flat_punch_critical(b, R, E_star, work_of_adhesion, xi):
+    """Flat punch with base radius b and edges rounded with radius R, (3.129)–(3.131): the one
+    root of 2 tan φ − φ = β √cos φ, a_c = b/cos φ,
+    d_c = (a_c²/R)[sin φ (1 − 4/ξ) − φ cos φ (1 − 2/ξ)],
+    F_c = (4E* a_c³/(3R))[sin φ (1 − 6/ξ − cos²φ/4) − (3/4) φ cos φ (1 − 4/ξ)]."""
+    phi = _rounded_angle(rounded_flat_punch_beta(b, R, E_star, work_of_adhesion, xi))
+    s, c = jnp.sin(phi), jnp.cos(phi)
+    a = b / c
+    d = a**2 / R * (s * (1 - 4 / xi) - phi * c * (1 - 2 / xi))
+    F = 4 * E_star * a**3 / (3 * R) * (s * (1 - 6 / xi - c**2 / 4) - 0.75 * phi * c * (1 - 4 / xi))
+    return a, d, F
+
+
+def _struve(z):
+    from .profiles import _struve01  # H0, H1 to ~1e-14 (quadrature and asymptotics)
+
+    return _struve01(_float(z))
+
+
+def wavy_paraboloid_indentation(a, R, amplitude, wavelength, E_star, work_of_adhesion):
+    """JKR indentation [m] of the wavy paraboloid f = r²/(2R) + h(1 − cos(2πr/λ)) (3.134):
+    d = a²/R + (π²ha/λ) H0(2πa/λ) − √(2πaΔγ/E*), H0 the Struve function."""
+    h0, _ = _struve(2 * jnp.pi * a / wavelength)
+    return a**2 / R + jnp.pi**2 * amplitude * a / wavelength * h0 - _detach_length(a, E_star, work_of_adhesion)
+
+
+def wavy_paraboloid_force(a, R, amplitude, wavelength, E_star, work_of_adhesion):
+    """JKR force [N] of the wavy paraboloid (3.134):
+    F = 4E*a³/(3R) + E*πah[(2πa/λ)H0(2πa/λ) − H1(2πa/λ)] − √(8πa³E*Δγ)."""
+    z = 2 * jnp.pi * a / wavelength
+    h0, h1 = _struve(z)
+    return (4 * E_star * a**3 / (3 * R) + E_star * jnp.pi * a * amplitude * (z * h0 - h1)
+            - jnp.sqrt(8 * jnp.pi * a**3 * E_star * work_of_adhesion))
+
+
+def wavy_paraboloid_normalized(a_hat, h_hat, gamma_bar):
+    """The wavy paraboloid's curves in the units of (3.137), â = a/λ, d̂ = dR/λ², ĥ = hR/λ²,
+    F̂ = 2F/(3πRΔγ), Δγ̄ = 2πΔγR²/(E*λ³), (3.138):
+    d̂ = â² + π²ĥâ H0(2πâ) − √(Δγ̄ â),
+    F̂ = 16â³/(9Δγ̄) + (4π/3)(ĥâ/Δγ̄)[2πâ H0(2πâ) − H1(2πâ)] − (8/3)√(â³/Δγ̄).
+    Returns (d̂, F̂). (Δγ̄ = 100, ĥ = 0.5 puts the lowest force at F̂ = −1.32, Fig. 3.27.)"""
+    z = 2 * jnp.pi * a_hat
+    h0, h1 = _struve(z)
+    d_hat = a_hat**2 + jnp.pi**2 * h_hat * a_hat * h0 - jnp.sqrt(gamma_bar * a_hat)
+    F_hat = (16 * a_hat**3 / (9 * gamma_bar) + 4 * jnp.pi / 3 * h_hat * a_hat / gamma_bar * (z * h0 - h1)
+             - 8 / 3 * jnp.sqrt(a_hat**3 / gamma_bar))
+    return d_hat, F_hat
+
+
+def constant_stress_profile(r, radius, stress, E_star):
+    """The profile that carries a uniform tensile stress σ0 over the whole contact of radius a
+    (3.61): f = (σ0 a/E*)[(4/π) E(r/a) − 2] for r ≤ a, E the complete elliptic integral (3.62)."""
+    from .profiles import ellipe
+
+    return stress * radius / E_star * (4 / jnp.pi * ellipe(r / radius) - 2)
+
+
+def constant_stress_uniform_state(radius, stress, E_star):
+    """(d [m], F [N]) where the profile (3.61) in full contact carries σ0 everywhere:
+    d = −2σ0 a/E* (3.60 at r = 0) and F = −πσ0a² (3.63; tensile, hence negative here)."""
+    return -2 * stress * radius / E_star, -jnp.pi * stress * radius**2
+
+
+def constant_stress_pull_off(radius, stress, E_star, work_of_adhesion):
+    """Pull-off of the profile (3.61) under the rule of Heß (ours, not in the chapter): its MDR
+    transform g = (2σ0/E*)(√(a² − x²) − a) leaves only the wall as a critical radius, so under
+    either control a_c = a, d_c = g(a) − Δl(a) = −2σ0a/E* − √(2πaΔγ/E*) and
+    F_c = −(πσ0a² + √(8πa³E*Δγ)): the uniform stress (3.63) plus Kendall's punch (3.66).
+    Returns (a_c, d_c, F_c)."""
+    radius = _float(radius)
+    d_c = -2 * stress * radius / E_star - _detach_length(radius, E_star, work_of_adhesion)
+    F_c = -jnp.pi * stress * radius**2 - jnp.sqrt(8 * jnp.pi * radius**3 * E_star * work_of_adhesion)
+    return radius, d_c, F_c
+
+
+def kendall_to_optimal_ratio(radius, stress, E_star, range_):
+    """F_Kendall/F_opt = √(8E*h/(πσ0 a)) (3.69) with Δγ = σ0 h (3.68): Kendall's flat punch (3.66)
+    against the optimal profile (3.67) of the same radius a; `range_` is h [m]."""
+    return jnp.sqrt(8 * E_star * range_ / (jnp.pi * stress * radius))
+
+
+def power_law_half_threshold(E_star, work_of_adhesion, xi=1):
+    """c at which f = c√r turns over (3.80): g = κ(½)c√x against Δl = √(2πΔγ/E*)√x, so the
+    displacement-controlled contact (ξ = 1) shrinks to nothing on unloading for
+    c > √(2π)/κ(½) √(Δγ/E*) = 1.9120 √(Δγ/E*) and closes completely at first touch below it.
+    Under force control (ξ = 3: F = 2(κc/3 − √(2πΔγ/E*)) a^(3/2)) the threshold is three times
+    larger. Returns c [m^(1/2)]."""
+    return xi * jnp.sqrt(2 * jnp.pi * work_of_adhesion / E_star) / kappa(0.5)

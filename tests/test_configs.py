@@ -44,6 +44,29 @@ def captured_after_bouncing(result):
     assert result.bounces >= 3  # at least two rebounds, then the capturing contact
 
 
+def force_controlled_pull_off(result):
+    """Force control: the paraboloid lets go at F_c = −(3/2)πΔγR (3.46)."""
+    scene = result.scene
+    a_c, d_c, F_c = (float(x) for x in theory.paraboloid_critical(
+        scene.body.profile.R, scene.material.effective_modulus, scene.effects.adhesion.work_of_adhesion, 3.0))
+    assert result.pull_off.force == pytest.approx(F_c, rel=1e-10)
+    assert result.pull_off.contact_radius == pytest.approx(a_c, rel=1e-10)
+
+
+def displacement_controlled_wavy_pull_off(result):
+    """Displacement control: the last state lies on (3.138)'s d(a), at a turn of d(a) (a local minimum)."""
+    scene, pull_off = result.scene, result.pull_off
+    profile = scene.body.profile
+    args = (profile.R, profile.amplitude, profile.wavelength, scene.material.effective_modulus,
+            scene.effects.adhesion.work_of_adhesion)
+    depth = lambda a: float(theory.wavy_paraboloid_indentation(a, *args))
+    a = pull_off.contact_radius
+    assert pull_off.indentation == pytest.approx(depth(a), rel=1e-9)
+    step = 1e-4 * a
+    assert depth(a - step) > depth(a) and depth(a + step) > depth(a)
+    assert pull_off.indentation < 0.0
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -53,6 +76,8 @@ CHECKS = {
     "rubber_ball": matches(thornton_ning, 1e-6),
     "gravity_bounces": captured_after_bouncing,
     "spring_array": matches(thornton_ning, 1e-4),
+    "indentation_paraboloid": force_controlled_pull_off,
+    "indentation_wavy": displacement_controlled_wavy_pull_off,
 }
 
 

@@ -257,7 +257,7 @@ def test_16_random_scenes(E_star, radius, work_of_adhesion, density, velocity, n
     slow, fast = (simulate(scene(v0), trajectory=False) for v0 in (velocity, 1.5 * velocity))
     for result in (slow, fast):
         assert result.status in ("separated", "captured"), result.status
-        assert 0.0 <= result.restitution <= 1.0
+        assert 0.0 <= result.restitution <= 1.0 + 1e-9  # 1 up to the integration accuracy
         assert np.isfinite([result.max_force, result.min_force, result.max_indentation, result.dissipated_energy]).all()
         if result.status == "separated":
             kinetic = 0.5 * mass * result.touch_velocity**2
