@@ -1,0 +1,236 @@
+"""The MDR spring array stepped with a fixed-step velocity Verlet (the classical alternative).
+
+The same array as `springs` (midpoint springs, thresholds and prefix sums of `SpringArray`,
+built by `springs.build_array`), but integrated in time with a fixed step Δt instead of from
+one spring event to the next:
+
+    v½ = v + ½Δt·(g − F(k, d)),   d' = d + Δt·v½,   k' = cascade(k, d'),   v' = v½ + ½Δt·(g − F(k', d')).
+
+The contact edge is an index k with prefix sums, so a step costs O(1) whatever N. After each
+position update the springs attach (while moving in) or detach (while moving out) with the
+same thresholds and cascades as the exact stepper; turnaround, separation and capture are
+read from the sign of v and from k. Each attach or detach lands on the step grid instead of at
+its exact time, so the method is first order in Δt (and noisy: each spring event adds an
+error of either sign). Its error against the exact discrete model (`springs`) is the pure
+time-stepping error; that model's error against the continuum is the spatial one.
+
+The loop work ∮F dd is summed with the mean of the two forces that each step's kicks apply,
+so velocity Verlet's discrete energy identity holds to round-off over a contact: kinetic energy
+lost = ∮F dd + ⅛Δt²(a_first² − a_last²), a the acceleration (it tends to the exact model's
+dissipation at first order in Δt).
+
+Free flight between contacts is analytic, as in the other integrators: a contact starts at
+d = 0 at the exact touch time. Lengths and times are scaled (units of `Scales`); the step is
+`Numerics.dt` in seconds (scene: `solver: {method: verlet, dt: …}` with `contact.springs: N`).
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from . import transitions
+from .outcome import Carry, Outcome, finish, initial_carry, log_event
+from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .setup import Numerics, Problem
+from .springs import SpringArray, build_array
+
+# Steps allowed in all (a guard against a runaway; about 20 s of stepping).
+_MAX_STEPS = 1_000_000_000
+
+
+class _Stretch(eqx.Module):
+    """State of the stepping loop inside one contact phase (scalars, plus trajectory rows)."""
+
+    t: jax.Array
+    d: jax.Array
+    v: jax.Array
+    k: jax.Array  # springs attached
+    steps: jax.Array  # steps in all (the run's count)
+    work: jax.Array  # ∫F dd of this phase
+    deepest: jax.Array
+    high: jax.Array  # largest force
+    low: jax.Array  # smallest force
+    turned: jax.Array
+    separated: jax.Array
+    captured: jax.Array
+    overflow: jax.Array
+    out_of_time: jax.Array
+    trajectory: jax.Array  # [T, 5] rows (T = 0 without samples)
+    stored: jax.Array  # rows written
+    stride: jax.Array  # steps between stored rows (doubles whenever the rows fill up)
+
+    def stopped(self):
+        return self.turned | self.separated | self.captured | self.overflow | self.out_of_time
+
+
+def _store(s: _Stretch, array: SpringArray, rows: int, valid=True) -> _Stretch:
+    """Keep every `stride`-th state; when the rows are full, drop every other row and double
+    the stride (so any number of steps fits, evenly thinned, in time order)."""
+    if rows == 0:
+        return s
+    full = s.stored >= rows
+
+    def thin(s: _Stretch) -> _Stretch:
+        kept = s.trajectory[::2]
+        trajectory = jnp.full_like(s.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
+        return eqx.tree_at(lambda x: (x.trajectory, x.stored, x.stride), s, (trajectory, (rows + 1) // 2, 2 * s.stride))
+
+    s = jax.lax.cond(valid & full, thin, lambda s: s, s)
+    keep = valid & (s.steps % s.stride == 0)
+    row = jnp.stack([s.t, s.d, s.v, array.force(s.k, s.d), s.k * array.spacing])
+    target = jnp.minimum(s.stored, rows - 1)
+    trajectory = s.trajectory.at[target].set(jnp.where(keep, row, s.trajectory[target]))
+    return eqx.tree_at(lambda x: (x.trajectory, x.stored), s, (trajectory, s.stored + jnp.asarray(keep, int)))
+
+
+def integrate(problem: Problem, numerics: Numerics, length, step=None) -> Outcome:
+    """Run one impact (possibly several bounces) on the spring array with velocity Verlet.
+
+    The step is `numerics.dt` (s), or `step` in scaled time when given (it may be traced, so
+    that a sweep over Δt compiles once).
+    """
+    array = build_array(problem, numerics.springs, length)
+    count = array.count
+    if step is None:
+        if numerics.dt is None:
+            raise ValueError("velocity Verlet needs a time step: numerics.dt (s)")
+        step = numerics.dt / problem.scales.time
+    dt = jnp.asarray(step, jnp.float64)
+    gravity = problem.gravity
+    rows = numerics.samples_per_phase * numerics.max_phases
+
+    def flight(c: Carry) -> Carry:
+        duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
+        touch_time = c.t + duration
+        over_bounces = c.contacts >= numerics.max_bounces
+        over_time = touch_time > problem.time_limit
+        lands = reaches & ~over_bounces & ~over_time
+        attached = array.attach_cascade(jnp.zeros((), int), 0.0)
+        status = jnp.where(
+            ~reaches,
+            RESULT_CODE["separated"],
+            jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
+        )
+        c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
+        c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
+        first = c.contacts == 0
+        force = array.force(attached, 0.0)
+        return eqx.tree_at(
+            lambda s: (s.t, s.d, s.v, s.mode, s.segment, s.contacts, s.status, s.touch_velocity,
+                       s.touch_time, s.contact_work, s.max_force, s.min_force),
+            c,
+            (
+                jnp.where(lands, touch_time, c.t),
+                jnp.where(lands, 0.0, c.d),
+                jnp.where(lands, speed, c.v),
+                jnp.where(lands, ADVANCE, DONE),
+                jnp.where(lands, attached, 0),
+                c.contacts + jnp.asarray(lands, int),
+                jnp.where(lands, c.status, status),
+                jnp.where(lands & first, speed, c.touch_velocity),
+                jnp.where(lands & first, touch_time, c.touch_time),
+                jnp.zeros(()),
+                jnp.where(lands, jnp.maximum(c.max_force, force), c.max_force),
+                jnp.where(lands, jnp.minimum(c.min_force, force), c.min_force),
+            ),
+        )
+
+    def contact(c: Carry, stored, stride):
+        """Step until the phase ends: turnaround (loading), separation or capture (unloading),
+        the contact outgrowing the array, or the time limit."""
+        inward = c.mode == ADVANCE
+
+        def verlet_step(s: _Stretch) -> _Stretch:
+            old_force = array.force(s.k, s.d)
+            half = s.v + 0.5 * dt * (gravity - old_force)
+            d = s.d + dt * half
+            k = jnp.where(inward, array.attach_cascade(s.k, d), array.detach_cascade(s.k, d))
+            force = array.force(k, d)
+            v = half + 0.5 * dt * (gravity - force)
+            t = s.t + dt
+            s = eqx.tree_at(
+                lambda x: (x.t, x.d, x.v, x.k, x.steps, x.work, x.deepest, x.high, x.low,
+                           x.turned, x.separated, x.captured, x.overflow, x.out_of_time),
+                s,
+                (
+                    t, d, v, k, s.steps + 1,
+                    s.work + 0.5 * (old_force + force) * (d - s.d),  # the kicks' mean force
+                    jnp.maximum(s.deepest, d),
+                    jnp.maximum(s.high, force),
+                    jnp.minimum(s.low, force),
+                    inward & (v < 0.0),
+                    ~inward & (k == 0),
+                    ~inward & (k > 0) & (v > 0.0),
+                    inward & (k >= count) & (d >= array.beyond_level),
+                    t > problem.time_limit,
+                ),
+            )
+            return _store(s, array, rows)
+
+        def running(s: _Stretch):
+            return ~s.stopped() & (s.steps < _MAX_STEPS)
+
+        start_force = array.force(c.segment, c.d)
+        false = jnp.asarray(False)
+        start = _Stretch(
+            t=c.t, d=c.d, v=c.v, k=c.segment, steps=c.steps, work=jnp.zeros(()),
+            deepest=c.d, high=start_force, low=start_force,
+            turned=false, separated=false, captured=false, overflow=false, out_of_time=false,
+            trajectory=c.trajectory, stored=stored, stride=stride,
+        )
+        s = jax.lax.while_loop(running, verlet_step, _store(start, array, rows))
+
+        capped = ~s.stopped()
+        turned, separated, captured, overflow = (
+            flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
+        )
+        mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
+        status = jnp.where(
+            s.out_of_time,
+            RESULT_CODE["time_limit"],
+            jnp.where(
+                capped,
+                RESULT_CODE["solver_failure"],
+                jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            ),
+        )
+        first = c.contacts == 1
+        contact_work = c.contact_work + s.work
+        c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
+        c = log_event(c, s.t, EVENT_CODE["separation"], separated)
+        c = log_event(c, s.t, EVENT_CODE["capture"], captured)
+        c = log_event(c, s.t, EVENT_CODE["limit"], s.out_of_time | capped)
+        c = eqx.tree_at(
+            lambda x: (x.t, x.d, x.v, x.mode, x.segment, x.status, x.stuck, x.separation_velocity,
+                       x.separation_time, x.max_indentation, x.max_force, x.min_force, x.contact_work,
+                       x.first_contact_work, x.steps, x.accepted, x.phases, x.trajectory),
+            c,
+            (
+                s.t, s.d, s.v, mode, s.k, status, captured,
+                jnp.where(first & separated, jnp.abs(s.v), c.separation_velocity),
+                jnp.where(first & separated, s.t, c.separation_time),
+                jnp.maximum(c.max_indentation, s.deepest),
+                jnp.maximum(c.max_force, s.high),
+                jnp.minimum(c.min_force, s.low),
+                contact_work,
+                jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+                s.steps,
+                c.accepted + (s.steps - c.steps),
+                c.phases + 1,
+                s.trajectory,
+            ),
+        )
+        return c, s.stored, s.stride
+
+    def running(state):
+        return state[0].mode != DONE
+
+    def advance(state):
+        c, stored, stride = state
+        return jax.lax.cond(
+            c.mode == FLIGHT, lambda c: (flight(c), stored, stride), lambda c: contact(c, stored, stride), c
+        )
+
+    one = jnp.ones((), int)
+    c, _, _ = jax.lax.while_loop(running, advance, (initial_carry(problem, numerics), 0 * one, one))
+    return finish(c)
