@@ -89,12 +89,14 @@ def _distance_to_end(y, args: PhaseArgs):
     """How far the state is from the phase's end, of relative size and sign-normalised.
 
     Timed phases end at a depth d. Riding phases end at a segment end p, where a − p
-    crosses linearly at a turning point of h (h − h(p) only touches) and h − h(p) crosses
-    linearly at a steep tip (a ∝ (s_end − s)² only touches): their sum crosses in both.
+    crosses linearly at a turning point of h and |h − h(p)| grows linearly at a steep tip
+    (where a ∝ (s_end − s)² only touches): their sum, both with the sign of a − p, changes
+    sign exactly at p in both cases, whatever the curvature there.
     """
     x = y[0]
+    offset = x - args.level
     edge = args.branch.level(args.law, jnp.maximum(x, 0.0)) - args.branch.level(args.law, args.level)
-    riding = (x - args.level) + edge
+    riding = offset + jnp.sign(offset) * jnp.abs(edge)
     distance = jnp.where(args.riding, riding, x - args.level)
     return args.level_sign * distance / (1.0 + jnp.abs(args.level))
 
@@ -182,9 +184,9 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
     law = problem.law
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
-    # A segment rising from a steep tip (h' → ∞ at a = 0, power laws n < 1) is integrated in
-    # time: in a, the pace q ∝ √a would never let a reach 0.
-    steep = (branch.nodes[c.segment] == 0.0) & (
+    # A segment rising from (or within 1e-6 of) a steep tip (h' → ∞ at a = 0, power laws
+    # n < 1) is integrated in time: in a, the pace q would never let a get there.
+    steep = (branch.nodes[c.segment] < _TIP_FAR) & (
         law.edge_slope(_TIP_NEAR, branch.coefficient) > law.edge_slope(_TIP_FAR, branch.coefficient)
     )
     riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
