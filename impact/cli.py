@@ -347,10 +347,11 @@ def _table(title: str, rows: list[tuple[str, str]]) -> Table:
 
 
 def _register_commands() -> None:
-    """Commands defined in their own modules: sweeps and merges of shards."""
-    from . import cli_sweep
+    """Commands defined in their own modules: sweeps, merges of shards, the benchmark."""
+    from . import cli_bench, cli_sweep
 
     cli_sweep.register(app)
+    cli_bench.register(app)
 
 
 _register_commands()
