@@ -121,6 +121,45 @@ def _arc(attached, spacing, prefix, gravity, d, v, level, inward):
     )
 
 
+def land(problem: Problem, numerics: Numerics, array: SpringArray, c: Carry) -> Carry:
+    """Analytic flight to the next touch, whose jump-in attaches every spring with its
+    threshold at or below d = 0; ends the run at a bound, or when the body flies off."""
+    duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
+    touch_time = c.t + duration
+    over_bounces = c.contacts >= numerics.max_bounces
+    over_time = touch_time > problem.time_limit
+    lands = reaches & ~over_bounces & ~over_time
+    attached = array.attach_cascade(jnp.zeros((), int), 0.0)
+    status = jnp.where(
+        ~reaches,
+        RESULT_CODE["separated"],
+        jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
+    )
+    c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
+    c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
+    first = c.contacts == 0
+    force = array.force(attached, 0.0)
+    return eqx.tree_at(
+        lambda s: (s.t, s.d, s.v, s.mode, s.segment, s.contacts, s.status, s.touch_velocity,
+                   s.touch_time, s.contact_work, s.max_force, s.min_force),
+        c,
+        (
+            jnp.where(lands, touch_time, c.t),
+            jnp.where(lands, 0.0, c.d),
+            jnp.where(lands, speed, c.v),
+            jnp.where(lands, ADVANCE, DONE),
+            jnp.where(lands, attached, 0),
+            c.contacts + jnp.asarray(lands, int),
+            jnp.where(lands, c.status, status),
+            jnp.where(lands & first, speed, c.touch_velocity),
+            jnp.where(lands & first, touch_time, c.touch_time),
+            jnp.zeros(()),
+            jnp.where(lands, jnp.maximum(c.max_force, force), c.max_force),
+            jnp.where(lands, jnp.minimum(c.min_force, force), c.min_force),
+        ),
+    )
+
+
 def integrate(problem: Problem, numerics: Numerics, length) -> Outcome:
     """Run one impact (possibly several bounces) on the spring array."""
     array = build_array(problem, numerics.springs, length)
@@ -141,41 +180,8 @@ def integrate(problem: Problem, numerics: Numerics, length) -> Outcome:
         return eqx.tree_at(lambda s: s.trajectory, c, trajectory)
 
     def flight(c: Carry) -> Carry:
-        duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
-        touch_time = c.t + duration
-        over_bounces = c.contacts >= numerics.max_bounces
-        over_time = touch_time > problem.time_limit
-        lands = reaches & ~over_bounces & ~over_time
-        attached = array.attach_cascade(jnp.zeros((), int), 0.0)
-        status = jnp.where(
-            ~reaches,
-            RESULT_CODE["separated"],
-            jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
-        )
-        c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
-        c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
-        first = c.contacts == 0
-        force = array.force(attached, 0.0)
-        c = eqx.tree_at(
-            lambda s: (s.t, s.d, s.v, s.mode, s.segment, s.contacts, s.status, s.touch_velocity,
-                       s.touch_time, s.contact_work, s.max_force, s.min_force),
-            c,
-            (
-                jnp.where(lands, touch_time, c.t),
-                jnp.where(lands, 0.0, c.d),
-                jnp.where(lands, speed, c.v),
-                jnp.where(lands, ADVANCE, DONE),
-                jnp.where(lands, attached, 0),
-                c.contacts + jnp.asarray(lands, int),
-                jnp.where(lands, c.status, status),
-                jnp.where(lands & first, speed, c.touch_velocity),
-                jnp.where(lands & first, touch_time, c.touch_time),
-                jnp.zeros(()),
-                jnp.where(lands, jnp.maximum(c.max_force, force), c.max_force),
-                jnp.where(lands, jnp.minimum(c.min_force, force), c.min_force),
-            ),
-        )
-        return store(c, lands)
+        c = land(problem, numerics, array, c)
+        return store(c, c.mode == ADVANCE)
 
     def spring_event(c: Carry) -> Carry:
         k = c.segment

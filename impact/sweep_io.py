@@ -30,7 +30,6 @@ appends the chunks the journal holds beyond them, or rebuilds an unreadable file
 journal; a finished sweep deletes its journal.
 """
 
-import getpass
 import os
 import shutil
 from contextlib import contextmanager
@@ -43,7 +42,7 @@ import numpy as np
 import yaml
 
 from . import __version__
-from .io import H5MD_VERSION, atomic_path
+from .io import _user, _write_h5md, atomic_path
 from .phases import RESULT_CODES
 from .scene import scene_yaml
 from .sweep import RESULTS, SweepResult, empty_results, plan_sweep
@@ -64,7 +63,7 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
     path = Path(path)
     rows_per_chunk = max(1, min(chunk, _MAX_CHUNK_ROWS))
     with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
-        _write_h5md(file.create_group("h5md"))
+        _write_h5md(file.create_group("h5md"), _user())
         parameters = file.create_group("parameters")
         _string(parameters, "scene.yaml", scene_yaml(spec.scene))
         definition = _string(parameters, "sweep.yaml", spec.definition())
@@ -110,21 +109,6 @@ def _column(group: h5py.Group, name: str, dtype, rows_per_chunk: int) -> h5py.Da
 
 def _string(group: h5py.Group, name: str, text: str) -> h5py.Dataset:
     return group.create_dataset(name, data=text, dtype=h5py.string_dtype())
-
-
-def _write_h5md(h5md: h5py.Group) -> None:
-    h5md.attrs["version"] = np.array(H5MD_VERSION, dtype=np.int32)
-    try:
-        author = getpass.getuser()
-    except (KeyError, OSError):
-        author = "unknown"
-    h5md.create_group("author").attrs["name"] = author
-    creator = h5md.create_group("creator")
-    creator.attrs["name"] = "impact"
-    creator.attrs["version"] = __version__
-    units = h5md.create_group("modules/units")
-    units.attrs["version"] = np.array((1, 0), dtype=np.int32)
-    units.attrs["system"] = "SI"
 
 
 def _datasets(group: h5py.Group):

@@ -28,11 +28,10 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from . import transitions
 from .outcome import Carry, Outcome, finish, initial_carry, log_event
 from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .setup import Numerics, Problem
-from .springs import SpringArray, build_array
+from .springs import SpringArray, build_array, land
 
 # Steps allowed in all (a guard against a runaway; about 20 s of stepping).
 _MAX_STEPS = 1_000_000_000
@@ -100,40 +99,7 @@ def integrate(problem: Problem, numerics: Numerics, length, step=None) -> Outcom
     rows = numerics.samples_per_phase * numerics.max_phases
 
     def flight(c: Carry) -> Carry:
-        duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
-        touch_time = c.t + duration
-        over_bounces = c.contacts >= numerics.max_bounces
-        over_time = touch_time > problem.time_limit
-        lands = reaches & ~over_bounces & ~over_time
-        attached = array.attach_cascade(jnp.zeros((), int), 0.0)
-        status = jnp.where(
-            ~reaches,
-            RESULT_CODE["separated"],
-            jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
-        )
-        c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
-        c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
-        first = c.contacts == 0
-        force = array.force(attached, 0.0)
-        return eqx.tree_at(
-            lambda s: (s.t, s.d, s.v, s.mode, s.segment, s.contacts, s.status, s.touch_velocity,
-                       s.touch_time, s.contact_work, s.max_force, s.min_force),
-            c,
-            (
-                jnp.where(lands, touch_time, c.t),
-                jnp.where(lands, 0.0, c.d),
-                jnp.where(lands, speed, c.v),
-                jnp.where(lands, ADVANCE, DONE),
-                jnp.where(lands, attached, 0),
-                c.contacts + jnp.asarray(lands, int),
-                jnp.where(lands, c.status, status),
-                jnp.where(lands & first, speed, c.touch_velocity),
-                jnp.where(lands & first, touch_time, c.touch_time),
-                jnp.zeros(()),
-                jnp.where(lands, jnp.maximum(c.max_force, force), c.max_force),
-                jnp.where(lands, jnp.minimum(c.min_force, force), c.min_force),
-            ),
-        )
+        return land(problem, numerics, array, c)
 
     def contact(c: Carry, stored, stride):
         """Step until the phase ends: turnaround (loading), separation or capture (unloading),
