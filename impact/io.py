@@ -119,11 +119,12 @@ def read_run(path: str | Path) -> Result:
         )
 
 
-def read_provenance(path: str | Path) -> dict:
-    """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored run."""
+def read_provenance(path: str | Path, stats_group: str = "parameters/solver_stats") -> dict:
+    """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored run
+    (`stats_group`: where its wall time lives)."""
     with _open_run(path) as file:
         attributes = dict(file["parameters/config.yaml"].attrs)
-        stats = file["parameters/solver_stats"]
+        stats = file[stats_group]
         wall_time = float(stats["wall_time"][()]) if "wall_time" in stats else None
     return {
         "impact": str(attributes["impact_version"]),

@@ -30,7 +30,7 @@ import yaml
 
 from . import __version__
 from .indentation import IndentationResult, PullOff
-from .io import _open_run, _string, _user, _write_h5md, atomic_path
+from .io import _open_run, _string, _user, _write_h5md, atomic_path, read_provenance
 from .scene import load_scene, scene_yaml
 
 KIND = "indentation"
@@ -134,14 +134,4 @@ def read_indentation(path: str | Path) -> IndentationResult:
 def read_indentation_provenance(path: str | Path) -> dict:
     """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored test,
     as `io.read_provenance` gives them for an impact run."""
-    with _open_run(path) as file:
-        attributes = dict(file["parameters/config.yaml"].attrs)
-        stats = file["parameters/stats"]
-        wall_time = float(stats["wall_time"][()]) if "wall_time" in stats else None
-    return {
-        "impact": str(attributes["impact_version"]),
-        "jax": str(attributes["jax_version"]),
-        "diffrax": str(attributes["diffrax_version"]),
-        "x64": bool(attributes["x64"]),
-        "wall_time": wall_time,
-    }
+    return read_provenance(path, "parameters/stats")
