@@ -293,6 +293,7 @@ def summary_table(result: Result, wall_time: float | None) -> Table:
         ("max indentation", quantity(result.max_indentation, "m")),
         ("max force", quantity(result.max_force, "N")),
         ("min force", quantity(result.min_force, "N")),
+        *([("Tabor parameter Λ", f"{result.tabor_parameter:.6g}")] if math.isfinite(result.tabor_parameter) else []),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
         ("wall time", "unknown" if wall_time is None else quantity(wall_time, "s")),
@@ -306,7 +307,12 @@ def facts_table(scene: Scene) -> Table:
     parameters = ", ".join(f"{name} = {value:g}" if isinstance(value, float) else f"{name} = {value}"
                            for name, value in body.profile.model_dump(exclude={"shape"}).items())
     effects = []
-    if scene.adhesive:
+    if scene.adhesive and adhesion.model == "maugis_dugdale":
+        effects.append(
+            f"Maugis–Dugdale adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², σ0 = {adhesion.adhesive_stress:.6g} Pa, "
+            f"h = {adhesion.adhesion_range:.6g} m)"
+        )
+    elif scene.adhesive:
         effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")

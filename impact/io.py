@@ -10,7 +10,8 @@ Layout (DESIGN.md §5), all values SI with a `unit` attribute (omitted when dime
     observables/
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
-        bounces, touch_velocity, separation_velocity, dissipated_energy   (scalars)
+        bounces, touch_velocity, separation_velocity, dissipated_energy,
+        tabor_parameter   (scalars; Λ is nan unless Maugis–Dugdale on a paraboloid)
         events/{time, kind}
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes
@@ -51,6 +52,7 @@ SCALAR_UNITS = {
     "touch_velocity": "m s-1",
     "separation_velocity": "m s-1",
     "dissipated_energy": "J",
+    "tabor_parameter": "",
 }
 # Time series under observables/contact/: Result field → (unit, description).
 CONTACT_SERIES = {

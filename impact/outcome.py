@@ -173,11 +173,6 @@ class Carry(eqx.Module):
     trajectory: jax.Array
 
 
-def tables_overflow(problem: Problem):
-    """The edge functions turn more often than the branches hold: nothing can be trusted."""
-    return problem.attach.overflow | problem.detach.overflow
-
-
 def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
     events = EVENTS_PER_PHASE * numerics.max_phases
     rows = numerics.samples_per_phase * numerics.max_phases
@@ -186,13 +181,13 @@ def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
         t=zero,
         d=jnp.asarray(problem.start_indentation, jnp.float64),
         v=jnp.asarray(problem.start_velocity, jnp.float64),
-        mode=jnp.where(tables_overflow(problem) | ~problem.bounded, DONE, FLIGHT),
+        mode=jnp.where(problem.overflow | ~problem.bounded, DONE, FLIGHT),
         segment=jnp.zeros((), int),
         radius=zero,
         phases=jnp.zeros((), int),
         contacts=jnp.zeros((), int),
         status=jnp.where(
-            tables_overflow(problem),
+            problem.overflow,
             RESULT_CODE["branch_overflow"],
             jnp.where(problem.bounded, RESULT_CODE["separated"], RESULT_CODE["unbounded_contact"]),
         ),

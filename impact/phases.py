@@ -9,7 +9,8 @@ DONE = 4
 
 # Event kinds, in the order of their codes.
 EVENT_KINDS = (
-    "touch",  # first contact of a bounce (with the jump-in, if any)
+    "touch",  # first contact of a bounce (with the jump-in, if any); Maugis–Dugdale: the body
+    # comes within the range of the adhesive stress
     "max_indentation",  # turnaround while loading: loading → hold
     "detach_start",  # hold → unloading: the edge spring reaches Δl(a)
     "snap_in",  # outward cascade: the contact radius jumps out
@@ -17,6 +18,8 @@ EVENT_KINDS = (
     "separation",  # the last spring lets go
     "capture",  # turnaround while unloading: the body can never leave
     "limit",  # a bound on bounces, time or phases ended the run
+    "contact_start",  # Maugis–Dugdale: the centre of the adhesive zone closes into a contact
+    "contact_end",  # Maugis–Dugdale: the contact opens into an adhesive zone without contact
 )
 EVENT_CODE = {kind: code for code, kind in enumerate(EVENT_KINDS)}
 

@@ -124,19 +124,39 @@ class Initial(_Section):
     velocity: Number = Field(
         ge=0, description="approach speed towards the surface (m/s), > 0 (0 allowed when gravity drops the body from a gap)"
     )
-    gap: Number = Field(0.0, ge=0, description="initial distance between tip and surface (m), >= 0")
+    gap: Number = Field(
+        0.0,
+        ge=0,
+        description="initial distance between tip and surface (m), >= 0; with maugis_dugdale adhesion, beyond the range h",
+    )
+
+
+ADHESION_MODELS = ("jkr", "maugis_dugdale")
+# Profiles the Maugis–Dugdale zone is built for: smooth, unbounded, with a finite slope at the
+# tip (the zone's radius must grow from 0 where the tip comes within range).
+DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
 
 
 class Adhesion(_Section):
-    """JKR adhesion (zero range) by the rule of Heß, with hysteretic attachment."""
+    """Adhesion: JKR (zero range) by the rule of Heß, with hysteretic attachment; or
+    Maugis–Dugdale (a constant stress σ0 up to the range h, Δγ = σ0·h)."""
 
+    model: Literal[ADHESION_MODELS] = Field(
+        "jkr", description="'jkr' (zero range, rule of Heß) or 'maugis_dugdale' (stress σ0 up to the range h)"
+    )
     work_of_adhesion: Number = Field(
         ge=0, description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
     )
     approach_work_of_adhesion: Number | None = Field(
         None,
         ge=0,
-        description="work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; default Δγ (JKR jump-in); 0 attaches on touch",
+        description="jkr only: work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; default Δγ (JKR jump-in); 0 attaches on touch",
+    )
+    stress: Number | None = Field(
+        None, gt=0, description="maugis_dugdale only: adhesive stress σ0 (Pa), > 0; or give range"
+    )
+    range: Number | None = Field(
+        None, gt=0, description="maugis_dugdale only: range h (m) of the adhesive stress, > 0; or give stress"
     )
 
     @model_validator(mode="after")
@@ -145,10 +165,38 @@ class Adhesion(_Section):
             raise FieldProblem("approach_work_of_adhesion", "must not exceed work_of_adhesion")
         return self
 
+    @model_validator(mode="after")
+    def _parameters_of_the_model(self):
+        if self.model == "jkr":
+            for name in ("stress", "range"):
+                if getattr(self, name) is not None:
+                    raise FieldProblem(name, "only for model 'maugis_dugdale' (jkr has zero range)")
+            return self
+        if self.approach_work_of_adhesion is not None:
+            raise FieldProblem(
+                "approach_work_of_adhesion",
+                "only for model 'jkr': Maugis–Dugdale attaches where its zone equilibrium jumps",
+            )
+        if (self.stress is None) == (self.range is None):
+            raise FieldProblem("stress", "model 'maugis_dugdale' needs exactly one of stress (Pa) and range (m): Δγ = σ0·h")
+        if self.work_of_adhesion == 0:
+            raise FieldProblem("work_of_adhesion", "must be > 0 for model 'maugis_dugdale' (drop adhesion for none)")
+        return self
+
     @property
     def approach(self) -> float:
         """Δγa (J/m²), defaulting to Δγ."""
         return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
+
+    @property
+    def adhesive_stress(self) -> float:
+        """σ0 (Pa) of the Maugis–Dugdale model: given, or Δγ/h."""
+        return self.stress if self.stress is not None else self.work_of_adhesion / self.range
+
+    @property
+    def adhesion_range(self) -> float:
+        """h (m) of the Maugis–Dugdale model: given, or Δγ/σ0."""
+        return self.range if self.range is not None else self.work_of_adhesion / self.stress
 
 
 class Gravity(_Section):
@@ -293,6 +341,28 @@ class Scene(_Section):
                 "solver.method 'verlet' steps a spring array: give the number of springs N "
                 "(the continuum law takes a diffrax method: " + ", ".join(SOLVER_METHODS) + ")",
             )
+        return self
+
+    @model_validator(mode="after")
+    def _dugdale_supported(self):
+        adhesion = self.effects.adhesion
+        if adhesion is None or adhesion.model != "maugis_dugdale":
+            return self
+        if self.kind != "impact":
+            raise FieldProblem("effects.adhesion.model", "maugis_dugdale is simulated in impacts only (kind 'impact')")
+        profile = self.body.profile
+        if profile.shape not in DUGDALE_SHAPES:
+            raise FieldProblem(
+                "effects.adhesion.model",
+                f"maugis_dugdale needs a smooth unbounded profile ({', '.join(DUGDALE_SHAPES)}), not {profile.shape!r}",
+            )
+        if profile.shape == "power_law" and profile.n < 1:
+            raise FieldProblem(
+                "body.profile.n",
+                "maugis_dugdale needs n >= 1: for n < 1 the tip's slope is infinite where the zone starts",
+            )
+        if self.contact.springs != "continuum":
+            raise FieldProblem("contact.springs", "maugis_dugdale runs on the continuum law only ('continuum')")
         return self
 
     @property

@@ -25,6 +25,7 @@ class Numerics:
 
     adhesive: bool
     gravity: bool
+    adhesion_model: str = "jkr"  # or "maugis_dugdale" (finite range, dugdale_impact)
     method: str = "dopri8"  # diffrax solver for the continuum law; "verlet": fixed-step springs
     dt: float | None = None  # time step (s) of method "verlet"
     rtol: float = 1e-10
@@ -54,6 +55,7 @@ class Physics(eqx.Module):
     gap: jax.Array  # initial separation (m)
     work_of_adhesion: jax.Array  # Δγ (J/m²); unused without adhesion
     approach_work_of_adhesion: jax.Array  # Δγa ≤ Δγ (J/m²)
+    adhesive_stress: jax.Array  # σ0 (Pa) of Maugis–Dugdale adhesion (range Δγ/σ0); unused by JKR
     gravity: jax.Array  # m/s²; unused without gravity
     time_limit: jax.Array  # s
     spring_length: jax.Array  # radius covered by a spring array (m); nan: the default
@@ -75,6 +77,11 @@ class Problem(eqx.Module):
     @property
     def scales(self) -> Scales:
         return self.law.scales
+
+    @property
+    def overflow(self):
+        """The edge functions turn more often than the branches hold: nothing can be trusted."""
+        return self.attach.overflow | self.detach.overflow
 
 
 def touch_velocity(physics: Physics, numerics: Numerics):

@@ -8,7 +8,7 @@ import equinox as eqx
 import jax.numpy as jnp
 import numpy as np
 
-from . import continuum, springs, verlet
+from . import continuum, dugdale_impact, springs, theory, verlet
 from .phases import EVENT_KINDS, RESULT_CODES, is_success
 from .scene import Scene, load_scene
 from .setup import Numerics, Physics, build_problem
@@ -42,6 +42,7 @@ class Result:
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
     dissipated_energy: float  # J lost in the first contact: ∮F dd
+    tabor_parameter: float  # Λ (3.172) of Maugis–Dugdale adhesion on a paraboloid; nan otherwise
     t: np.ndarray = field(repr=False)  # s
     indentation: np.ndarray = field(repr=False)  # m
     velocity: np.ndarray = field(repr=False)  # m/s, towards the surface positive
@@ -63,6 +64,7 @@ def numerics_for(scene: Scene, trajectory: bool = True) -> Numerics:
     return Numerics(
         adhesive=scene.adhesive,
         gravity=scene.effects.gravity is not None,
+        adhesion_model=adhesion.model if scene.adhesive else "jkr",
         method=scene.solver.method,
         dt=scene.solver.dt,
         rtol=scene.solver.rtol,
@@ -82,6 +84,7 @@ def numerics_for(scene: Scene, trajectory: bool = True) -> Numerics:
 def physics_for(scene: Scene) -> Physics:
     """The traced SI parameters of a scene."""
     adhesion = scene.effects.adhesion
+    dugdale = scene.adhesive and adhesion.model == "maugis_dugdale"
     gravity = scene.effects.gravity
     duration = scene.limits.duration
     return Physics(
@@ -92,6 +95,7 @@ def physics_for(scene: Scene) -> Physics:
         gap=jnp.asarray(scene.initial.gap, jnp.float64),
         work_of_adhesion=jnp.asarray(adhesion.work_of_adhesion if scene.adhesive else 0.0, jnp.float64),
         approach_work_of_adhesion=jnp.asarray(adhesion.approach if scene.adhesive else 0.0, jnp.float64),
+        adhesive_stress=jnp.asarray(adhesion.adhesive_stress if dugdale else np.nan, jnp.float64),
         gravity=jnp.asarray(gravity.g if gravity else 0.0, jnp.float64),
         time_limit=jnp.asarray(np.inf if duration is None else duration, jnp.float64),
         spring_length=jnp.asarray(np.nan if scene.contact.length is None else scene.contact.length, jnp.float64),
@@ -101,6 +105,9 @@ def physics_for(scene: Scene) -> Physics:
 @eqx.filter_jit
 def solve(physics: Physics, numerics: Numerics):
     """Scale, tabulate and integrate one impact; returns (scales, scaled outcome)."""
+    if numerics.adhesion_model == "maugis_dugdale":
+        problem = dugdale_impact.build_dugdale_problem(physics, numerics)
+        return problem.scales, dugdale_impact.integrate(problem, numerics)
     problem = build_problem(physics, numerics)
     if numerics.springs is None:
         return problem.scales, continuum.integrate(problem, numerics)
@@ -119,6 +126,18 @@ def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> 
         return simulate_indentation(scene)
     scales, outcome = solve(physics_for(scene), numerics_for(scene, trajectory))
     return to_result(scene, scales, outcome)
+
+
+def tabor_parameter(scene: Scene) -> float:
+    """Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172) of a Maugis–Dugdale scene on a paraboloid; nan else."""
+    adhesion = scene.effects.adhesion
+    if not scene.adhesive or adhesion.model != "maugis_dugdale" or scene.body.profile.shape != "paraboloid":
+        return float("nan")
+    return float(
+        theory.tabor_parameter(
+            scene.body.profile.R, adhesion.adhesive_stress, adhesion.adhesion_range, scene.material.effective_modulus
+        )
+    )
 
 
 def to_result(scene: Scene, scales, outcome) -> Result:
@@ -159,6 +178,7 @@ def to_result(scene: Scene, scales, outcome) -> Result:
         touch_velocity=touch * speed,
         separation_velocity=separation * speed,
         dissipated_energy=float(o["first_contact_work"]) * force * length,
+        tabor_parameter=tabor_parameter(scene),
         t=rows[:, 0] * time,
         indentation=rows[:, 1] * length,
         velocity=rows[:, 2] * speed,

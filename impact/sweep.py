@@ -223,12 +223,17 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
     reference, treedef = jax.tree.flatten(template.profile)
     leaves = [_batched(np.asarray(new), np.shape(ref), size) for new, ref in zip(jax.tree.leaves(profile), reference)]
     adhesion, gravity = batch.effects.adhesion, batch.effects.gravity
+    stress = np.full((), np.nan)
     if adhesion is None:
         work = approach = np.zeros(())
     else:
         adhesive = np.asarray(adhesion.work_of_adhesion) > 0
         work = np.where(adhesive, adhesion.work_of_adhesion, 0.0)
-        approach = np.where(adhesive, adhesion.approach, 0.0)
+        if adhesion.model == "maugis_dugdale":
+            stress = np.where(adhesive, adhesion.adhesive_stress, np.nan)
+            approach = np.zeros(())
+        else:
+            approach = np.where(adhesive, adhesion.approach, 0.0)
     duration, length = batch.limits.duration, batch.contact.length
     return Physics(
         profile=jax.tree.unflatten(treedef, leaves),
@@ -238,6 +243,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
         gap=_batched(batch.initial.gap, (), size),
         work_of_adhesion=_batched(work, (), size),
         approach_work_of_adhesion=_batched(approach, (), size),
+        adhesive_stress=_batched(stress, (), size),
         gravity=_batched(0.0 if gravity is None else gravity.g, (), size),
         time_limit=_batched(np.inf if duration is None else duration, (), size),
         spring_length=_batched(np.nan if length is None else length, (), size),

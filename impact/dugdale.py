@@ -1,0 +1,264 @@
+"""Maugis–Dugdale adhesion in the MDR picture (3.143–3.157), scaled units of `Scales`.
+
+A constant adhesive stress σ0 acts wherever the gap is below the range h (Δγ = σ0·h, (3.4)).
+In the 1-D model it is the line load q = −2σ0·√(b² − x²) on |x| ≤ b (3.148), b ≥ a the radius
+of the adhesive zone. With σ̂ = σ0·ℓx/(E*·ℓz) and ĥ = h/ℓz (hats dropped below), for a body
+f = C_f·rⁿ, g = C_g·xⁿ (paraboloid n = 2, cone n = 1, power law):
+
+- zone without contact (a = 0, the centre gap open), b from 0 (gap h at the tip) upwards:
+  d = f(b) − (4σ/π)·b − h,   F = −π·σ·b²  (gap h at r = b, (3.162) without its contact condition);
+- contact of radius a = (1 − p)·b, p = (b − a)/b: the range condition (3.152) with (3.154)
+  inserted is homogeneous in b,
+      bⁿ·P(p) + b·Q(p) = h,   P = (2/π)·∫_0^θ (g(cos φ) − g(u)) dφ,   Q = (4σ/π)·(√(1 − u²)·θ − p),
+  with u = a/b = 1 − p and θ = arccos u; then d = g(a) − 2σ·b·√(1 − u²) (3.154) and
+  F = 2·(a·d − G(a)) − σ·b²·(2θ − 2u·√(1 − u²)) (3.156).
+
+For each p the zone radius b is one monotone scalar root; no integral sits inside an iteration.
+At p = 1 (a = 0) it is the junction b_J where the centre closes, f(b) + 2σ·(1 − 2/π)·b = h
+(3.164), so one parameter runs along every equilibrium state: s = b ≤ b_J in the zone,
+s = b_J − ln p in contact. `DugdaleCurve` splits s at the turning points of d(s): the body
+rides the rising segments and jumps at fixed d at their ends, as the JKR branches do.
+
+P is Gauss–Legendre in φ for u ≥ 1/2, with g(cos φ) − g(u) written without cancellation
+(u → 1 is the JKR-like edge of a deep contact); for u < 1/2 it is f(1)·π/2 minus the part
+over y = cos φ ∈ [0, u], in y = u·t² (smooth for any n).
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .law import ContactLaw
+
+_QUADRATURE_NODES = 32
+_RADIUS_NEWTON_STEPS = 12
+_TURN_BISECTION_STEPS = 64
+_INVERSION_STEPS = 100
+_ZONE_POINTS = 192
+# Contact states searched for turning points: s − b_J = −ln p from 0 to this, evenly.
+_CONTACT_LOG_SPAN = 40.0
+_CONTACT_POINTS = 640
+# The curve reaches this many times the contact radius where its loading work exceeds the energy.
+_TOP_MARGIN = 4.0
+
+
+def _gauss_legendre():
+    nodes, weights = np.polynomial.legendre.leggauss(_QUADRATURE_NODES)
+    return jnp.asarray(0.5 * (nodes + 1.0)), jnp.asarray(0.5 * weights)
+
+
+class DugdaleLaw(eqx.Module):
+    """A power-law body in the scaled spring foundation with a Dugdale adhesive zone."""
+
+    law: ContactLaw  # profile and scales (its JKR edge terms are unused)
+    degree: jax.Array  # n
+    stress: jax.Array  # σ̂ = σ0·ℓx/(E*·ℓz)
+    range: jax.Array  # ĥ = h/ℓz
+
+    def g_unit(self):
+        """C_g = ĝ(1)."""
+        return self.law.g(jnp.ones(()))
+
+    def f_unit(self):
+        """C_f = f̂(1)."""
+        scales = self.law.scales
+        return self.law.profile.f(scales.radial) / scales.normal
+
+    def zone(self, zone):
+        """(d, F) of an adhesive zone of radius b without contact."""
+        depth = self.f_unit() * zone**self.degree - 4.0 * self.stress * zone / jnp.pi - self.range
+        return depth, -jnp.pi * self.stress * zone**2
+
+    def shape_term(self, share):
+        """P(p) of the range condition."""
+        n, unit = self.degree, self.g_unit()
+        nodes, weights = _gauss_legendre()
+        ratio = 1.0 - share  # u = a/b
+        opening = jnp.sqrt(share * (2.0 - share))  # √(1 − u²)
+        angle = jnp.arctan2(opening, ratio)  # θ = arccos u
+        phi = angle[..., None] * nodes
+        # g(cos φ) − g(u) = C_g·uⁿ·expm1(n·log1p((cos φ − cos θ)/u)), cos φ − cos θ = 2 sin·sin
+        safe_ratio = jnp.maximum(ratio, 0.25)[..., None]
+        gap = 2.0 * jnp.sin(0.5 * (angle[..., None] + phi)) * jnp.sin(0.5 * (angle[..., None] - phi))
+        excess = unit * safe_ratio**n * jnp.expm1(n * jnp.log1p(gap / safe_ratio))
+        direct = angle * jnp.sum(weights * excess, axis=-1)
+        # ∫_0^θ g(cos φ) dφ = (π/2)·f(1) − ∫_0^u g(y)/√(1 − y²) dy, y = u·t²
+        inner = ratio[..., None] * nodes**2
+        near = jnp.sum(weights * unit * inner**n * 2.0 * ratio[..., None] * nodes / jnp.sqrt(1.0 - inner**2), axis=-1)
+        complement = 0.5 * jnp.pi * self.f_unit() - near - angle * unit * ratio**n
+        return 2.0 / jnp.pi * jnp.where(ratio >= 0.5, direct, complement)
+
+    def adhesive_term(self, share):
+        """Q(p) of the range condition."""
+        opening = jnp.sqrt(share * (2.0 - share))
+        angle = jnp.arctan2(opening, 1.0 - share)
+        return 4.0 * self.stress / jnp.pi * (opening * angle - share)
+
+    def zone_radius(self, share):
+        """b solving bⁿ·P + b·Q = h: Newton on ln(bⁿP + bQ) = ln h (convex in ln b) from the
+        smaller one-term root, which lies above; one last step outside the loop carries the
+        derivative db/dp."""
+        shape, adhesive = self.shape_term(share), self.adhesive_term(share)
+        n, log_range = self.degree, jnp.log(self.range)
+
+        def residual(log_zone):
+            return jnp.logaddexp(n * log_zone + jnp.log(shape), log_zone + jnp.log(adhesive)) - log_range
+
+        def newton(log_zone):
+            value, slope = jax.jvp(residual, (log_zone,), (jnp.ones_like(log_zone),))
+            return log_zone - value / slope
+
+        start = jnp.minimum((log_range - jnp.log(shape)) / n, log_range - jnp.log(adhesive))
+        settled = jax.lax.stop_gradient(
+            jax.lax.fori_loop(0, _RADIUS_NEWTON_STEPS, lambda _, x: newton(x), jax.lax.stop_gradient(start))
+        )
+        return jnp.exp(newton(settled))
+
+    def contact(self, share):
+        """(d, F, a, b) of the contact with zone share p = (b − a)/b."""
+        n, unit = self.degree, self.g_unit()
+        zone = self.zone_radius(share)
+        ratio = 1.0 - share
+        radius = ratio * zone
+        opening = jnp.sqrt(share * (2.0 - share))
+        angle = jnp.arctan2(opening, ratio)
+        depth = unit * radius**n - 2.0 * self.stress * zone * opening
+        elastic = 2.0 * (unit * radius ** (n + 1) * n / (n + 1) - 2.0 * self.stress * radius * zone * opening)
+        force = elastic - self.stress * zone**2 * (2.0 * angle - 2.0 * ratio * opening)
+        return depth, force, radius, zone
+
+
+class DugdaleCurve(eqx.Module):
+    """The equilibrium states of one Dugdale law along s, split into monotone segments."""
+
+    junction: jax.Array  # b_J
+    nodes: jax.Array  # [S+1] segment ends in s: 0, turning points, b_J, s_top
+    levels: jax.Array  # [S+1] d at the nodes
+    increasing: jax.Array  # [S]
+    overflow: jax.Array  # more turning points than the curve holds
+
+    def state(self, law: DugdaleLaw, s):
+        """(d, F, a, b) at s."""
+        contact = s > self.junction
+        zone = jnp.minimum(s, self.junction)
+        zone_depth, zone_force = law.zone(zone)
+        depth, force, radius, contact_zone = law.contact(jnp.exp(jnp.minimum(self.junction - s, 0.0)))
+        return (
+            jnp.where(contact, depth, zone_depth),
+            jnp.where(contact, force, zone_force),
+            jnp.where(contact, radius, 0.0),
+            jnp.where(contact, contact_zone, zone),
+        )
+
+    def riding(self, law: DugdaleLaw, s):
+        """(d, F, dd/ds) at s."""
+        (depth, force), (slope, _) = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
+        return depth, force, slope
+
+    def depth(self, law: DugdaleLaw, s):
+        return self.state(law, s)[0]
+
+    def force(self, law: DugdaleLaw, s):
+        return self.state(law, s)[1]
+
+    def invert(self, law: DugdaleLaw, depth, segment):
+        """s with d(s) = depth on a rising segment (clamped to it), by bisection."""
+        lower, upper = self.nodes[segment], self.nodes[segment + 1]
+
+        def step(_, bracket):
+            lo, hi = bracket
+            mid = 0.5 * (lo + hi)
+            below = self.depth(law, mid) < depth
+            return jnp.where(below, mid, lo), jnp.where(below, hi, mid)
+
+        lo, hi = jax.lax.fori_loop(0, _INVERSION_STEPS, step, (lower, upper))
+        return 0.5 * (lo + hi)
+
+    def cascade_out(self, law: DugdaleLaw, start, depth):
+        """First rising state beyond `start` at level d: (s, segment, blocked)."""
+        ends = self.nodes[1:]
+        candidate = self.increasing & (ends > start) & (self.levels[1:] > depth)
+        segment = jnp.argmax(candidate)
+        blocked = ~jnp.any(candidate)
+        landing = jnp.maximum(self.invert(law, depth, segment), start)
+        return jnp.where(blocked, self.nodes[-1], landing), segment, blocked
+
+    def cascade_in(self, law: DugdaleLaw, start, depth):
+        """Last rising state below `start` at level d: (s, segment, released); released means
+        no state holds: the body leaves the range of the adhesive stress."""
+        begins = self.nodes[:-1]
+        candidate = self.increasing & (begins < start) & (self.levels[:-1] < depth)
+        count = candidate.shape[0]
+        segment = count - 1 - jnp.argmax(candidate[::-1])
+        released = ~jnp.any(candidate)
+        landing = jnp.minimum(self.invert(law, depth, segment), start)
+        return jnp.where(released, 0.0, landing), segment, released
+
+
+def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:
+    """Bound the contact an impact at scaled speed v can reach and split the curve there at
+    its turning points.
+
+    The bound is where the work ∫F dd along the curve (trapezoids) first exceeds ½v² + 1 plus
+    twice the largest work the adhesive pull gave back before (the jumps only lose energy);
+    the curve reaches `_TOP_MARGIN` times that contact radius.
+    """
+    junction = law.zone_radius(jnp.ones(()))
+    zone_grid = junction * jnp.sort(
+        jnp.concatenate([jnp.logspace(-12.0, 0.0, _ZONE_POINTS // 2), jnp.linspace(0.0, 1.0, _ZONE_POINTS // 2)])
+    )
+    contact_grid = junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, _CONTACT_POINTS + 1)[1:]
+    partial = DugdaleCurve(
+        junction=junction,
+        nodes=jnp.zeros(1),
+        levels=jnp.zeros(1),
+        increasing=jnp.zeros(0, bool),
+        overflow=jnp.asarray(False),
+    )
+    grid = jnp.concatenate([zone_grid, contact_grid])
+    depths, forces, slopes = partial.riding(law, grid)
+    radii = partial.state(law, grid)[2]
+    steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
+    work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
+    given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
+    enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
+    reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
+    beyond = radii >= _TOP_MARGIN * jnp.maximum(reach, 1.0)
+    top = grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)]
+
+    nodes, overflow = _turning_points(law, partial, jnp.minimum(grid, top), slopes > 0.0, junction, top, max_turns)
+    middles = 0.5 * (nodes[:-1] + nodes[1:])
+    return eqx.tree_at(
+        lambda c: (c.nodes, c.levels, c.increasing, c.overflow),
+        partial,
+        (
+            nodes,
+            partial.depth(law, nodes),
+            (partial.riding(law, middles)[2] > 0.0) & (nodes[1:] > nodes[:-1]),
+            overflow,
+        ),
+    )
+
+
+def _turning_points(law: DugdaleLaw, curve: DugdaleCurve, grid, rising, junction, top, max_turns: int):
+    """Nodes 0, the turning points of d(s) (sign changes of the slope on `grid`, bisected),
+    b_J and the top, sorted; padded with the top."""
+    change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
+    count = jnp.sum(change)
+    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
+    valid = jnp.arange(max_turns) < count
+
+    def refine(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        slopes = curve.riding(law, jnp.stack([lo, mid]))[2]
+        same = (slopes[1] > 0.0) == (slopes[0] > 0.0)
+        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
+
+    lo, hi = jax.lax.fori_loop(0, _TURN_BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
+    # A sign change across the junction is the junction itself (a kink), already a node.
+    turn = 0.5 * (lo + hi)
+    turns = jnp.where(valid & (jnp.abs(turn - junction) > 1e-12 * junction), turn, top)
+    nodes = jnp.sort(jnp.concatenate([jnp.zeros(1), turns, jnp.stack([junction, top])]))
+    return nodes, count > max_turns
