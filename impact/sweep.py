@@ -357,7 +357,8 @@ def closed_form_restitution(physics: Physics, numerics: Numerics):
     """The chapter's restitution for one point (traced): Thornton–Ning for the paraboloid with
     Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
-    NaN elsewhere."""
+    NaN elsewhere. Maugis–Dugdale points get their JKR limit (Λ → ∞): no closed form has a
+    finite range."""
     if not numerics.adhesive:
         return jnp.ones(())
     nan = jnp.full((), jnp.nan)
@@ -366,7 +367,7 @@ def closed_form_restitution(physics: Physics, numerics: Numerics):
     profile = physics.profile
     v, m, modulus = touch_velocity(physics, numerics), physics.mass, physics.E_star
     work, approach = physics.work_of_adhesion, physics.approach_work_of_adhesion
-    reversible = approach == work
+    reversible = (approach == work) | (numerics.adhesion_model == "maugis_dugdale")
     if type(profile) is profiles.Paraboloid:
         jkr = theory.thornton_ning_restitution(v, m, profile.R, modulus, work)
         on_touch = theory.attach_on_touch_restitution(v, m, profile.R, modulus, work)
@@ -798,6 +799,9 @@ def closed_form_name(scene: Scene) -> str:
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
     shape = scene.body.profile.shape
+    if adhesion.model == "maugis_dugdale":
+        limit = {"paraboloid": "Thornton–Ning (3.50–51)", "power_law": "power law (3.81–82)", "cone": "power law (3.81–82)"}
+        return f"{limit[shape]}: the JKR limit Λ → ∞ of Maugis–Dugdale"
     if shape == "paraboloid":
         if adhesion.approach == adhesion.work_of_adhesion:
             return "Thornton–Ning (3.50–51)"

@@ -67,6 +67,18 @@ def displacement_controlled_wavy_pull_off(result):
     assert pull_off.indentation < 0.0
 
 
+def maugis_dugdale_pull_off(result):
+    """Λ = 1: e between Thornton–Ning and 1; the unloading passes the pull-off force of (3.171)."""
+    scene = result.scene
+    adhesion = scene.effects.adhesion
+    R, E_star = scene.body.profile.R, scene.material.effective_modulus
+    tabor = float(theory.tabor_parameter(R, adhesion.adhesive_stress, adhesion.adhesion_range, E_star))
+    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12)
+    assert thornton_ning(scene, result.touch_velocity) < result.restitution < 1.0
+    pull_off = float(theory.maugis_pull_off(tabor)) * 1.5 * math.pi * R * adhesion.work_of_adhesion
+    assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -78,6 +90,7 @@ CHECKS = {
     "spring_array": matches(thornton_ning, 1e-4),
     "indentation_paraboloid": force_controlled_pull_off,
     "indentation_wavy": displacement_controlled_wavy_pull_off,
+    "maugis_dugdale": maugis_dugdale_pull_off,
 }
 
 

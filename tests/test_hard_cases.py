@@ -266,3 +266,27 @@ def test_16_random_scenes(E_star, radius, work_of_adhesion, density, velocity, n
             lost = kinetic - 0.5 * mass * result.separation_velocity**2
             assert abs(lost - result.dissipated_energy) <= 1e-7 * kinetic + 1e-6 * abs(result.dissipated_energy)
     assert fast.restitution >= slow.restitution - 1e-6
+
+
+def maugis_energy_balance(result, scene):
+    mass = scene.body.resolved_mass
+    lost = 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2)
+    assert abs(lost - result.dissipated_energy) <= 1e-7 * 0.5 * mass * result.touch_velocity**2
+
+
+def test_17_maugis_dugdale_deep_on_the_dmt_side():
+    scene, result = run_case("17_maugis_small_tabor")
+    assert result.status == "separated"
+    assert result.tabor_parameter == pytest.approx(0.01, rel=1e-9)
+    kinds = [kind for _, kind in result.events]
+    assert kinds == ["touch", "contact_start", "max_indentation", "contact_end", "separation"]
+    assert abs(1.0 - result.restitution) < 1e-8  # the dissipation of its snaps is below 1e-10
+    maugis_energy_balance(result, scene)
+
+
+def test_18_maugis_dugdale_deep_on_the_jkr_side():
+    scene, result = run_case("18_maugis_large_tabor")
+    assert result.status == "separated"
+    assert result.tabor_parameter == pytest.approx(1000.0, rel=1e-9)
+    assert 0.0 < result.restitution - tn_restitution(scene) < 2e-4
+    maugis_energy_balance(result, scene)

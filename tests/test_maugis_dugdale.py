@@ -254,3 +254,24 @@ def test_jkr_refuses_dugdale_parameters():
     with pytest.raises(SceneError) as error:
         load_scene(scene)
     assert error.value.problems == [("effects.adhesion.range", "only for model 'maugis_dugdale' (jkr has zero range)")]
+
+
+def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
+    """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values;
+    sweeping σ0 over a scene that gives h makes invalid points, refused before anything runs."""
+    import impact
+    from impact.sweep_file import SweepError
+
+    base = md_scene(adhesion_range=WORK / float(theory.maugis_adhesive_stress(1.0, R, WORK, E_STAR)), velocity=0.5)
+    ranges = [1e-9, 1e-10]
+    result = impact.sweep(base, {"effects.adhesion.range": ranges}, chunk=2)
+    for i, adhesion_range in enumerate(ranges):
+        single = simulate(md_scene(adhesion_range=adhesion_range, velocity=0.5), trajectory=False)
+        assert result.status_names()[i] == single.status
+        for name in ("restitution", "max_force", "min_force", "dissipated_energy"):
+            assert math.isclose(float(getattr(result, name)[i]), getattr(single, name), rel_tol=1e-12), name
+        expected = theory.thornton_ning_restitution(0.5, MASS, R, E_STAR, WORK)
+        assert math.isclose(float(result.theory_restitution[i]), float(expected), rel_tol=1e-14)
+    with pytest.raises(SweepError) as error:
+        impact.sweep(base, {"effects.adhesion.stress": [1e7, 1e8]})
+    assert "exactly one of stress" in str(error.value)
