@@ -275,3 +275,26 @@ def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
     with pytest.raises(SweepError) as error:
         impact.sweep(base, {"effects.adhesion.stress": [1e7, 1e8]})
     assert "exactly one of stress" in str(error.value)
+
+
+def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limits():
+    from impact.dugdale_curves import equilibrium_figure, normalized_curve
+
+    for tabor in (0.3, 3.0):
+        radii, depths, forces = normalized_curve(tabor, contact_points=50, zone_points=20)
+        zone = radii == 0.0
+        contact = ~zone
+        junction = float(theory.maugis_junction_zone_radius(tabor))
+        d_zone, f_zone = theory.maugis_paraboloid_noncontact(np.linspace(0.0, junction, 20), tabor)
+        np.testing.assert_allclose(depths[:20], d_zone, rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(forces[:20], f_zone, rtol=1e-10, atol=1e-12)
+        shares = np.logspace(0.0, -6.0, 50)[1:]  # p = 1 is the junction (a = 0) itself
+        a_hat, d_hat, f_hat = theory.maugis_paraboloid(1.0 / (1.0 - shares), tabor)
+        np.testing.assert_allclose(radii[contact], a_hat, rtol=1e-9)
+        np.testing.assert_allclose(depths[contact], d_hat, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(forces[contact], f_hat, rtol=1e-9, atol=1e-9)
+        # 50 samples pass near the pull-off, not through it
+        assert forces.min() == pytest.approx(-float(theory.maugis_pull_off(tabor)), rel=1e-2)
+    figure = equilibrium_figure((0.3, 3.0))
+    for axes in figure.axes:
+        assert [line.get_gid() for line in axes.get_lines() if line.get_gid()] == ["maugis", "maugis", "limit", "limit"]
