@@ -293,8 +293,6 @@ def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limi
         np.testing.assert_allclose(radii[contact], a_hat, rtol=1e-9)
         np.testing.assert_allclose(depths[contact], d_hat, rtol=1e-9, atol=1e-9)
         np.testing.assert_allclose(forces[contact], f_hat, rtol=1e-9, atol=1e-9)
-        # 50 samples pass near the pull-off, not through it
-        assert forces.min() == pytest.approx(-float(theory.maugis_pull_off(tabor)), rel=1e-2)
     figure = equilibrium_figure((0.3, 3.0))
     for axes in figure.axes:
         assert [line.get_gid() for line in axes.get_lines() if line.get_gid()] == ["maugis", "maugis", "limit", "limit"]
