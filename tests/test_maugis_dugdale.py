@@ -296,3 +296,26 @@ def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limi
     figure = equilibrium_figure((0.3, 3.0))
     for axes in figure.axes:
         assert [line.get_gid() for line in axes.get_lines() if line.get_gid()] == ["maugis", "maugis", "limit", "limit"]
+
+
+def test_gravity_drop_bounces_then_is_captured():
+    """A bead dropped onto the Maugis–Dugdale surface (Λ = 3): the bounces lose energy in the
+    jumps until an outward turnaround in range captures it, in finite time."""
+    radius, modulus, work = 1.0e-3, 1.0e10, 0.1
+    scene = load_scene({
+        "body": {"profile": {"shape": "paraboloid", "R": radius}, "density": 2500.0},
+        "material": {"E_star": modulus},
+        "initial": {"velocity": 0.0, "gap": 1.5e-7},
+        "effects": {
+            "adhesion": {"model": "maugis_dugdale", "work_of_adhesion": work,
+                         "stress": float(theory.maugis_adhesive_stress(3.0, radius, work, modulus))},
+            "gravity": {"g": 9.81},
+        },
+    })
+    result = simulate(scene)
+    assert result.status == "captured" and result.stuck
+    assert 3 <= result.bounces < scene.limits.max_bounces
+    kinds = [kind for _, kind in result.events]
+    assert kinds.count("touch") == result.bounces and kinds[-1] == "capture"
+    assert 0.0 < result.restitution < 1.0
+    assert np.all(np.isfinite(result.t)) and result.t[-1] < 1e-2
