@@ -129,13 +129,6 @@ def _first_event(t, y, args: _Args, **kwargs):
     return jnp.max(_conditions(y, args))
 
 
-def _touch(problem: DugdaleProblem):
-    """The tip reaches the range: the zone snaps to its first rising state at d = −h."""
-    law, curve = problem.law, problem.curve
-    landing, segment, blocked = curve.cascade_out(law, jnp.zeros(()), -law.range)
-    return landing, segment, blocked
-
-
 def flight(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
     """Free flight (analytic) until the tip comes within range, or out of reach for good."""
     reach = -problem.law.range
@@ -152,7 +145,8 @@ def flight(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
             axis=1,
         )
         c = store_samples(c, numerics, jnp.where(kept[:, None], rows, jnp.nan))
-    landing, segment, blocked = _touch(problem)
+    # The zone snaps to the first rising state at d = −h.
+    landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
     status = jnp.where(
         ~reaches,
         RESULT_CODE["separated"],
