@@ -3,6 +3,7 @@
 Λ grows, the reversible DMT side)."""
 
 import math
+from pathlib import Path
 
 import jax.numpy as jnp
 import numpy as np
@@ -319,3 +320,25 @@ def test_gravity_drop_bounces_then_is_captured():
     assert kinds.count("touch") == result.bounces and kinds[-1] == "capture"
     assert 0.0 < result.restitution < 1.0
     assert np.all(np.isfinite(result.t)) and result.t[-1] < 1e-2
+
+
+def test_cli_runs_a_dugdale_scene_stores_tabor_and_refuses_bad_parameters(tmp_path):
+    from typer.testing import CliRunner
+
+    from impact.cli import app
+    from impact.io import read_run
+
+    config = str(Path(__file__).parents[1] / "configs" / "maugis_dugdale.yaml")
+    facts = CliRunner().invoke(app, ["validate", config])
+    assert facts.exit_code == 0
+    assert "Maugis–Dugdale adhesion" in facts.output and "σ0 = 3.7411e+07 Pa" in facts.output
+    run = CliRunner().invoke(app, ["run", config, "-o", str(tmp_path / "run")])
+    assert run.exit_code == 0, run.output
+    assert "Tabor parameter Λ" in run.output
+    stored = read_run(tmp_path / "run" / "run.h5")
+    assert stored.tabor_parameter == pytest.approx(1.0, rel=1e-6)
+    assert [kind for _, kind in stored.events] == ["touch", "max_indentation", "separation"]
+    refused = CliRunner().invoke(app, ["run", config, "--set", "effects.adhesion.range=1e-9", "-o", str(tmp_path / "bad")])
+    assert refused.exit_code == 2
+    assert "effects.adhesion.stress" in refused.output and "Traceback" not in refused.output
+    assert not (tmp_path / "bad").exists()
