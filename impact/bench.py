@@ -15,7 +15,8 @@
 - **Spring array** (Thornton–Ning at 2 v_s) × N: the exact event-driven stepper
   (`impact.springs`, whose error is the pure spatial error) and a fixed-step velocity Verlet
   (`impact.verlet`) over Δt, whose difference from the exact discrete model is the pure
-  time-stepping error; fitted orders in N and in Δt.
+  time-stepping error; fitted orders in N and in Δt. For N = 10 and 10⁶, the exact stepper's
+  time per spring event and the memory of its compiled program (the same: nothing of size N).
 - **Baseline a researcher would write**: the same contact law with `scipy.integrate.solve_ivp`
   (RK45, DOP853), state (d, v) in scaled units, the contact radius from the JKR branch by
   `brentq` inside the right-hand side, a terminal separation event; same cases, same run.
@@ -75,6 +76,7 @@ class Plan:
     batch_size: int
     batch_budget: float  # s: a batch expected to take longer is skipped
     spring_counts: tuple[int, ...]
+    cost_counts: tuple[int, ...]  # N at which time per spring event and memory are compared
     verlet_counts: tuple[int, ...]
     verlet_steps: tuple[float, ...]  # Δt in scaled time units
     scipy_methods: tuple[str, ...]
@@ -102,6 +104,7 @@ FULL = Plan(
     batch_size=1000,
     batch_budget=20.0,
     spring_counts=_counts(2, 6, 4),
+    cost_counts=(10, 1_000_000),
     verlet_counts=(1000, 10_000, 100_000),
     verlet_steps=_decades(1e-2, 1e-5, 4),
     scipy_methods=("RK45", "DOP853"),
@@ -118,6 +121,7 @@ QUICK = Plan(
     batch_size=1000,
     batch_budget=5.0,
     spring_counts=_counts(2, 4.5, 4),
+    cost_counts=(10, 1_000_000),
     verlet_counts=(1000,),
     verlet_steps=_decades(1e-2, 1e-4, 2),
     scipy_methods=("RK45", "DOP853"),
@@ -399,6 +403,19 @@ def bench_springs(plan: Plan, log: Callable) -> dict:
     log(f"springs exact: N {counts[0]}–{counts[-1]}, order in N {exact['order']:.2f}, "
         f"error at N = {counts[-1]}: {exact['error'][-1]:.1e} in {exact['time'][-1] * 1e3:.1f} ms")
 
+    cost = {"N": np.asarray(plan.cost_counts), "time_per_event": [], "events": [], "memory": []}
+    for count in plan.cost_counts:
+        numerics = dataclasses.replace(base, springs=count)
+        compiled, _ = _compile(lambda p, numerics=numerics: solve.__wrapped__(p, numerics), physics)
+        run_time, (_, outcome) = best_time(lambda: compiled(physics), plan.timing_budget)
+        memory = compiled.memory_analysis()
+        cost["events"].append(int(outcome.steps))
+        cost["time_per_event"].append(run_time / int(outcome.steps))
+        cost["memory"].append(memory.temp_size_in_bytes + memory.argument_size_in_bytes + memory.output_size_in_bytes)
+        log(f"springs exact N = {count}: {cost['time_per_event'][-1] * 1e6:.2f} µs per spring event "
+            f"({cost['events'][-1]} events), compiled program's buffers {cost['memory'][-1] / 1024:.1f} kB")
+    cost = {key: np.asarray(value) for key, value in cost.items()}
+
     verlet_runs = {}
     for count in plan.verlet_counts:
         numerics = dataclasses.replace(base, springs=count, method="verlet")
@@ -427,7 +444,7 @@ def bench_springs(plan: Plan, log: Callable) -> dict:
         verlet_runs[count] = row
         log(f"springs Verlet N = {count}: order in Δt {row['order']:.2f}, |e − e_exact| ≤ {row['bound']:.2g}·Δt, "
             f"{row['time'][-1] / row['steps'][-1] * 1e9:.0f} ns/step at Δt = {row['dt'][-1]:.0e}")
-    return {"reference": reference, "exact": exact, "verlet": verlet_runs, "time_unit": float(scales.time)}
+    return {"reference": reference, "exact": exact, "cost": cost, "verlet": verlet_runs, "time_unit": float(scales.time)}
 
 
 def fitted_order(x, error) -> float:
@@ -667,6 +684,7 @@ def write_h5(path: Path, data: dict) -> None:
         springs_group.attrs["reference"] = data["springs"]["reference"]
         springs_group.attrs["time_unit"] = data["springs"]["time_unit"]
         put(springs_group, "exact", data["springs"]["exact"])
+        put(springs_group, "cost", data["springs"]["cost"])
         verlet_group = springs_group.create_group("verlet")
         for count, row in data["springs"]["verlet"].items():
             put(verlet_group, f"N{count}", row)
@@ -768,6 +786,11 @@ def table_markdown(data: dict) -> str:
         lines.append(
             f"| {count} | {exact['error'][k]:+.2e} | {exact['events'][k]} | {_ms(exact['time'][k])} | {exact['compile'][k]:.1f} s |"
         )
+    cost = springs["cost"]
+    lines += ["", "Time per spring event (a run's time over its events, fixed costs included) and the buffers of the compiled program:", ""]
+    for k, count in enumerate(cost["N"]):
+        lines.append(f"- N = {count}: {cost['time_per_event'][k] * 1e6:.2f} µs per event ({cost['events'][k]} events), "
+                     f"{cost['memory'][k] / 1024:.1f} kB")
     lines += [
         "",
         "## Spring array, velocity Verlet (error = spatial part + time-stepping part)",

@@ -75,6 +75,19 @@ def test_spring_array_order_in_n(quick):
             assert np.allclose(total, row["time_error"][()] + row["spatial_error"][()], rtol=0, atol=1e-14)
 
 
+def test_spring_cost_is_reported_for_ten_and_a_million_springs(quick):
+    """Time per spring event and the compiled program's buffers at N = 10 and 10⁶: the same
+    buffers (nothing of size N is kept)."""
+    folder, result = quick
+    with h5py.File(folder / "bench.h5") as file:
+        cost = file["springs/cost"]
+        assert list(cost["N"][()]) == [10, 1_000_000]
+        assert np.all(cost["time_per_event"][()] > 0)
+        memory = cost["memory"][()]
+        assert memory[0] == memory[1] > 0
+    assert "µs per spring event" in result.output
+
+
 def test_baseline_is_measured_beside(quick):
     """The scipy baseline ran on the same cases, and its error falls with its tolerance."""
     folder, _ = quick
