@@ -383,14 +383,17 @@ def bench_springs(plan: Plan, log: Callable) -> dict:
     reference = float(theory.thornton_ning_restitution(velocity, MASS, RADIUS, E_STAR, WORK_OF_ADHESION))
     scene = load_scene(_scene("springs", dict(shape="paraboloid", R=RADIUS), velocity))
     physics = physics_for(scene)
-    base = numerics_for(scene, trajectory=False)
+    numerics = dataclasses.replace(numerics_for(scene, trajectory=False), spring_array=True)
+
+    def with_count(count):
+        return eqx.tree_at(lambda p: p.spring_count, physics, jnp.asarray(float(count)))
 
     counts = sorted(set(plan.spring_counts) | set(plan.verlet_counts))
     exact = {"N": np.asarray(counts), "restitution": [], "time": [], "events": [], "compile": [], "work": []}
     for count in counts:
-        numerics = dataclasses.replace(base, springs=count)
-        compiled, seconds = _compile(lambda p, numerics=numerics: solve.__wrapped__(p, numerics), physics)
-        run_time, (scales, outcome) = best_time(lambda: compiled(physics), plan.timing_budget)
+        arrayed = with_count(count)
+        compiled, seconds = _compile(lambda p: solve.__wrapped__(p, numerics), arrayed)
+        run_time, (scales, outcome) = best_time(lambda: compiled(arrayed), plan.timing_budget)
         exact["restitution"].append(restitution(outcome))
         exact["time"].append(run_time)
         exact["events"].append(int(outcome.steps))
@@ -405,9 +408,9 @@ def bench_springs(plan: Plan, log: Callable) -> dict:
 
     cost = {"N": np.asarray(plan.cost_counts), "time_per_event": [], "events": [], "memory": []}
     for count in plan.cost_counts:
-        numerics = dataclasses.replace(base, springs=count)
-        compiled, _ = _compile(lambda p, numerics=numerics: solve.__wrapped__(p, numerics), physics)
-        run_time, (_, outcome) = best_time(lambda: compiled(physics), plan.timing_budget)
+        arrayed = with_count(count)
+        compiled, _ = _compile(lambda p: solve.__wrapped__(p, numerics), arrayed)
+        run_time, (_, outcome) = best_time(lambda: compiled(arrayed), plan.timing_budget)
         memory = compiled.memory_analysis()
         cost["events"].append(int(outcome.steps))
         cost["time_per_event"].append(run_time / int(outcome.steps))
@@ -417,16 +420,17 @@ def bench_springs(plan: Plan, log: Callable) -> dict:
     cost = {key: np.asarray(value) for key, value in cost.items()}
 
     verlet_runs = {}
+    stepping = dataclasses.replace(numerics, method="verlet")
+
+    def stepped(p, step):
+        return verlet.integrate(build_problem(p, stepping), stepping, p.spring_length, p.spring_count.astype(int), step=step)
+
     for count in plan.verlet_counts:
-        numerics = dataclasses.replace(base, springs=count, method="verlet")
-
-        def stepped(p, step, numerics=numerics):
-            return verlet.integrate(build_problem(p, numerics), numerics, p.spring_length, step=step)
-
-        compiled, seconds = _compile(stepped, physics, jnp.asarray(plan.verlet_steps[0]))
+        arrayed = with_count(count)
+        compiled, seconds = _compile(stepped, arrayed, jnp.asarray(plan.verlet_steps[0]))
         row = {"dt": np.asarray(plan.verlet_steps), "restitution": [], "time": [], "steps": [], "energy_lost": [], "work": []}
         for step in plan.verlet_steps:
-            run_time, outcome = best_time(lambda: compiled(physics, jnp.asarray(step)), plan.timing_budget)
+            run_time, outcome = best_time(lambda: compiled(arrayed, jnp.asarray(step)), plan.timing_budget)
             row["restitution"].append(restitution(outcome))
             row["time"].append(run_time)
             row["steps"].append(int(outcome.steps))

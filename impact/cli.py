@@ -15,7 +15,6 @@ from datetime import datetime
 from pathlib import Path
 from typing import Annotated, Optional
 
-import jax
 import typer
 import yaml
 from pydantic import BaseModel
@@ -23,7 +22,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from . import __version__
+from . import __version__, runtime
 from .indentation import IndentationResult
 from .io import read_provenance, read_run, write_run, write_text
 from .io_indentation import is_indentation_run, read_indentation, read_indentation_provenance, write_indentation
@@ -54,8 +53,9 @@ SetOption = Annotated[
 
 
 def main() -> None:
-    """Console entry point: float64 physics, then the command line."""
-    jax.config.update("jax_enable_x64", True)
+    """Console entry point: float64 physics and whole-loop compilation (`runtime.configure`),
+    then the command line."""
+    runtime.configure()
     app()
 
 

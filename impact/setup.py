@@ -30,7 +30,7 @@ class Numerics:
     dt: float | None = None  # time step (s) of method "verlet"
     rtol: float = 1e-10
     atol: float = 1e-12
-    springs: int | None = None  # None: continuum law
+    spring_array: bool = False  # the N springs of `Physics.spring_count` instead of the continuum law
     timed_loading: bool = True  # loading may start at a = 0 (no jump-in): compile its time path
     max_steps: int = 4096  # per phase
     max_bounces: int = 64
@@ -59,6 +59,7 @@ class Physics(eqx.Module):
     gravity: jax.Array  # m/s²; unused without gravity
     time_limit: jax.Array  # s
     spring_length: jax.Array  # radius covered by a spring array (m); nan: the default
+    spring_count: jax.Array  # N of a spring array (traced: one compilation serves every N); nan: continuum
 
 
 class Problem(eqx.Module):

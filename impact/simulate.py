@@ -60,7 +60,6 @@ def numerics_for(scene: Scene, trajectory: bool = True) -> Numerics:
     """The static choices of a scene (changing them recompiles)."""
     adhesion = scene.effects.adhesion
     max_turns, turn_grid = _MANY_TURNS.get(scene.body.profile.shape, (4, 384))
-    springs_count = scene.contact.springs
     return Numerics(
         adhesive=scene.adhesive,
         gravity=scene.effects.gravity is not None,
@@ -69,7 +68,7 @@ def numerics_for(scene: Scene, trajectory: bool = True) -> Numerics:
         dt=scene.solver.dt,
         rtol=scene.solver.rtol,
         atol=scene.solver.atol,
-        springs=None if springs_count == "continuum" else springs_count,
+        spring_array=scene.contact.springs != "continuum",
         max_steps=scene.solver.max_steps,
         max_bounces=scene.limits.max_bounces,
         max_turns=max_turns,
@@ -85,6 +84,7 @@ def physics_for(scene: Scene) -> Physics:
     """The traced SI parameters of a scene."""
     adhesion = scene.effects.adhesion
     dugdale = scene.adhesive and adhesion.model == "maugis_dugdale"
+    springs = scene.contact.springs
     gravity = scene.effects.gravity
     duration = scene.limits.duration
     return Physics(
@@ -99,6 +99,7 @@ def physics_for(scene: Scene) -> Physics:
         gravity=jnp.asarray(gravity.g if gravity else 0.0, jnp.float64),
         time_limit=jnp.asarray(np.inf if duration is None else duration, jnp.float64),
         spring_length=jnp.asarray(np.nan if scene.contact.length is None else scene.contact.length, jnp.float64),
+        spring_count=jnp.asarray(np.nan if springs == "continuum" else springs, jnp.float64),
     )
 
 
@@ -109,11 +110,12 @@ def solve(physics: Physics, numerics: Numerics):
         problem = dugdale_impact.build_dugdale_problem(physics, numerics)
         return problem.scales, dugdale_impact.integrate(problem, numerics)
     problem = build_problem(physics, numerics)
-    if numerics.springs is None:
+    if not numerics.spring_array:
         return problem.scales, continuum.integrate(problem, numerics)
+    count = physics.spring_count.astype(int)
     if numerics.method == "verlet":
-        return problem.scales, verlet.integrate(problem, numerics, physics.spring_length)
-    return problem.scales, springs.integrate(problem, numerics, physics.spring_length)
+        return problem.scales, verlet.integrate(problem, numerics, physics.spring_length, count)
+    return problem.scales, springs.integrate(problem, numerics, physics.spring_length, count)
 
 
 def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> "Result | IndentationResult":

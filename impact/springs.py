@@ -249,13 +249,10 @@ def land(
     return c, jax.tree.map(lambda a, b: jnp.where(lands, a, b), jump_in, Attached.none())
 
 
-def integrate(problem: Problem, numerics: Numerics, length, count=None) -> Outcome:
-    """Run one impact (possibly several bounces) on the spring array.
-
-    N is `numerics.springs`, or `count` when given (it may be traced, so that a sweep over N
-    compiles once).
-    """
-    array = build_array(problem, numerics.springs if count is None else count, length)
+def integrate(problem: Problem, numerics: Numerics, length, count) -> Outcome:
+    """Run one impact (possibly several bounces) on an array of `count` springs (N may be
+    traced: one compilation serves every N)."""
+    array = build_array(problem, count, length)
     events_per_contact = 2 * array.count + 16
     max_events = numerics.max_bounces * events_per_contact + 16
     rows = numerics.samples_per_phase * numerics.max_phases

@@ -234,7 +234,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
             approach = np.zeros(())
         else:
             approach = np.where(adhesive, adhesion.approach, 0.0)
-    duration, length = batch.limits.duration, batch.contact.length
+    duration, length, springs = batch.limits.duration, batch.contact.length, batch.contact.springs
     return Physics(
         profile=jax.tree.unflatten(treedef, leaves),
         E_star=_batched(batch.material.effective_modulus, (), size),
@@ -247,6 +247,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
         gravity=_batched(0.0 if gravity is None else gravity.g, (), size),
         time_limit=_batched(np.inf if duration is None else duration, (), size),
         spring_length=_batched(np.nan if length is None else length, (), size),
+        spring_count=_batched(np.nan if isinstance(springs, str) else springs, (), size),
     )
 
 

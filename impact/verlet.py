@@ -83,13 +83,13 @@ def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _S
     return eqx.tree_at(lambda x: (x.trajectory, x.stored), s, (trajectory, s.stored + jnp.asarray(keep, int)))
 
 
-def integrate(problem: Problem, numerics: Numerics, length, step=None, count=None) -> Outcome:
+def integrate(problem: Problem, numerics: Numerics, length, count, step=None) -> Outcome:
     """Run one impact (possibly several bounces) on the spring array with velocity Verlet.
 
-    The step is `numerics.dt` (s), or `step` in scaled time when given; N is `numerics.springs`,
-    or `count` when given (both may be traced, so that a sweep over Δt or N compiles once).
+    The step is `numerics.dt` (s), or `step` in scaled time when given; N is `count` (both may
+    be traced, so that a sweep over Δt or N compiles once).
     """
-    array = build_array(problem, numerics.springs if count is None else count, length)
+    array = build_array(problem, count, length)
     if step is None:
         if numerics.dt is None:
             raise ValueError("velocity Verlet needs a time step: numerics.dt (s)")

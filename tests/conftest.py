@@ -1,5 +1,5 @@
-"""Test configuration: float64 physics, as in the CLI entry point."""
+"""Test configuration: float64 physics and whole-loop compilation, as in the CLI entry point."""
 
-import jax
+from impact import runtime
 
-jax.config.update("jax_enable_x64", True)
+runtime.configure()

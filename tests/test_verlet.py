@@ -4,6 +4,7 @@ switch `solver: {method: verlet, dt}`."""
 
 import dataclasses
 
+import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -38,10 +39,11 @@ def sweep():
     """Exact model and Verlet over Δt (one compile each), Thornton–Ning at 2·v_s, N = 300."""
     loaded = load_scene(scene())
     physics = physics_for(loaded)
-    numerics = dataclasses.replace(numerics_for(loaded, trajectory=False), springs=COUNT)
+    numerics = dataclasses.replace(numerics_for(loaded, trajectory=False), spring_array=True)
+    physics = eqx.tree_at(lambda p: p.spring_count, physics, jnp.asarray(float(COUNT)))
     _, exact = solve(physics, numerics)
     stepped = jax.jit(
-        lambda p, step: verlet.integrate(build_problem(p, numerics), numerics, p.spring_length, step=step)
+        lambda p, step: verlet.integrate(build_problem(p, numerics), numerics, p.spring_length, COUNT, step=step)
     )
     outcomes = [stepped(physics, jnp.asarray(step)) for step in STEPS]
     problem = build_problem(physics, numerics)
@@ -96,11 +98,11 @@ def test_scene_runs_verlet_with_its_step_in_seconds():
     """`solver: {method: verlet, dt}` with `contact.springs` runs the same stepper (dt in s)."""
     loaded = load_scene(scene())
     physics = physics_for(loaded)
-    numerics = dataclasses.replace(numerics_for(loaded, trajectory=False), springs=COUNT)
+    numerics = numerics_for(loaded, trajectory=False)
     time_unit = float(build_problem(physics, numerics).scales.time)
     step = 1e-3
     result = simulate(scene(solver={"method": "verlet", "dt": step * time_unit}, contact={"springs": COUNT}))
-    direct = jax.jit(lambda p: verlet.integrate(build_problem(p, numerics), numerics, p.spring_length, step=step))(physics)
+    direct = jax.jit(lambda p: verlet.integrate(build_problem(p, numerics), numerics, p.spring_length, COUNT, step=step))(physics)
     assert result.status == "separated"
     assert result.restitution == pytest.approx(restitution(direct), rel=1e-12)
     assert result.stats["steps"] == int(direct.steps)
