@@ -113,10 +113,7 @@ class Branch(eqx.Module):
         Returns (radius, segment, blocked); blocked means no such x below x_top (the
         contact reaches the body's wall, or the table's top).
         """
-        ends = self.nodes[1:]
-        candidate = self.increasing & (ends > start) & (self.levels[1:] > indentation)
-        segment = jnp.argmax(candidate)
-        blocked = ~jnp.any(candidate)
+        segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, indentation)
         radius = jnp.maximum(self.radius(law, indentation, segment), start)
         return jnp.where(blocked, self.nodes[-1], radius), segment, blocked
 
@@ -125,13 +122,21 @@ class Branch(eqx.Module):
 
         Returns (radius, segment, separated); separated means no spring holds: a = 0.
         """
-        begins = self.nodes[:-1]
-        candidate = self.increasing & (begins < start) & (self.levels[:-1] < indentation)
-        count = candidate.shape[0]
-        segment = count - 1 - jnp.argmax(candidate[::-1])
-        separated = ~jnp.any(candidate)
+        segment, separated = previous_rising(self.nodes, self.levels, self.increasing, start, indentation)
         radius = jnp.minimum(self.radius(law, indentation, segment), start)
         return jnp.where(separated, 0.0, radius), segment, separated
+
+
+def next_rising(nodes, levels, increasing, start, level):
+    """The first rising segment ending beyond `start` above `level`: (segment, none found)."""
+    candidate = increasing & (nodes[1:] > start) & (levels[1:] > level)
+    return jnp.argmax(candidate), ~jnp.any(candidate)
+
+
+def previous_rising(nodes, levels, increasing, start, level):
+    """The last rising segment beginning before `start` below `level`: (segment, none found)."""
+    candidate = increasing & (nodes[:-1] < start) & (levels[:-1] < level)
+    return candidate.shape[0] - 1 - jnp.argmax(candidate[::-1]), ~jnp.any(candidate)
 
 
 def build_branch(
@@ -153,20 +158,8 @@ def build_branch(
             ]
         )
     )
-    rising = slope(grid) > 0.0
-    change = rising[1:] != rising[:-1]
-    count = jnp.sum(change)
-    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
-    valid = jnp.arange(max_turns) < count
-
-    def refine(_, bracket):
-        lo, hi = bracket
-        mid = 0.5 * (lo + hi)
-        same = (slope(mid) > 0.0) == (slope(lo) > 0.0)
-        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
-
-    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
-    turns = jnp.where(valid, 0.5 * (lo + hi), top)
+    turns, valid, count = sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
+    turns = jnp.where(valid, turns, top)
     nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
     levels = law.edge(nodes, coefficient)
     middles = 0.5 * (nodes[:-1] + nodes[1:])
@@ -179,6 +172,24 @@ def build_branch(
         table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
         overflow=count > max_turns,
     )
+
+
+def sign_changes(slope, grid, rising, max_turns: int):
+    """Where `slope` changes sign between neighbours of the sorted `grid` (`rising`: slope > 0
+    there), bisected to round-off: (points [max_turns], valid [max_turns], count)."""
+    change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
+    count = jnp.sum(change)
+    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
+
+    def refine(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        signs = slope(jnp.stack([lo, mid])) > 0.0
+        same = signs[1] == signs[0]
+        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
+
+    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
+    return 0.5 * (lo + hi), jnp.arange(max_turns) < count, count
 
 
 def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_size):

@@ -22,9 +22,9 @@ import jax
 import jax.numpy as jnp
 
 from . import transitions
-from .outcome import Carry, Outcome, active_branch, finish, initial_carry, log_event, phase_summary, store_samples
+from .outcome import Carry, Outcome, active_branch, log_event, phase_summary, run_phases, store_samples
 from .rootfind import BracketBisection
-from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .phases import ADVANCE, DONE, EVENT_CODE, HOLD, RECEDE, RESULT_CODE
 from .setup import Numerics, Problem
 
 SOLVERS = {
@@ -304,17 +304,4 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
 
 def integrate(problem: Problem, numerics: Numerics) -> Outcome:
     """Run one impact (possibly several bounces) with the continuum law."""
-
-    def running(c: Carry):
-        return (c.mode != DONE) & (c.phases < numerics.max_phases)
-
-    def advance(c: Carry):
-        return jax.lax.cond(
-            c.mode == FLIGHT,
-            lambda s: flight(problem, numerics, s),
-            lambda s: contact(problem, numerics, s),
-            c,
-        )
-
-    c = jax.lax.while_loop(running, advance, initial_carry(problem, numerics))
-    return finish(c)
+    return run_phases(problem, numerics, flight, contact)

@@ -29,11 +29,11 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from .branches import next_rising, previous_rising, sign_changes
 from .law import ContactLaw
 
 _QUADRATURE_NODES = 32
 _RADIUS_NEWTON_STEPS = 12
-_TURN_BISECTION_STEPS = 64
 _INVERSION_STEPS = 100
 _ZONE_POINTS = 192
 # Contact states searched for turning points: s − b_J = −ln p from 0 to this, evenly.
@@ -177,21 +177,14 @@ class DugdaleCurve(eqx.Module):
 
     def cascade_out(self, law: DugdaleLaw, start, depth):
         """First rising state beyond `start` at level d: (s, segment, blocked)."""
-        ends = self.nodes[1:]
-        candidate = self.increasing & (ends > start) & (self.levels[1:] > depth)
-        segment = jnp.argmax(candidate)
-        blocked = ~jnp.any(candidate)
+        segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
         landing = jnp.maximum(self.invert(law, depth, segment), start)
         return jnp.where(blocked, self.nodes[-1], landing), segment, blocked
 
     def cascade_in(self, law: DugdaleLaw, start, depth):
         """Last rising state below `start` at level d: (s, segment, released); released means
         no state holds: the body leaves the range of the adhesive stress."""
-        begins = self.nodes[:-1]
-        candidate = self.increasing & (begins < start) & (self.levels[:-1] < depth)
-        count = candidate.shape[0]
-        segment = count - 1 - jnp.argmax(candidate[::-1])
-        released = ~jnp.any(candidate)
+        segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
         landing = jnp.minimum(self.invert(law, depth, segment), start)
         return jnp.where(released, 0.0, landing), segment, released
 
@@ -242,23 +235,9 @@ def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:
 
 
 def _turning_points(law: DugdaleLaw, curve: DugdaleCurve, grid, rising, junction, top, max_turns: int):
-    """Nodes 0, the turning points of d(s) (sign changes of the slope on `grid`, bisected),
-    b_J and the top, sorted; padded with the top."""
-    change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
-    count = jnp.sum(change)
-    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
-    valid = jnp.arange(max_turns) < count
-
-    def refine(_, bracket):
-        lo, hi = bracket
-        mid = 0.5 * (lo + hi)
-        slopes = curve.riding(law, jnp.stack([lo, mid]))[2]
-        same = (slopes[1] > 0.0) == (slopes[0] > 0.0)
-        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
-
-    lo, hi = jax.lax.fori_loop(0, _TURN_BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
+    """Nodes 0, the turning points of d(s), b_J and the top, sorted; padded with the top."""
+    turns, valid, count = sign_changes(lambda s: curve.riding(law, s)[2], grid, rising, max_turns)
     # A sign change across the junction is the junction itself (a kink), already a node.
-    turn = 0.5 * (lo + hi)
-    turns = jnp.where(valid & (jnp.abs(turn - junction) > 1e-12 * junction), turn, top)
+    turns = jnp.where(valid & (jnp.abs(turns - junction) > 1e-12 * junction), turns, top)
     nodes = jnp.sort(jnp.concatenate([jnp.zeros(1), turns, jnp.stack([junction, top])]))
     return nodes, count > max_turns

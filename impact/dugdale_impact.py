@@ -22,7 +22,7 @@ from . import transitions
 from .continuum import SOLVERS
 from .dugdale import DugdaleCurve, DugdaleLaw, build_curve
 from .law import ContactLaw
-from .outcome import Carry, Outcome, extremes, finish, gauss_legendre, initial_carry, log_event, store_samples
+from .outcome import Carry, Outcome, extremes, gauss_legendre, log_event, run_phases, store_samples
 from .profiles import Cone, Paraboloid, PowerLaw, Profile
 from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .rootfind import BracketBisection
@@ -317,16 +317,4 @@ def contact(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
 
 def integrate(problem: DugdaleProblem, numerics: Numerics) -> Outcome:
     """Run one impact (possibly several bounces) on the Maugis–Dugdale curve."""
-
-    def running(c: Carry):
-        return (c.mode != DONE) & (c.phases < numerics.max_phases)
-
-    def advance(c: Carry):
-        return jax.lax.cond(
-            c.mode == FLIGHT,
-            lambda s: flight(problem, numerics, s),
-            lambda s: contact(problem, numerics, s),
-            c,
-        )
-
-    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, numerics)))
+    return run_phases(problem, numerics, flight, contact)

@@ -211,6 +211,24 @@ def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
     )
 
 
+def run_phases(problem, numerics: Numerics, flight, contact) -> Outcome:
+    """Chain flights and contact phases (`flight(problem, numerics, carry)`, `contact(...)`)
+    until the run is done or holds no more phases."""
+
+    def running(c: Carry):
+        return (c.mode != DONE) & (c.phases < numerics.max_phases)
+
+    def advance(c: Carry):
+        return jax.lax.cond(
+            c.mode == FLIGHT,
+            lambda s: flight(problem, numerics, s),
+            lambda s: contact(problem, numerics, s),
+            c,
+        )
+
+    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, numerics)))
+
+
 def log_event(c: Carry, time, kind, valid=True) -> Carry:
     """Append an event (time, kind code) when `valid`."""
     index = jnp.minimum(c.event_count, c.event_times.shape[0] - 1)
