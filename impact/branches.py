@@ -20,9 +20,17 @@ import jax.numpy as jnp
 from .law import ContactLaw
 
 # The search grid starts at the smaller of 1e-8 (scaled: the adhesion scale is 1) and
-# 1e-12·x_top.
+# 1e-12·x_top. Below it the turning point nearest the tip (where the Heß term's slope,
+# ∝ 1/√x, overtakes g') is bisected in log x down to the smallest normal float (in SI): it sits
+# near the edge's own jump-in radius, which for Δγa ≪ Δγ lies any number of decades below the
+# units.
 _GRID_LOWEST = 1e-8
 _GRID_DECADES = 12.0
+_SMALLEST_RADIUS = float(jnp.finfo(jnp.float64).tiny)
+# Log bisection of that turning point to a bracket of 1e-5 relative (log x spans 682 from the
+# smallest float to 1e-12): narrow enough for the grid, wide enough that h' keeps a clear
+# sign at both ends whatever the round-off; the refinement of every turn then takes over.
+_TIP_BISECTION_STEPS = 26
 _BISECTION_STEPS = 64
 _TABLE_BISECTION_STEPS = 32  # the table only starts Newton: 2^-32 of a segment is plenty
 _SAFEGUARDED_STEPS = 80
@@ -56,35 +64,48 @@ class Branch(eqx.Module):
         upper = self.table[segment, index + 1]
         start = lower + (position - index) * (upper - lower)
 
-        # Next to a tip at x = 0 with h(0) = 0, h behaves like a power of x (possibly with an
-        # infinite slope): there Newton runs on log h against log x, a nearly straight line.
-        at_tip = (lower == 0.0) & (low_level == 0.0) & (indentation > 0.0)
-        tip_start = self._power_start(law, upper, indentation)
-        start = jnp.where(at_tip, tip_start, start)
+        # In the first cell the root may lie any number of decades above the segment's start p
+        # (a tip, p = 0 with h ∝ x^k, possibly of infinite slope; or a turning point far below
+        # the cell, as for a tiny Δγa): there Newton runs on log(h − h(p)) against log(x − p),
+        # a nearly straight line.
+        base = self.nodes[segment]
+        from_base = (index == 0) & (indentation > low_level)
+        base_start = self._power_start(law, base, low_level, upper, indentation)
+        start = jnp.where(from_base, base_start, start)
 
-        def bracketed(_, x):
-            step = jnp.where(at_tip, self._log_newton(law, x, indentation), self._newton(law, x, indentation))
-            return jnp.clip(step, lower, upper)
+        def newton(x):
+            log_step = self._log_newton(law, base, low_level, x, indentation)
+            return jnp.where(from_base, log_step, self._newton(law, x, indentation))
 
-        refined = jax.lax.stop_gradient(jax.lax.fori_loop(0, _NEWTON_STEPS, bracketed, start))
-        final = jnp.where(at_tip, self._log_newton(law, refined, indentation), self._newton(law, refined, indentation))
-        return jnp.clip(final, lower, upper)
+        refined = jax.lax.stop_gradient(
+            jax.lax.fori_loop(0, _NEWTON_STEPS, lambda _, x: jnp.clip(newton(x), lower, upper), start)
+        )
+        return jnp.clip(newton(refined), lower, upper)
 
-    def _power_start(self, law: ContactLaw, node, indentation):
-        """Root of h = d below `node` if h ∝ x^p with the local exponent p at the node."""
-        level = self.level(law, node)
-        exponent = node * law.edge_slope(node, self.coefficient) / jnp.where(level > 0.0, level, 1.0)
-        ratio = indentation / jnp.where(level > 0.0, level, 1.0)
-        return node * jnp.where((level > 0.0) & (exponent > 0.0), ratio ** (1.0 / jnp.where(exponent > 0.0, exponent, 1.0)), 0.0)
+    def _rise(self, law: ContactLaw, base, base_level, x):
+        """(h(x) − h(p), its local exponent d log(h − h(p)) / d log(x − p)) above p = base."""
+        rise = self.level(law, x) - base_level
+        exponent = (x - base) * law.edge_slope(x, self.coefficient) / jnp.where(rise > 0.0, rise, 1.0)
+        return rise, exponent
 
-    def _log_newton(self, law: ContactLaw, x, indentation):
-        """One Newton step on log h(x) = log d in the variable log x."""
-        safe = jnp.maximum(x, 1e-300)
-        level = self.level(law, safe)
-        exponent = safe * law.edge_slope(safe, self.coefficient) / jnp.where(level > 0.0, level, 1.0)
-        usable = (level > 0.0) & (exponent > 0.0)
-        log_step = (jnp.log(jnp.where(usable, level, 1.0)) - jnp.log(indentation)) / jnp.where(usable, exponent, 1.0)
-        return jnp.where(usable, safe * jnp.exp(-log_step), x)
+    def _power_start(self, law: ContactLaw, base, base_level, node, indentation):
+        """Root of h = d between `base` and `node` if h − h(base) ∝ (x − base)^k with the local
+        exponent k at the node."""
+        rise, exponent = self._rise(law, base, base_level, node)
+        usable = (rise > 0.0) & (exponent > 0.0)
+        ratio = (indentation - base_level) / jnp.where(rise > 0.0, rise, 1.0)
+        return base + (node - base) * jnp.where(usable, ratio ** (1.0 / jnp.where(usable, exponent, 1.0)), 0.0)
+
+    def _log_newton(self, law: ContactLaw, base, base_level, x, indentation):
+        """One Newton step on log(h − h(base)) = log(d − h(base)) in the variable log(x − base)."""
+        offset = jnp.maximum(x - base, _SMALLEST_RADIUS)
+        rise, exponent = self._rise(law, base, base_level, base + offset)
+        target = indentation - base_level
+        usable = (rise > 0.0) & (exponent > 0.0) & (target > 0.0)
+        log_step = (jnp.log(jnp.where(usable, rise, 1.0)) - jnp.log(jnp.where(usable, target, 1.0))) / jnp.where(
+            usable, exponent, 1.0
+        )
+        return jnp.where(usable, base + offset * jnp.exp(-log_step), x)
 
     def _newton(self, law: ContactLaw, x, indentation):
         slope = law.edge_slope(x, self.coefficient)
@@ -93,19 +114,23 @@ class Branch(eqx.Module):
         return x - jnp.where(usable, step, 0.0)
 
     def _solve(self, law: ContactLaw, indentation, lower, upper):
-        """Newton's method safeguarded by bisection on [lower, upper], fixed step count."""
+        """Newton's method on log(h − h(lower)) against log(x − lower) (see `radius`),
+        safeguarded by bisection in log(x − lower) on [lower, upper], fixed step count."""
+        base_level = self.level(law, lower)
+        span = upper - lower
 
         def step(_, state):
-            lo, hi, x = state
-            below = self.level(law, x) < indentation
-            lo, hi = jnp.where(below, x, lo), jnp.where(below, hi, x)
-            guess = self._newton(law, x, indentation)
+            lo, hi, offset = state  # offsets from `lower`
+            below = self.level(law, lower + offset) < indentation
+            lo, hi = jnp.where(below, offset, lo), jnp.where(below, hi, offset)
+            guess = self._log_newton(law, lower, base_level, lower + offset, indentation) - lower
             inside = (guess > lo) & (guess < hi)
-            return lo, hi, jnp.where(inside, guess, 0.5 * (lo + hi))
+            return lo, hi, jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
 
-        start = (lower, upper, 0.5 * (lower + upper))
-        _, _, x = jax.lax.stop_gradient(jax.lax.fori_loop(0, _SAFEGUARDED_STEPS, step, start))
-        return jnp.clip(self._newton(law, x, indentation), lower, upper)
+        first = self._power_start(law, lower, base_level, upper, indentation) - lower
+        start = (jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span))
+        _, _, offset = jax.lax.stop_gradient(jax.lax.fori_loop(0, _SAFEGUARDED_STEPS, step, start))
+        return jnp.clip(self._newton(law, lower + offset, indentation), lower, upper)
 
     def cascade_out(self, law: ContactLaw, start, indentation):
         """First x ≥ start with h(x) > d: where an outward (attach) cascade stops.
@@ -149,11 +174,12 @@ def build_branch(
         return law.edge_slope(x, coefficient)
 
     logarithmic = grid_size // 3
-    lowest = jnp.log10(jnp.minimum(_GRID_LOWEST, top * 10.0**-_GRID_DECADES))
+    lowest = jnp.minimum(_GRID_LOWEST, top * 10.0**-_GRID_DECADES)
     grid = jnp.sort(
         jnp.concatenate(
             [
-                jnp.logspace(lowest, jnp.log10(top), logarithmic),
+                jnp.stack(_tip_turn_bracket(slope, _SMALLEST_RADIUS / jnp.minimum(law.scales.radial, 1.0), lowest)),
+                jnp.logspace(jnp.log10(lowest), jnp.log10(top), logarithmic),
                 top * jnp.linspace(0.0, 1.0, grid_size - logarithmic + 1)[1:],
             ]
         )
@@ -190,6 +216,23 @@ def sign_changes(slope, grid, rising, max_turns: int):
 
     lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
     return 0.5 * (lo + hi), jnp.arange(max_turns) < count, count
+
+
+def _tip_turn_bracket(slope, lower, upper):
+    """Two radii around the turn of h' from falling (the Heß term) to rising in [lower, upper],
+    bisected in log x; both at `upper` when h' does not fall at the lower end (h' = g' ≥ 0
+    without that term) or rise at the upper. `lower` is the smallest radius whose SI value is
+    a normal float: below it g' underflows."""
+    turns = (slope(lower) < 0.0) & (slope(upper) > 0.0)
+
+    def step(_, bracket):
+        lo, hi = bracket
+        mid = jnp.sqrt(lo) * jnp.sqrt(hi)
+        falling = slope(mid) <= 0.0
+        return jnp.where(falling, mid, lo), jnp.where(falling, hi, mid)
+
+    lo, hi = jax.lax.fori_loop(0, _TIP_BISECTION_STEPS, step, (lower, upper))
+    return jnp.where(turns, lo, upper), jnp.where(turns, hi, upper)
 
 
 def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_size):

@@ -12,6 +12,9 @@ from .setup import Numerics, Problem
 EVENTS_PER_PHASE = 2
 
 _QUADRATURE_NODES = 48
+# The largest ln(a_high/a_low) one Gauss–Legendre panel in ln a takes at full accuracy; the rest
+# of a longer ride, ≲ e^(−10·(p+1)) of the work for F·h' ∝ a^p, gets a panel of its own.
+_LOG_PANEL = 10.0
 _SCAN_POINTS = 33
 _GOLDEN_STEPS = 60
 
@@ -57,8 +60,10 @@ def branch_force(law: ContactLaw, branch: Branch, radius):
 def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
     """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da.
 
-    Gauss–Legendre in u = ln a, where power-law behaviour a^p becomes exponential (an
-    interval [a0, 40·a0] is no harder than [a0, 2·a0]); from a = 0, in s with a = a1·s².
+    Gauss–Legendre in u = ln a over the top e^10 of the radii, where power-law behaviour a^p
+    becomes exponential (an interval [a0, 40·a0] is no harder than [a0, 2·a0]); below that
+    (from a = 0, or from a jump-in radius decades further down), in s with
+    a = a_low + (a_split − a_low)·s².
     """
     nodes, weights = gauss_legendre()
 
@@ -69,13 +74,15 @@ def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
     high = jnp.maximum(start_radius, end_radius)
     sign = jnp.where(end_radius >= start_radius, 1.0, -1.0)
     positive = low > 0.0
-    log_low = jnp.log(jnp.where(positive, low, 1.0))
-    log_span = jnp.log(jnp.where(positive, high, 1.0)) - log_low
-    logarithmic = jnp.exp(log_low + log_span * nodes)
-    from_zero = high * nodes**2
-    radii = jnp.where(positive, logarithmic, from_zero)
-    jacobian = jnp.where(positive, log_span * logarithmic, 2.0 * high * nodes)
-    return sign * jnp.sum(weights * jacobian * integrand(radii))
+    log_high = jnp.log(jnp.where(positive, high, 1.0))
+    log_split = jnp.maximum(jnp.log(jnp.where(positive, low, 1.0)), log_high - _LOG_PANEL)
+    log_span = log_high - log_split
+    logarithmic = jnp.exp(log_split + log_span * nodes)
+    top = jnp.where(positive, jnp.sum(weights * log_span * logarithmic * integrand(logarithmic)), 0.0)
+    split = jnp.where(positive, jnp.exp(log_split), high)
+    squared = low + (split - low) * nodes**2
+    bottom = jnp.sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
+    return sign * (top + bottom)
 
 
 def hold_work(law: ContactLaw, radius, start, end):

@@ -76,14 +76,15 @@ def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, t
         return jnp.sqrt(2.0 * jnp.pi * x * approach_work_of_adhesion / E_star)
 
     lower, upper = _bracket(profile)
-    radial, found = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
-    # A jump-in needs h = g − Δl below zero inside the radius (for n < 1/2 the crossing is the
-    # far zero of h instead).
-    found = found & (profile.g(lower) < elongation(lower))
+    radial, crosses = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
+    # A jump-in needs h = g − Δl below zero at the bracket's lower end (for n < 1/2 the crossing
+    # is the far zero of h instead; for a tiny Δγa the jump-in lies below the bracket); it
+    # reaches the crossing, or the wall of a body that h stays below (the flat punch).
+    below_at_tip = profile.g(lower) < elongation(lower)
     walled = jnp.isfinite(profile.extent())
     jump_in = _complete(radial, elongation(radial), E_star, mass)
     energetic = energy_scales(profile, E_star, mass, touch_velocity)
-    use_jump_in = (found | walled) & (approach_work_of_adhesion > 0.0) & (radial >= energetic.radial)
+    use_jump_in = below_at_tip & (crosses | walled) & (approach_work_of_adhesion > 0.0) & (radial >= energetic.radial)
     return jax.tree.map(lambda a, e: jnp.where(use_jump_in, a, e), jump_in, energetic)
 
 

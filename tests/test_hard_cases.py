@@ -237,8 +237,9 @@ def log_uniform(low, high):
     density=log_uniform(1e3, 2e4),
     velocity=log_uniform(1e-3, 1e2),
     n=st.floats(0.7, 4.0),
-    # Δγa/Δγ below 1e-6 (a jump-in radius dozens of decades below the contact) is a known gap.
-    approach_share=st.one_of(st.just(0.0), st.just(1.0), st.floats(1e-6, 1.0)),
+    # Δγa over the whole of [0, Δγ]: a tiny share puts the jump-in radius hundreds of decades
+    # below the contact.
+    approach_share=st.one_of(st.just(0.0), st.just(1.0), log_uniform(1e-300, 1.0)),
 )
 def test_16_random_scenes(E_star, radius, work_of_adhesion, density, velocity, n, approach_share):
     """Power-law bodies over wide ranges: no NaN, 0 ≤ e ≤ 1, e non-decreasing in v0, and the
@@ -266,6 +267,56 @@ def test_16_random_scenes(E_star, radius, work_of_adhesion, density, velocity, n
             lost = kinetic - 0.5 * mass * result.separation_velocity**2
             assert abs(lost - result.dissipated_energy) <= 1e-7 * kinetic + 1e-6 * abs(result.dissipated_energy)
     assert fast.restitution >= slow.restitution - 1e-6
+
+
+# --- 16: approach work of adhesion vanishing against Δγ -----------------------------------------
+
+ATTACH_ON_TOUCH_TOLERANCE = 1e-9  # |e(Δγa) − e(Δγa = 0)| as Δγa/Δγ → 0 (rtol 1e-10)
+TINY_SHARE_STEPS = 400  # attach on touch takes 150–250 steps here
+
+
+def run_with_approach_share(name, share, profile=None):
+    """Run a hard case with Δγa = share·Δγ (and another profile, if given); check finite
+    trajectories, the outcome and the steps."""
+    data = load_scene(HARD / f"{name}.yaml").model_dump(exclude_none=True)
+    adhesion = data["effects"]["adhesion"]
+    adhesion["approach_work_of_adhesion"] = share * adhesion["work_of_adhesion"]
+    if profile is not None:
+        data["body"]["profile"] = profile
+    result = simulate(data)
+    for series in (result.t, result.indentation, result.velocity, result.force, result.contact_radius):
+        assert np.all(np.isfinite(series))
+    assert result.status == "separated"
+    assert result.stats["steps"] < TINY_SHARE_STEPS
+    return result
+
+
+def test_16_tiny_approach_adhesion_attaches_on_touch():
+    """Δγa/Δγ = 4e-142 on the power law n = 1: the attach edge turns 144 decades below the
+    contact; the impact is attach on touch to within the integration accuracy."""
+    _, result = run_case("16_tiny_approach_adhesion")
+    assert result.status == "separated"
+    assert [kind for _, kind in result.events] == ["touch", "max_indentation", "detach_start", "separation"]
+    assert result.stats["steps"] < TINY_SHARE_STEPS
+    on_touch = run_with_approach_share("16_tiny_approach_adhesion", 0.0)
+    assert abs(result.restitution - on_touch.restitution) <= ATTACH_ON_TOUCH_TOLERANCE
+
+
+@pytest.mark.parametrize("share", [1e-20, 1e-100, 1e-300])
+def test_16_vanishing_approach_adhesion_tends_to_attach_on_touch(share):
+    """The same power law against its Δγa = 0 run, and a paraboloid (R = 1 cm) against the
+    closed form of attach on touch, at Δγa/Δγ → 0."""
+    name = "16_tiny_approach_adhesion"
+    power_law = run_with_approach_share(name, share)
+    on_touch = run_with_approach_share(name, 0.0)
+    assert abs(power_law.restitution - on_touch.restitution) <= ATTACH_ON_TOUCH_TOLERANCE
+
+    radius = 0.01
+    result = run_with_approach_share(name, share, profile={"shape": "paraboloid", "R": radius})
+    _, mass, E_star, adhesion = parameters(result.scene)
+    velocity = result.scene.initial.velocity
+    expected = float(theory.attach_on_touch_restitution(velocity, mass, radius, E_star, adhesion.work_of_adhesion))
+    assert abs(result.restitution - expected) <= ATTACH_ON_TOUCH_TOLERANCE
 
 
 def maugis_energy_balance(result, scene):
