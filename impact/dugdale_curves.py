@@ -8,6 +8,7 @@ contact included (ã = 0), so the figure shows what the impacts ride.
     equilibrium_figure([0.1, 0.3, 1, 3, 10]).savefig("maugis_curves.png", dpi=150)
 """
 
+import equinox as eqx
 import jax.numpy as jnp
 import numpy as np
 from matplotlib.figure import Figure
@@ -37,13 +38,18 @@ def normalized_curve(tabor: float, contact_points: int = 400, zone_points: int =
         range=_WORK / stress / d_c * one,
     )
     force_unit = 1.5 * np.pi * _R * _WORK / float(scales.force)
-    junction = law.zone_radius(one)
-    zone_depth, zone_force = law.zone(junction * jnp.linspace(0.0, 1.0, zone_points))
-    contact_depth, contact_force, radius, _ = law.contact(jnp.logspace(0.0, -6.0, contact_points))
+    (zone_depth, zone_force), (contact_depth, contact_force, radius, _) = _states(law, zone_points, contact_points)
     radii = np.concatenate([np.zeros(zone_points), np.asarray(radius)])
     depths = np.concatenate([np.asarray(zone_depth), np.asarray(contact_depth)])
     forces = np.concatenate([np.asarray(zone_force), np.asarray(contact_force)]) / force_unit
     return radii, depths, forces
+
+
+@eqx.filter_jit
+def _states(law: DugdaleLaw, zone_points: int, contact_points: int):
+    """(d, F) of the zone from b = 0 to b_J; (d, F, a, b) of contacts with p from 1 to 1e-6."""
+    zones = law.zone_radius(jnp.ones(())) * jnp.linspace(0.0, 1.0, zone_points)
+    return law.zone(zones), law.contact(jnp.logspace(0.0, -6.0, contact_points))
 
 
 def equilibrium_figure(tabors=(0.1, 0.3, 1.0, 3.0, 10.0), max_radius: float = 2.0) -> Figure:

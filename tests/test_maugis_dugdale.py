@@ -5,6 +5,7 @@
 import math
 from pathlib import Path
 
+import equinox as eqx
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -36,8 +37,11 @@ def md_scene(tabor=1.0, velocity=0.6, profile=None, E_star=E_STAR, stress=None, 
     return load_scene(scene)
 
 
+_build = eqx.filter_jit(build_dugdale_problem)
+
+
 def problem_of(scene):
-    return build_dugdale_problem(physics_for(scene), numerics_for(scene, trajectory=False))
+    return _build(physics_for(scene), numerics_for(scene, trajectory=False))
 
 
 def si_contact(problem, share):
