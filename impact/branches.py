@@ -165,10 +165,12 @@ def previous_rising(nodes, levels, increasing, start, level):
 
 
 def build_branch(
-    law: ContactLaw, coefficient, top, max_turns: int, grid_size: int, table_size: int
+    law: ContactLaw, coefficient, top, max_turns: int, grid_size: int, table_size: int, tip_search: bool = True
 ) -> Branch:
     """Find the turning points of h on (0, top]; tabulate its increasing segments if
-    `table_size` > 0. The search grid is a third logarithmic, two thirds uniform."""
+    `table_size` > 0. The search grid is a third logarithmic, two thirds uniform; with
+    `tip_search` it also brackets a turn from falling to rising below the grid (an attach edge
+    with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of decades down)."""
 
     def slope(x):
         return law.edge_slope(x, coefficient)
@@ -178,7 +180,9 @@ def build_branch(
     grid = jnp.sort(
         jnp.concatenate(
             [
-                jnp.stack(_tip_turn_bracket(slope, _SMALLEST_RADIUS / jnp.minimum(law.scales.radial, 1.0), lowest)),
+                jnp.stack(_tip_turn_bracket(slope, _SMALLEST_RADIUS / jnp.minimum(law.scales.radial, 1.0), lowest))
+                if tip_search
+                else jnp.zeros(0),
                 jnp.logspace(jnp.log10(lowest), jnp.log10(top), logarithmic),
                 top * jnp.linspace(0.0, 1.0, grid_size - logarithmic + 1)[1:],
             ]

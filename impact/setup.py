@@ -37,6 +37,7 @@ class Numerics:
     max_turns: int = 4  # turning points of an edge function the branches hold
     turn_grid: int = 384  # points searched for turning points (more for wavy profiles)
     table_size: int = 65  # radius table per segment, kept only for timed loading
+    tip_search: bool = True  # look for the attach edge's turn below the branch grid (0 < Δγa < Δγ)
     samples_per_phase: int = 0  # trajectory samples per phase; 0 keeps no trajectory
 
     @property
@@ -117,9 +118,10 @@ def build_problem(physics: Physics, numerics: Numerics) -> Problem:
     reach, bounded = radius_bound(law, attach_coefficient, touch_speed)
     top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
     table = numerics.table_size if numerics.timed_loading else 0
-    both = jax.vmap(lambda coefficient: build_branch(law, coefficient, top, numerics.max_turns, numerics.turn_grid, table))(
-        jnp.stack([attach_coefficient, detach_coefficient])
-    )
+    def branch(coefficient):
+        return build_branch(law, coefficient, top, numerics.max_turns, numerics.turn_grid, table, numerics.tip_search)
+
+    both = jax.vmap(branch)(jnp.stack([attach_coefficient, detach_coefficient]))
     attach, detach = (jax.tree.map(lambda leaf: leaf[i], both) for i in range(2))
     return Problem(
         law=law,

@@ -77,6 +77,9 @@ def numerics_for(scene: Scene, trajectory: bool = True) -> Numerics:
         # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
         timed_loading=not scene.adhesive or adhesion.approach == 0.0 or scene.body.profile.shape == "power_law",
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
+        # Only a partial approach work of adhesion puts the attach edge's turn decades below the
+        # branch grid (Δγa = Δγ turns at the jump-in scale, Δγa = 0 does not turn).
+        tip_search=scene.adhesive and 0.0 < adhesion.approach < adhesion.work_of_adhesion,
     )
 
 
