@@ -338,7 +338,9 @@ def facts_table(scene: Scene) -> Table:
         ("initial", f"velocity {scene.initial.velocity:g} m/s, gap {scene.initial.gap:g} m"),
         ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),
         ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
-        ("solver", f"{scene.solver.method}, rtol {scene.solver.rtol:g}, atol {scene.solver.atol:g}"),
+        ("solver", f"{scene.solver.method}, " + (
+            f"dt {scene.solver.dt:g} s" if scene.solver.method == "verlet" else f"rtol {scene.solver.rtol:g}, atol {scene.solver.atol:g}"
+        )),
     ]
     return _table(f"{scene.name} (SI units)", rows)
 

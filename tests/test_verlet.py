@@ -151,3 +151,16 @@ def test_verlet_scene_accepts_a_yaml_string_step():
     loaded = load_scene(scene(solver={"method": "verlet", "dt": "1e-11"}, contact={"springs": 100}))
     assert loaded.solver.dt == 1e-11
     assert numerics_for(loaded).dt == 1e-11 and numerics_for(loaded).method == "verlet"
+
+
+def test_validate_prints_the_verlet_step_not_tolerances(tmp_path):
+    from typer.testing import CliRunner
+
+    from impact.cli import app
+    from impact.scene import scene_yaml
+
+    path = tmp_path / "verlet.yaml"
+    path.write_text(scene_yaml(load_scene(scene(solver={"method": "verlet", "dt": 1e-12}, contact={"springs": COUNT}))))
+    result = CliRunner().invoke(app, ["validate", str(path)])
+    assert result.exit_code == 0
+    assert "verlet, dt 1e-12 s" in result.output and "rtol" not in result.output
