@@ -22,7 +22,7 @@ import jax
 import jax.numpy as jnp
 
 from . import transitions
-from .outcome import Carry, Outcome, active_branch, log_event, phase_summary, run_phases, store_samples
+from .outcome import Carry, Outcome, active_branch, close_phase, log_event, phase_summary, run_phases, store_samples
 from .rootfind import BracketBisection
 from .phases import ADVANCE, DONE, EVENT_CODE, HOLD, RECEDE, RESULT_CODE
 from .setup import Numerics, Problem
@@ -259,47 +259,7 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end)
     )
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    failed = in_contact & ~event_found
-    contact_work = c.contact_work + work
-    first = c.contacts == 1
-    in_time = ~out_of_time
-    separated = in_contact & event_found & in_time & nxt.separated
-    captured = in_contact & event_found & in_time & nxt.captured
-    out_of_time = in_contact & event_found & out_of_time
-    stopped = (nxt.stop >= 0) & ~out_of_time
-    mode = jnp.where(failed | stopped | out_of_time, DONE, nxt.mode)
-    status = jnp.where(
-        failed,
-        RESULT_CODE["solver_failure"],
-        jnp.where(
-            out_of_time,
-            RESULT_CODE["time_limit"],
-            jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
-        ),
-    )
-    updated = eqx.tree_at(
-        lambda s: (
-            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.status, s.stuck,
-            s.separation_velocity, s.separation_time, s.max_indentation, s.max_force, s.min_force,
-            s.contact_work, s.first_contact_work, s.steps, s.accepted, s.rejected,
-        ),
-        c,
-        (
-            t_end, d_end, v_end, mode, nxt.segment, nxt.radius, c.phases + 1, status, captured,
-            jnp.where(first & separated, jnp.abs(v_end), c.separation_velocity),
-            jnp.where(first & separated, t_end, c.separation_time),
-            jnp.maximum(c.max_indentation, deepest),
-            jnp.maximum(c.max_force, high),
-            jnp.minimum(c.min_force, low),
-            contact_work,
-            jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
-            c.steps + solution.stats["num_steps"],
-            c.accepted + solution.stats["num_accepted_steps"],
-            c.rejected + solution.stats["num_rejected_steps"],
-        ),
-    )
-    updated = log_event(updated, t_end, jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
-    return jax.tree.map(lambda new, old: jnp.where(in_contact, new, old), updated, c)
+    return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, (work, low, high, deepest))
 
 
 def integrate(problem: Problem, numerics: Numerics) -> Outcome:

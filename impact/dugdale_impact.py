@@ -22,7 +22,7 @@ from . import transitions
 from .continuum import SOLVERS
 from .dugdale import DugdaleCurve, DugdaleLaw, build_curve
 from .law import ContactLaw
-from .outcome import Carry, Outcome, extremes, gauss_legendre, log_event, run_phases, store_samples
+from .outcome import Carry, Outcome, close_phase, extremes, gauss_legendre, log_event, run_phases, store_samples
 from .profiles import Cone, Paraboloid, PowerLaw, Profile
 from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .rootfind import BracketBisection
@@ -191,7 +191,7 @@ def _work(law: DugdaleLaw, curve: DugdaleCurve, start, end):
 
 
 def _after(problem: DugdaleProblem, advancing, turned, segment, s_end, d_end):
-    """(mode, segment, s, event, released, captured, stop) after a riding phase ended."""
+    """The phase after a ride ended (`Next.radius` holds s)."""
     law, curve = problem.law, problem.curve
     junction = curve.junction
     # Loading reaches its segment's top: on to the next rising state at this level.
@@ -218,8 +218,15 @@ def _after(problem: DugdaleProblem, advancing, turned, segment, s_end, d_end):
         jnp.where(turned, EVENT_CODE["max_indentation"], out_event),
         jnp.where(turned, EVENT_CODE["capture"], in_event),
     )
-    stop = jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1)
-    return mode, new_segment, new_s, event, ~advancing & ~turned & released, ~advancing & turned, stop
+    return transitions.Next(
+        mode=mode,
+        segment=new_segment,
+        radius=new_s,
+        event=event,
+        separated=~advancing & ~turned & released,
+        captured=~advancing & turned,
+        stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
+    )
 
 
 def contact(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
@@ -271,48 +278,9 @@ def contact(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
 
     work = _work(law, curve, s_start, s_end)
     low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
-    mode, segment, s_next, event, released, captured, stop = _after(problem, advancing, turned, c.segment, s_end, d_end)
-    failed = riding & ~event_found
-    in_time = ~out_of_time
-    released = event_found & in_time & released
-    captured = event_found & in_time & captured
-    out_of_time = event_found & out_of_time
-    stopped = (stop >= 0) & ~out_of_time
-    contact_work = c.contact_work + work
-    first = c.contacts == 1
-    status = jnp.where(
-        failed,
-        RESULT_CODE["solver_failure"],
-        jnp.where(
-            out_of_time,
-            RESULT_CODE["time_limit"],
-            jnp.where(stopped, stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
-        ),
-    )
-    updated = eqx.tree_at(
-        lambda s: (
-            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.status, s.stuck,
-            s.separation_velocity, s.separation_time, s.max_indentation, s.max_force, s.min_force,
-            s.contact_work, s.first_contact_work, s.steps, s.accepted, s.rejected,
-        ),
-        c,
-        (
-            t_end, d_end, v_end, jnp.where(failed | stopped | out_of_time, DONE, mode), segment, s_next,
-            c.phases + 1, status, captured,
-            jnp.where(first & released, jnp.abs(v_end), c.separation_velocity),
-            jnp.where(first & released, t_end, c.separation_time),
-            jnp.maximum(c.max_indentation, jnp.maximum(c.d, d_end)),
-            jnp.maximum(c.max_force, high),
-            jnp.minimum(c.min_force, low),
-            contact_work,
-            jnp.where(first & (released | captured), contact_work, c.first_contact_work),
-            c.steps + solution.stats["num_steps"],
-            c.accepted + solution.stats["num_accepted_steps"],
-            c.rejected + solution.stats["num_rejected_steps"],
-        ),
-    )
-    updated = log_event(updated, t_end, jnp.where(in_time, event, EVENT_CODE["limit"]), event_found)
-    return jax.tree.map(lambda new, old: jnp.where(riding, new, old), updated, c)
+    nxt = _after(problem, advancing, turned, c.segment, s_end, d_end)
+    summary = (work, low, high, jnp.maximum(c.d, d_end))
+    return close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
 
 
 def integrate(problem: DugdaleProblem, numerics: Numerics) -> Outcome:

@@ -1,13 +1,15 @@
 """What an integrator returns, in scaled units, and the bookkeeping both integrators share."""
 
+import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
 from .branches import Branch
 from .law import ContactLaw
-from .phases import ADVANCE, DONE, FLIGHT, RESULT_CODE
+from .phases import ADVANCE, DONE, EVENT_CODE, FLIGHT, RESULT_CODE
 from .setup import Numerics, Problem
+from .transitions import Next
 
 EVENTS_PER_PHASE = 2
 
@@ -216,6 +218,58 @@ def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
         event_count=jnp.zeros((), int),
         trajectory=jnp.full((rows, 5), jnp.nan),
     )
+
+
+def close_phase(c: Carry, active, solution, end, nxt: Next, out_of_time, summary) -> Carry:
+    """Book a contact phase that diffrax ended (kept only where `active`).
+
+    `end` is (t, d, v) at its end, `nxt` the phase after its event, `out_of_time` whether the
+    time limit fired, `summary` its (work ∫F dd, lowest force, highest force, deepest d).
+    """
+    t_end, d_end, v_end = end
+    work, low, high, deepest = summary
+    event_found = solution.result == dfx.RESULTS.event_occurred
+    failed = active & ~event_found
+    in_time = ~out_of_time
+    separated = event_found & in_time & nxt.separated
+    captured = event_found & in_time & nxt.captured
+    out_of_time = event_found & out_of_time
+    stopped = (nxt.stop >= 0) & ~out_of_time
+    status = jnp.where(
+        failed,
+        RESULT_CODE["solver_failure"],
+        jnp.where(
+            out_of_time,
+            RESULT_CODE["time_limit"],
+            jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        ),
+    )
+    contact_work = c.contact_work + work
+    first = c.contacts == 1
+    updated = eqx.tree_at(
+        lambda s: (
+            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.status, s.stuck,
+            s.separation_velocity, s.separation_time, s.max_indentation, s.max_force, s.min_force,
+            s.contact_work, s.first_contact_work, s.steps, s.accepted, s.rejected,
+        ),
+        c,
+        (
+            t_end, d_end, v_end, jnp.where(failed | stopped | out_of_time, DONE, nxt.mode), nxt.segment, nxt.radius,
+            c.phases + 1, status, captured,
+            jnp.where(first & separated, jnp.abs(v_end), c.separation_velocity),
+            jnp.where(first & separated, t_end, c.separation_time),
+            jnp.maximum(c.max_indentation, deepest),
+            jnp.maximum(c.max_force, high),
+            jnp.minimum(c.min_force, low),
+            contact_work,
+            jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+            c.steps + solution.stats["num_steps"],
+            c.accepted + solution.stats["num_accepted_steps"],
+            c.rejected + solution.stats["num_rejected_steps"],
+        ),
+    )
+    updated = log_event(updated, t_end, jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
+    return jax.tree.map(lambda new, old: jnp.where(active, new, old), updated, c)
 
 
 def run_phases(problem, numerics: Numerics, flight, contact) -> Outcome:
