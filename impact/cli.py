@@ -317,27 +317,31 @@ def facts_table(scene: Scene) -> Table:
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
     springs = scene.contact.springs
+    shape = ("shape", f"{body.profile.shape} ({parameters})")
+    modulus = ("E*", f"{material.effective_modulus:.6g} Pa" + ("" if material.E_star is not None else " (from E and ν)"))
+    effect_rows = [
+        ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),
+        ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
+    ]
     if scene.kind == "indentation":
         program = scene.program
         unit = "N" if scene.control == "force" else "m"
         cycles = f", {program.cycles} cycles" + ("" if program.unload_to is None else f" unloading to {program.unload_to:g} {unit}")
         rows = [
             ("kind", f"indentation, {scene.control} control"),
-            ("shape", f"{body.profile.shape} ({parameters})"),
-            ("E*", f"{material.effective_modulus:.6g} Pa" + ("" if material.E_star is not None else " (from E and ν)")),
+            shape,
+            modulus,
             ("program", f"peak {program.peak:g} {unit}{cycles if program.cycles > 1 else ''}, then to pull-off"),
-            ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),
-            ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
+            *effect_rows,
         ]
         return _table(f"{scene.name} (SI units)", rows)
     density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     rows = [
-        ("shape", f"{body.profile.shape} ({parameters})"),
+        shape,
         ("mass", f"{body.resolved_mass:.6g} kg{density}"),
-        ("E*", f"{material.effective_modulus:.6g} Pa" + ("" if material.E_star is not None else " (from E and ν)")),
+        modulus,
         ("initial", f"velocity {scene.initial.velocity:g} m/s, gap {scene.initial.gap:g} m"),
-        ("effects", ", ".join(effects) or "none (elastic Hertz/MDR contact)"),
-        ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
+        *effect_rows,
         ("solver", f"{scene.solver.method}, " + (
             f"dt {scene.solver.dt:g} s" if scene.solver.method == "verlet" else f"rtol {scene.solver.rtol:g}, atol {scene.solver.atol:g}"
         )),

@@ -206,12 +206,17 @@ def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Grou
     events.create_dataset("kind", data=kinds, dtype=h5py.string_dtype())
 
 
+def stamp_provenance(dataset: h5py.Dataset) -> h5py.Dataset:
+    """Attach the versions (impact, jax, diffrax) and the x64 flag that produced a file."""
+    dataset.attrs["impact_version"] = __version__
+    dataset.attrs["jax_version"] = jax.__version__
+    dataset.attrs["diffrax_version"] = diffrax.__version__
+    dataset.attrs["x64"] = bool(jax.config.jax_enable_x64)
+    return dataset
+
+
 def _write_parameters(parameters: h5py.Group, result: Result, wall_time: float | None) -> None:
-    config = parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype())
-    config.attrs["impact_version"] = __version__
-    config.attrs["jax_version"] = jax.__version__
-    config.attrs["diffrax_version"] = diffrax.__version__
-    config.attrs["x64"] = bool(jax.config.jax_enable_x64)
+    stamp_provenance(parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype()))
     stats = parameters.create_group("solver_stats")
     for name in STEP_COUNTS:
         stats.create_dataset(name, data=np.int64(result.stats[name]))

@@ -22,15 +22,12 @@ The root carries the attribute `impact_kind = "indentation"`.
 
 from pathlib import Path
 
-import diffrax
 import h5py
-import jax
 import numpy as np
 import yaml
 
-from . import __version__
 from .indentation import IndentationResult, PullOff
-from .io import _open_run, _string, _user, _write_h5md, atomic_path, read_provenance
+from .io import _open_run, _string, _user, _write_h5md, atomic_path, read_provenance, stamp_provenance
 from .scene import load_scene, scene_yaml
 
 KIND = "indentation"
@@ -85,11 +82,7 @@ def write_indentation(result: IndentationResult, path: str | Path, *, wall_time:
         events.create_dataset("point", data=np.array([i for i, _ in result.events], dtype=np.int64))
         events.create_dataset("kind", data=np.array([k for _, k in result.events], dtype=object), dtype=h5py.string_dtype())
         parameters = file.create_group("parameters")
-        config = parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype())
-        config.attrs["impact_version"] = __version__
-        config.attrs["jax_version"] = jax.__version__
-        config.attrs["diffrax_version"] = diffrax.__version__
-        config.attrs["x64"] = bool(jax.config.jax_enable_x64)
+        stamp_provenance(parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype()))
         stats = parameters.create_group("stats")
         stats.create_dataset("steps", data=np.int64(result.stats["steps"]))
         stats.create_dataset("reach", data=float(result.stats["reach"])).attrs["unit"] = "m"

@@ -42,8 +42,13 @@ def si_prefix(magnitude: float) -> tuple[float, str]:
 
 def save_figures(result: Result, folder: str | Path) -> list[Path]:
     """Write `time.png` and `force_indentation.png` into `folder` (atomically); return their paths."""
+    return write_figures(folder, zip(FIGURES, (time_figure(result), force_indentation_figure(result))))
+
+
+def write_figures(folder: str | Path, named) -> list[Path]:
+    """Write each (file name, figure) into `folder` at 150 dpi, atomically; return the paths."""
     paths = []
-    for name, figure in zip(FIGURES, (time_figure(result), force_indentation_figure(result))):
+    for name, figure in named:
         path = Path(folder) / name
         with atomic_path(path) as temporary:
             figure.savefig(temporary, dpi=150)

@@ -14,8 +14,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .indentation import IndentationResult
-from .io import atomic_path
-from .plots import si_prefix
+from .plots import si_prefix, write_figures
 
 FIGURES = ("force_indentation.png", "normalized.png")
 _MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "reversal": "^"}
@@ -23,13 +22,7 @@ _MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "rev
 
 def save_indentation_figures(result: IndentationResult, folder: str | Path) -> list[Path]:
     """Write the two figures into `folder` (atomically); return their paths."""
-    paths = []
-    for name, figure in zip(FIGURES, (force_indentation_figure(result), normalized_figure(result))):
-        path = Path(folder) / name
-        with atomic_path(path) as temporary:
-            figure.savefig(temporary, dpi=150)
-        paths.append(path)
-    return paths
+    return write_figures(folder, zip(FIGURES, (force_indentation_figure(result), normalized_figure(result))))
 
 
 def _title(result: IndentationResult) -> str:

@@ -35,14 +35,11 @@ import shutil
 from contextlib import contextmanager
 from pathlib import Path
 
-import diffrax
 import h5py
-import jax
 import numpy as np
 import yaml
 
-from . import __version__
-from .io import _user, _write_h5md, atomic_path
+from .io import _user, _write_h5md, atomic_path, stamp_provenance
 from .phases import RESULT_CODES
 from .scene import scene_yaml
 from .sweep import RESULTS, SweepResult, empty_results, plan_sweep
@@ -66,11 +63,7 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
         _write_h5md(file.create_group("h5md"), _user())
         parameters = file.create_group("parameters")
         _string(parameters, "scene.yaml", scene_yaml(spec.scene))
-        definition = _string(parameters, "sweep.yaml", spec.definition())
-        definition.attrs["impact_version"] = __version__
-        definition.attrs["jax_version"] = jax.__version__
-        definition.attrs["diffrax_version"] = diffrax.__version__
-        definition.attrs["x64"] = bool(jax.config.jax_enable_x64)
+        stamp_provenance(_string(parameters, "sweep.yaml", spec.definition()))
         if spec.source is not None:
             _string(parameters, "source.yaml", spec.source)
         group = file.create_group("sweep")
