@@ -4,11 +4,13 @@ Call `impact.runtime.configure()` before use (the CLI does): float64, and XLA:CP
 spring arrays' loops whole (10× faster).
 """
 
-from . import profiles, runtime, theory
-from .indentation import IndentationResult
-from .scene import Scene, SceneError, load_scene
-from .simulate import Result, simulate
-from .sweep import SweepResult, sweep
+from . import profiles
+from ._core import runtime
+from . import theory
+from ._run.indentation import IndentationResult
+from ._scene.scene import Scene, SceneError, load_scene
+from ._run.simulate import Result, simulate
+from ._run.sweep import SweepResult, sweep
 
 __version__ = "0.1.0"
 

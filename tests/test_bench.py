@@ -10,8 +10,8 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from impact import bench
-from impact.cli_bench import register
+from impact._bench import work_precision as bench
+from impact.cli.bench import register
 
 
 def make_app() -> typer.Typer:
@@ -116,7 +116,7 @@ def test_bench_has_one_line_help():
 
 def test_importing_the_bench_leaves_float32_alone():
     """Only the entry point enables float64; importing the command or the benchmark does not."""
-    code = "import jax, impact.bench, impact.cli_bench; assert not jax.config.jax_enable_x64"
+    code = "import jax, impact._bench.work_precision, impact.cli.bench; assert not jax.config.jax_enable_x64"
     subprocess.run([sys.executable, "-c", code], check=True)
 
 

@@ -15,8 +15,8 @@ from typer.testing import CliRunner
 
 from impact import theory
 from impact.cli import app
-from impact.io import read_run
-from impact.scene import load_scene, scene_yaml
+from impact._io.run import read_run
+from impact._scene.scene import load_scene, scene_yaml
 
 CONFIGS = Path(__file__).parents[1] / "configs"
 THORNTON_NING = CONFIGS / "thornton_ning.yaml"

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 from impact import load_scene, simulate, theory
-from impact.simulate import numerics_for
+from impact._run.simulate import numerics_for
 
 HARD = Path(__file__).resolve().parent.parent / "configs" / "hard"
 WALL_TIME_BOUND = 120.0  # s, compile included

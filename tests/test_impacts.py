@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from impact import simulate, theory
-from impact.simulate import numerics_for
-from impact.scene import load_scene
+from impact._run.simulate import numerics_for
+from impact._scene.scene import load_scene
 
 MATERIALS = {
     # micro-particle on a stiff polymer, and a softer, stickier pair

@@ -24,11 +24,11 @@ import impact
 from impact import profiles as pr
 from impact import theory as th
 from impact.cli import app
-from impact.indentation import IndentationResult, indentation_loading, indentation_numerics, spring_capacity
-from impact.io_indentation import is_indentation_run, read_indentation, write_indentation
-from impact.profile_schema import ProfileSpec
-from impact.quasistatic import march
-from impact.scene import SceneError, load_scene, scene_yaml
+from impact._run.indentation import IndentationResult, indentation_loading, indentation_numerics, spring_capacity
+from impact._io.indentation import is_indentation_run, read_indentation, write_indentation
+from impact._scene.profiles import ProfileSpec
+from impact._integrate.quasistatic import march
+from impact._scene.scene import SceneError, load_scene, scene_yaml
 
 E_STAR = 1e9  # Pa
 WORK = 0.05  # Δγ, J/m²

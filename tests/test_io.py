@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import impact
-from impact.io import read_provenance, read_run, write_run
-from impact.scene import load_scene, scene_yaml
+from impact._io.run import read_provenance, read_run, write_run
+from impact._scene.scene import load_scene, scene_yaml
 
 THORNTON_NING = Path(__file__).parents[1] / "configs" / "thornton_ning.yaml"
 

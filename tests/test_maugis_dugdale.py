@@ -12,9 +12,9 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from impact import load_scene, simulate, theory
-from impact.dugdale_impact import build_dugdale_problem
-from impact.scene import SceneError
-from impact.simulate import numerics_for, physics_for
+from impact._integrate.dugdale import build_dugdale_problem
+from impact._scene.scene import SceneError
+from impact._run.simulate import numerics_for, physics_for
 
 R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
 TABORS = (0.1, 0.3, 1.0, 3.0, 10.0)
@@ -265,7 +265,7 @@ def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
     """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values;
     sweeping σ0 over a scene that gives h makes invalid points, refused before anything runs."""
     import impact
-    from impact.sweep_file import SweepError
+    from impact._scene.sweep import SweepError
 
     base = md_scene(adhesion_range=WORK / float(theory.maugis_adhesive_stress(1.0, R, WORK, E_STAR)), velocity=0.5)
     ranges = [1e-9, 1e-10]
@@ -283,7 +283,7 @@ def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
 
 
 def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limits():
-    from impact.dugdale_curves import equilibrium_figure, normalized_curve
+    from impact._run.maugis_curves import equilibrium_figure, normalized_curve
 
     for tabor in (0.3, 3.0):
         radii, depths, forces = normalized_curve(tabor, contact_points=50, zone_points=20)
@@ -330,7 +330,7 @@ def test_cli_runs_a_dugdale_scene_stores_tabor_and_refuses_bad_parameters(tmp_pa
     from typer.testing import CliRunner
 
     from impact.cli import app
-    from impact.io import read_run
+    from impact._io.run import read_run
 
     config = str(Path(__file__).parents[1] / "configs" / "maugis_dugdale.yaml")
     facts = CliRunner().invoke(app, ["validate", config])

@@ -15,7 +15,7 @@ import pytest
 import scipy.special
 from pydantic import TypeAdapter, ValidationError
 
-from impact import profile_schema as ps
+from impact._scene import profiles as ps
 from impact import profiles as pr
 
 B = 1e-4  # radius of the flat tip / cap / punch in the b-shapes (m)

@@ -11,9 +11,10 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from impact import load_scene, springs
-from impact.setup import build_problem
-from impact.simulate import numerics_for, physics_for, solve
+from impact import load_scene
+from impact._integrate import springs
+from impact._integrate.problem import build_problem
+from impact._run.simulate import numerics_for, physics_for, solve
 
 HARD = Path(__file__).resolve().parent.parent / "configs" / "hard"
 COUNTS = (10, 1_000_000)

@@ -25,9 +25,9 @@ import yaml
 from typer.testing import CliRunner
 
 from impact import simulate, theory
-from impact.cli_sweep import register
-from impact.scene import load_scene
-from impact.sweep import (
+from impact.cli.sweep import register
+from impact._scene.scene import load_scene
+from impact._run.sweep import (
     RESULTS,
     SweepError,
     empty_results,
@@ -38,8 +38,8 @@ from impact.sweep import (
     sticking_velocity,
     sweep,
 )
-from impact.sweep_file import load_sweep, make_spec, with_values
-from impact.sweep_io import SweepWriter, _npz_bytes, create_sweep_file, journal_folder, journal_rows
+from impact._scene.sweep import load_sweep, make_spec, with_values
+from impact._io.sweep import SweepWriter, _npz_bytes, create_sweep_file, journal_folder, journal_rows
 
 ROOT = Path(__file__).parents[1]
 CONFIGS = ROOT / "configs"
@@ -55,7 +55,7 @@ EXACT = ("restitution", "stuck", "status", "contact_time", "bounces", "touch_vel
 CLOSE = ("max_force", "min_force", "max_indentation", "dissipated_energy")
 PRELUDE = (
     "import jax; jax.config.update('jax_enable_x64', True); import typer; "
-    "from impact.cli_sweep import register; app = typer.Typer(); register(app); app()"
+    "from impact.cli.sweep import register; app = typer.Typer(); register(app); app()"
 )
 
 
@@ -257,7 +257,7 @@ class Jobs:
         self.env = env
         script = (
             "import jax, numpy as np; jax.config.update('jax_enable_x64', True)\n"
-            "from impact.sweep import sweep\n"
+            "from impact._run.sweep import sweep\n"
             f"r = sweep({str(THORNTON_NING)!r}, {GRID!r}, chunk={CHUNK})\n"
             "assert r.stats['devices'] == 2, r.stats\n"
             f"np.savez({str(folder / 'two.npz')!r}, **r.results)\n"

@@ -10,11 +10,12 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from impact import simulate, theory, verlet
-from impact.scene import SceneError, load_scene
-from impact.setup import build_problem
-from impact.simulate import numerics_for, physics_for, solve
-from impact.springs import Attached, build_array
+from impact import simulate, theory
+from impact._integrate import verlet
+from impact._scene.scene import SceneError, load_scene
+from impact._integrate.problem import build_problem
+from impact._run.simulate import numerics_for, physics_for, solve
+from impact._integrate.springs import Attached, build_array
 
 R, E_STAR, WORK, MASS = 1e-6, 1e9, 0.05, 1.0472e-14
 COUNT = 300
@@ -157,7 +158,7 @@ def test_validate_prints_the_verlet_step_not_tolerances(tmp_path):
     from typer.testing import CliRunner
 
     from impact.cli import app
-    from impact.scene import scene_yaml
+    from impact._scene.scene import scene_yaml
 
     path = tmp_path / "verlet.yaml"
     path.write_text(scene_yaml(load_scene(scene(solver={"method": "verlet", "dt": 1e-12}, contact={"springs": COUNT}))))

@@ -1,0 +1,25 @@
+"""Updating equinox modules by field name, and choosing between two of them elementwise."""
+
+from typing import Any, TypeVar
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+Module = TypeVar("Module", bound=eqx.Module)
+
+
+def replace(module: Module, **changes: Any) -> Module:
+    """A copy of `module` with the named fields replaced (no field is ever matched by position)."""
+    names = tuple(changes)
+    return eqx.tree_at(
+        lambda node: tuple(getattr(node, name) for name in names),
+        module,
+        tuple(changes[name] for name in names),
+        is_leaf=lambda leaf: leaf is None,
+    )
+
+
+def where(condition: Any, when_true: Module, when_false: Module) -> Module:
+    """Leaf by leaf, `when_true` where `condition` holds, else `when_false` (same structure)."""
+    return jax.tree.map(lambda a, b: jnp.where(condition, a, b), when_true, when_false)

@@ -1,0 +1,133 @@
+"""What happens at the end of each phase: the rules of attach, hold, detach and cascade.
+
+Each function takes the phase state at a located event and returns the next one. They are
+written once and used by both integrators (continuum and spring array).
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .problem import Problem
+
+# Relative gap under which a turnaround that lands on the detach edge starts unloading at once
+# (the reversible JKR law, Δγa = Δγ, has no hold phase).
+_SAME_EDGE = 1e-12
+
+
+class Next(eqx.Module):
+    """The phase that follows an event."""
+
+    mode: jax.Array
+    segment: jax.Array
+    radius: jax.Array  # contact radius at the start of the next phase
+    event: jax.Array  # event code logged for this transition
+    separated: jax.Array
+    captured: jax.Array
+    stop: jax.Array  # a result code that ends the run, or −1
+
+
+def _next(mode, segment, radius, event, separated=False, captured=False, stop=-1):
+    return Next(
+        mode=jnp.asarray(mode, int),
+        segment=jnp.asarray(segment, int),
+        radius=jnp.asarray(radius, jnp.float64),
+        event=jnp.asarray(event, int),
+        separated=jnp.asarray(separated),
+        captured=jnp.asarray(captured),
+        stop=jnp.asarray(stop, int),
+    )
+
+
+def select(condition, when_true: Next, when_false: Next) -> Next:
+    return jax.tree.map(lambda a, b: jnp.where(condition, a, b), when_true, when_false)
+
+
+def recede_from(problem: Problem, radius, indentation, event) -> Next:
+    """Inward cascade from `radius` at level d: unloading on a lower segment, or separation."""
+    law, detach = problem.law, problem.detach
+    landing, segment, separated = detach.cascade_in(law, radius, indentation)
+    gone = _next(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True)
+    return select(separated, gone, _next(RECEDE, segment, landing, event))
+
+
+def touch(problem: Problem) -> Next:
+    """First contact at d = 0: the attach cascade from the tip sets the jump-in radius."""
+    return advance_from(problem, jnp.zeros(()), jnp.zeros(()), EVENT_CODE["touch"])
+
+
+def advance_from(problem: Problem, radius, indentation, event) -> Next:
+    """Outward cascade: loading on a further segment, or held at the body's wall."""
+    law, attach = problem.law, problem.attach
+    wall, segment, blocked = attach.cascade_out(law, radius, indentation)
+    at_wall = blocked & (attach.nodes[-1] >= law.extent())
+    held = _next(HOLD, 0, wall, event)
+    # No spring beyond holds: the attach edge falls for good (n ≤ 1/2), or the tables end.
+    falling = ~attach.increasing[-1]
+    grows = _next(DONE, 0, wall, event, stop=RESULT_CODE["unbounded_contact"])
+    beyond = _next(DONE, 0, wall, event, stop=RESULT_CODE["radius_overflow"])
+    return select(
+        blocked,
+        select(at_wall, held, select(falling & ~jnp.isfinite(law.extent()), grows, beyond)),
+        _next(ADVANCE, segment, wall, event),
+    )
+
+
+def after_phase(problem: Problem, mode, segment, radius, indentation, turned) -> Next:
+    """The phase after an event; `radius` is the contact radius when the phase ended.
+
+    Loading ends at a turnaround (hold, or unloading at once when the radius already sits on
+    the detach edge, as in the reversible JKR law) or at a local maximum of the attach edge
+    (outward cascade: snap-in). Hold ends when the edge spring reaches Δl (unloading), and
+    unloading at a local minimum of the detach edge (inward cascade: snap-out or
+    separation). An outward turnaround during hold or unloading is a capture.
+    """
+    law, attach, detach = problem.law, problem.attach, problem.detach
+    advancing = mode == ADVANCE
+    on_edge = indentation <= detach.level(law, radius) + _SAME_EDGE * (1.0 + jnp.abs(indentation))
+    inward_start = jnp.where(mode == RECEDE, detach.nodes[segment], radius)
+    inward_event = jnp.where(
+        mode == HOLD,
+        EVENT_CODE["detach_start"],
+        jnp.where(mode == RECEDE, EVENT_CODE["snap_out"], EVENT_CODE["max_indentation"]),
+    )
+    inward = recede_from(problem, inward_start, indentation, inward_event)
+    outward = advance_from(problem, attach.nodes[segment + 1], indentation, EVENT_CODE["snap_in"])
+    hold = _next(HOLD, 0, radius, EVENT_CODE["max_indentation"])
+    return select(
+        advancing & ~turned,
+        outward,
+        select(advancing & ~on_edge, hold, select(~advancing & turned, capture(), inward)),
+    )
+
+
+def capture() -> Next:
+    """An outward turnaround in contact: the body can never reach the separation point again.
+
+    The contact dissipates on every closed path and gravity only pulls the body in, so from
+    rest at d_turn it cannot come back out below d_turn with any kinetic energy left.
+    """
+    return _next(DONE, 0, 0.0, EVENT_CODE["capture"], captured=True)
+
+
+def flight_to_touch(problem: Problem, indentation, velocity):
+    """Analytic flight from d ≤ 0 to the touch at d = 0: (duration, touch speed, reaches).
+
+    Without gravity the body reaches the surface only if it moves towards it.
+    """
+    gravity = problem.gravity
+    speed_at_touch = jnp.sqrt(jnp.maximum(velocity**2 - 2.0 * gravity * indentation, 0.0))
+    falling = gravity > 0.0
+    closing = velocity + speed_at_touch
+    safe_gravity = jnp.where(falling, gravity, 1.0)
+    duration_falling = jnp.where(
+        velocity < 0.0,
+        (speed_at_touch - velocity) / safe_gravity,
+        -2.0 * indentation / jnp.where(closing > 0.0, closing, 1.0),
+    )
+    duration_free = -indentation / jnp.where(velocity > 0.0, velocity, 1.0)
+    duration = jnp.where(falling, duration_falling, duration_free)
+    reaches = falling | (velocity > 0.0)
+    return duration, jnp.where(falling, speed_at_touch, velocity), reaches
+

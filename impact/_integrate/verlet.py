@@ -1,0 +1,201 @@
+"""The MDR spring array stepped with a fixed-step velocity Verlet (the classical alternative).
+
+The same array as `springs` (`ComputedSpringArray` from `springs.build_array`; the attached
+springs and their running sum S_k in `Attached`), but integrated in time with a fixed step Δt
+instead of from one spring event to the next:
+
+    v½ = v + ½Δt·(g − F(k, d)),   d' = d + Δt·v½,   k' = cascade(k, d'),   v' = v½ + ½Δt·(g − F(k', d')).
+
+The contact edge is an index k with the running sum S_k, so a step costs O(1) and memory is
+independent of N. After each position update the springs attach (while moving in) or detach
+(while moving out) with the same thresholds and cascades as the exact stepper; turnaround,
+separation and capture are read from the sign of v and from k. Each attach or detach lands on
+the step grid instead of at its exact time, so the method is first order in Δt (and noisy:
+each spring event adds an error of either sign). Its error against the exact discrete model
+(`springs`) is the pure time-stepping error; that model's error against the continuum is the
+spatial one.
+
+The loop work ∮F dd is summed with the mean of the two forces that each step's kicks apply,
+so velocity Verlet's discrete energy identity holds to round-off over a contact: kinetic energy
+lost = ∮F dd + ⅛Δt²(a_first² − a_last²), a the acceleration (it tends to the exact model's
+dissipation at first order in Δt).
+
+Free flight between contacts is analytic, as in the other integrators: a contact starts at
+d = 0 at the exact touch time. Lengths and times are scaled (units of `Scales`); the step is
+`Numerics.dt` in seconds (scene: `solver: {method: verlet, dt: …}` with `contact.springs: N`).
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .carry import Carry, Outcome, finish, initial_carry, log_event
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .problem import Numerics, Problem
+from .springs import Attached, ComputedSpringArray, build_array, land
+
+# Steps allowed in all (a guard against a runaway; about 20 s of stepping).
+_MAX_STEPS = 1_000_000_000
+
+
+class _Stretch(eqx.Module):
+    """State of the stepping loop inside one contact phase (scalars, plus trajectory rows)."""
+
+    t: jax.Array
+    d: jax.Array
+    v: jax.Array
+    attached: Attached  # the springs in contact
+    steps: jax.Array  # steps in all (the run's count)
+    work: jax.Array  # ∫F dd of this phase
+    deepest: jax.Array
+    high: jax.Array  # largest force
+    low: jax.Array  # smallest force
+    turned: jax.Array
+    separated: jax.Array
+    captured: jax.Array
+    overflow: jax.Array
+    out_of_time: jax.Array
+    trajectory: jax.Array  # [T, 5] rows (T = 0 without samples)
+    stored: jax.Array  # rows written
+    stride: jax.Array  # steps between stored rows (doubles whenever the rows fill up)
+
+    def stopped(self):
+        return self.turned | self.separated | self.captured | self.overflow | self.out_of_time
+
+
+def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _Stretch:
+    """Keep every `stride`-th state; when the rows are full, drop every other row and double
+    the stride (so any number of steps fits, evenly thinned, in time order)."""
+    if rows == 0:
+        return s
+    full = s.stored >= rows
+
+    def thin(s: _Stretch) -> _Stretch:
+        kept = s.trajectory[::2]
+        trajectory = jnp.full_like(s.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
+        return eqx.tree_at(lambda x: (x.trajectory, x.stored, x.stride), s, (trajectory, (rows + 1) // 2, 2 * s.stride))
+
+    s = jax.lax.cond(valid & full, thin, lambda s: s, s)
+    keep = valid & (s.steps % s.stride == 0)
+    row = jnp.stack([s.t, s.d, s.v, array.force(s.attached, s.d), s.attached.count * array.spacing])
+    target = jnp.minimum(s.stored, rows - 1)
+    trajectory = s.trajectory.at[target].set(jnp.where(keep, row, s.trajectory[target]))
+    return eqx.tree_at(lambda x: (x.trajectory, x.stored), s, (trajectory, s.stored + jnp.asarray(keep, int)))
+
+
+def integrate(problem: Problem, numerics: Numerics, length, count, step=None) -> Outcome:
+    """Run one impact (possibly several bounces) on the spring array with velocity Verlet.
+
+    The step is `numerics.dt` (s), or `step` in scaled time when given; N is `count` (both may
+    be traced, so that a sweep over Δt or N compiles once).
+    """
+    array = build_array(problem, count, length)
+    if step is None:
+        if numerics.dt is None:
+            raise ValueError("velocity Verlet needs a time step: numerics.dt (s)")
+        step = numerics.dt / problem.scales.time
+    dt = jnp.asarray(step, jnp.float64)
+    gravity = problem.gravity
+    rows = numerics.samples_per_phase * numerics.max_phases
+
+    def contact(c: Carry, attached: Attached, stored, stride):
+        """Step until the phase ends: turnaround (loading), separation or capture (unloading),
+        the contact outgrowing the array, or the time limit."""
+        inward = c.mode == ADVANCE
+
+        def verlet_step(s: _Stretch) -> _Stretch:
+            old_force = array.force(s.attached, s.d)
+            half = s.v + 0.5 * dt * (gravity - old_force)
+            d = s.d + dt * half
+            attached = array.cascade(s.attached, d, inward)
+            k = attached.count
+            force = array.force(attached, d)
+            v = half + 0.5 * dt * (gravity - force)
+            t = s.t + dt
+            s = eqx.tree_at(
+                lambda x: (x.t, x.d, x.v, x.attached, x.steps, x.work, x.deepest, x.high, x.low,
+                           x.turned, x.separated, x.captured, x.overflow, x.out_of_time),
+                s,
+                (
+                    t, d, v, attached, s.steps + 1,
+                    s.work + 0.5 * (old_force + force) * (d - s.d),  # the kicks' mean force
+                    jnp.maximum(s.deepest, d),
+                    jnp.maximum(s.high, force),
+                    jnp.minimum(s.low, force),
+                    inward & (v < 0.0),
+                    ~inward & (k == 0),
+                    ~inward & (k > 0) & (v > 0.0),
+                    inward & (k >= array.count) & (d >= array.beyond_level),
+                    t > problem.time_limit,
+                ),
+            )
+            return _store(s, array, rows)
+
+        def running(s: _Stretch):
+            return ~s.stopped() & (s.steps < _MAX_STEPS)
+
+        start_force = array.force(attached, c.d)
+        false = jnp.asarray(False)
+        start = _Stretch(
+            t=c.t, d=c.d, v=c.v, attached=attached, steps=c.steps, work=jnp.zeros(()),
+            deepest=c.d, high=start_force, low=start_force,
+            turned=false, separated=false, captured=false, overflow=false, out_of_time=false,
+            trajectory=c.trajectory, stored=stored, stride=stride,
+        )
+        s = jax.lax.while_loop(running, verlet_step, _store(start, array, rows))
+
+        capped = ~s.stopped()
+        turned, separated, captured, overflow = (
+            flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
+        )
+        mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
+        status = jnp.where(
+            s.out_of_time,
+            RESULT_CODE["time_limit"],
+            jnp.where(
+                capped,
+                RESULT_CODE["solver_failure"],
+                jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            ),
+        )
+        first = c.contacts == 1
+        contact_work = c.contact_work + s.work
+        c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
+        c = log_event(c, s.t, EVENT_CODE["separation"], separated)
+        c = log_event(c, s.t, EVENT_CODE["capture"], captured)
+        c = log_event(c, s.t, EVENT_CODE["limit"], s.out_of_time | capped)
+        c = eqx.tree_at(
+            lambda x: (x.t, x.d, x.v, x.mode, x.status, x.stuck, x.separation_velocity,
+                       x.separation_time, x.max_indentation, x.max_force, x.min_force, x.contact_work,
+                       x.first_contact_work, x.steps, x.accepted, x.phases, x.trajectory),
+            c,
+            (
+                s.t, s.d, s.v, mode, status, captured,
+                jnp.where(first & separated, jnp.abs(s.v), c.separation_velocity),
+                jnp.where(first & separated, s.t, c.separation_time),
+                jnp.maximum(c.max_indentation, s.deepest),
+                jnp.maximum(c.max_force, s.high),
+                jnp.minimum(c.min_force, s.low),
+                contact_work,
+                jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+                s.steps,
+                c.accepted + (s.steps - c.steps),
+                c.phases + 1,
+                s.trajectory,
+            ),
+        )
+        return c, s.attached, s.stored, s.stride
+
+    def flight(c: Carry, attached: Attached, stored, stride):
+        return *land(problem, numerics, array, c), stored, stride
+
+    def running(state):
+        return state[0].mode != DONE
+
+    def advance(state):
+        return jax.lax.cond(state[0].mode == FLIGHT, flight, contact, *state)
+
+    one = jnp.ones((), int)
+    start = (initial_carry(problem, numerics), Attached.none(), 0 * one, one)
+    c, _, _, _ = jax.lax.while_loop(running, advance, start)
+    return finish(c)

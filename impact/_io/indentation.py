@@ -1,0 +1,130 @@
+"""One indentation test (scene kind `indentation`) in an HDF5 file after H5MD 1.1.
+
+Layout (the impact run's, DESIGN.md §5, with a curve in program order instead of a trajectory
+in time; values SI with a `unit` attribute):
+
+    h5md/                      version, author, creator, modules/units (system = "SI")
+    observables/
+        curve/{contact_radius, indentation, force, leg}/{step, value[P]}
+                               the (a, d, F) points in program order; `step` numbers the points
+                               (a hard link shared by all four); leg: 0 first loading, 1 first
+                               unloading, ...
+        pull_off/{contact_radius, indentation, force}   the last stable state before the
+                               contact is lost (nan if it never was)
+        status, max_force, max_indentation, max_contact_radius           (scalars)
+        events/{point, kind}   touch, snap_in, snap_out, pull_off, reversal
+    parameters/
+        config.yaml            the resolved scene YAML; provenance attributes
+        stats/                 steps, reach (m), (wall_time), scales/{radial, normal, force}
+
+The root carries the attribute `impact_kind = "indentation"`.
+"""
+
+from pathlib import Path
+
+import h5py
+import numpy as np
+import yaml
+
+from .._run.indentation import IndentationResult, PullOff
+from .run import _open_run, _string, _user, _write_h5md, atomic_path, read_provenance, stamp_provenance
+from .._scene.scene import load_scene, scene_yaml
+
+KIND = "indentation"
+CURVE = {
+    "contact_radius": ("m", "contact radius a"),
+    "indentation": ("m", "indentation d; > 0 pressed in, < 0 pulled out"),
+    "force": ("N", "normal force; > 0 compressive, < 0 adhesive"),
+    "leg": ("", "leg of the loading program: 0 first loading, 1 first unloading, ..."),
+}
+PULL_OFF = {"contact_radius": "m", "indentation": "m", "force": "N"}
+MAXIMA = {"max_force": "N", "max_indentation": "m", "max_contact_radius": "m"}
+SCALES = {"radial": "m", "normal": "m", "force": "N"}
+
+
+def is_indentation_run(path: str | Path) -> bool:
+    """Whether an HDF5 file holds an indentation test (False for anything else, or no file)."""
+    try:
+        with h5py.File(path, "r") as file:
+            return file.attrs.get("impact_kind") == KIND
+    except OSError:
+        return False
+
+
+def write_indentation(result: IndentationResult, path: str | Path, *, wall_time: float | None = None,
+                      author: str | None = None) -> Path:
+    """Store an indentation result (and the wall time of its simulation, s), atomically."""
+    path = Path(path)
+    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
+        file.attrs["impact_kind"] = KIND
+        _write_h5md(file.create_group("h5md"), author or _user())
+        observables = file.create_group("observables")
+        curve = observables.create_group("curve")
+        step = None
+        for name, (unit, description) in CURVE.items():
+            group = curve.create_group(name)
+            if step is None:
+                step = group.create_dataset("step", data=np.arange(len(result.force), dtype=np.int64))
+            else:
+                group["step"] = step
+            value = group.create_dataset("value", data=getattr(result, name))
+            value.attrs["description"] = description
+            if unit:
+                value.attrs["unit"] = unit
+        pull_off = observables.create_group("pull_off")
+        pull_off.attrs["description"] = "the last stable state before the contact is lost"
+        for name, unit in PULL_OFF.items():
+            pull_off.create_dataset(name, data=float(getattr(result.pull_off, name))).attrs["unit"] = unit
+        observables.create_dataset("status", data=result.status, dtype=h5py.string_dtype())
+        for name, unit in MAXIMA.items():
+            observables.create_dataset(name, data=getattr(result, name)).attrs["unit"] = unit
+        events = observables.create_group("events")
+        events.create_dataset("point", data=np.array([i for i, _ in result.events], dtype=np.int64))
+        events.create_dataset("kind", data=np.array([k for _, k in result.events], dtype=object), dtype=h5py.string_dtype())
+        parameters = file.create_group("parameters")
+        stamp_provenance(parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype()))
+        stats = parameters.create_group("stats")
+        stats.create_dataset("steps", data=np.int64(result.stats["steps"]))
+        stats.create_dataset("reach", data=float(result.stats["reach"])).attrs["unit"] = "m"
+        if wall_time is not None:
+            stats.create_dataset("wall_time", data=float(wall_time)).attrs["unit"] = "s"
+        scales = stats.create_group("scales")
+        scales.attrs["description"] = "internal units of the march"
+        for name, unit in SCALES.items():
+            scales.create_dataset(name, data=float(result.stats["scales"][name])).attrs["unit"] = unit
+    return path
+
+
+def read_indentation(path: str | Path) -> IndentationResult:
+    """The IndentationResult stored by `write_indentation` (the scene rebuilt from its YAML).
+
+    Raises FileNotFoundError for a missing file and ValueError for a file that is not one."""
+    with _open_run(path) as file:
+        if file.attrs.get("impact_kind") != KIND:
+            raise ValueError(f"{path} is not an indentation run")
+        observables = file["observables"]
+        curve = observables["curve"]
+        pull_off = observables["pull_off"]
+        events = observables["events"]
+        stats = file["parameters/stats"]
+        return IndentationResult(
+            scene=load_scene(yaml.safe_load(_string(file["parameters/config.yaml"]))),
+            status=_string(observables["status"]),
+            pull_off=PullOff(**{name: float(pull_off[name][()]) for name in PULL_OFF}),
+            contact_radius=curve["contact_radius/value"][()],
+            indentation=curve["indentation/value"][()],
+            force=curve["force/value"][()],
+            leg=curve["leg/value"][()].astype(int),
+            events=[(int(i), str(k)) for i, k in zip(events["point"][()], events["kind"].asstr()[()])],
+            stats={
+                "steps": int(stats["steps"][()]),
+                "reach": float(stats["reach"][()]),
+                "scales": {name: float(stats["scales"][name][()]) for name in SCALES},
+            },
+        )
+
+
+def read_indentation_provenance(path: str | Path) -> dict:
+    """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored test,
+    as `io.read_provenance` gives them for an impact run."""
+    return read_provenance(path, "parameters/stats")

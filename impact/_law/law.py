@@ -1,0 +1,58 @@
+"""The MDR contact law in scaled units: profile, Heß elongation and force.
+
+Lengths are in the units of `Scales` (x̂ = x/ℓx, d̂ = d/ℓz), forces in E*·ℓx·ℓz. An attached
+spring at x carries the displacement d − g(x); with the contact radius a the force is
+F = 2·(a·d − G(a)) (3.28). The edge spring detaches when g(a) − d reaches Δl(a) = λ·√a (3.26)
+and the next spring attaches when g(x) − d ≤ λa·√x, so the edge functions
+h(x) = g(x) − λ·√x decide every change of the contact radius.
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from ..profiles import Profile
+from .scales import Scales
+
+
+class ContactLaw(eqx.Module):
+    """A profile pressed into the scaled spring foundation, with or without adhesion."""
+
+    profile: Profile
+    scales: Scales
+    detach_coefficient: jax.Array  # λ: Δl̂(x̂) = λ·√x̂ (0 without adhesion)
+    attach_coefficient: jax.Array  # λa = λ·√(Δγa/Δγ)
+    adhesive: bool = eqx.field(static=True)
+
+    def g(self, x):
+        """Scaled 1-D profile ĝ(x̂)."""
+        return self.profile.g(x * self.scales.radial) / self.scales.normal
+
+    def G(self, x):
+        """Scaled ∫₀^x̂ ĝ."""
+        return self.profile.G(x * self.scales.radial) / (self.scales.radial * self.scales.normal)
+
+    def extent(self):
+        """Largest scaled contact radius the body allows (inf for unbounded shapes)."""
+        return self.profile.extent() / self.scales.radial
+
+    def edge(self, x, coefficient):
+        """Edge function h(x̂) = ĝ(x̂) − coefficient·√x̂ (ĝ alone without adhesion)."""
+        if not self.adhesive:
+            return self.g(x)
+        return self.g(x) - coefficient * jnp.sqrt(x)
+
+    def g_slope(self, x):
+        """dĝ/dx̂."""
+        return jax.jvp(self.g, (x,), (jnp.ones_like(x),))[1]
+
+    def edge_slope(self, x, coefficient):
+        """dh/dx̂ (the Heß term's slope written out: 0 when its coefficient is 0, even at x̂ = 0)."""
+        if not self.adhesive:
+            return self.g_slope(x)
+        hess = jnp.where(coefficient > 0.0, 0.5 * coefficient / jnp.sqrt(jnp.where(coefficient > 0.0, x, 1.0)), 0.0)
+        return self.g_slope(x) - hess
+
+    def force(self, radius, indentation):
+        """Scaled force 2·(a·d − Ĝ(a)) (3.28); compressive positive."""
+        return 2.0 * (radius * indentation - self.G(radius))

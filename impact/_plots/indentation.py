@@ -1,0 +1,102 @@
+"""Figures of one indentation test, drawn on matplotlib's Agg canvas (no pyplot, no display).
+
+`force_indentation_figure`: the force–indentation curve in SI, the program's path (jumps as
+straight segments) over the whole equilibrium curve d(a) = g(a) − Δl(a), F(a) = 2E*(a·d − G(a)),
+with the pull-off marked.
+`normalized_figure`: the chapter's normalized curves (Figs. 3.6–3.7, 3.10–3.11): F̂ and d̂
+against â, and F̂ against d̂, in units of the pull-off |F_c|, |d_c| and a_c of the run itself
+(for a paraboloid under force control these are (3.46) and the curves are (3.49)).
+"""
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .._run.indentation import IndentationResult
+from .run import si_prefix, write_figures
+
+FIGURES = ("force_indentation.png", "normalized.png")
+_MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "reversal": "^"}
+
+
+def save_indentation_figures(result: IndentationResult, folder: str | Path) -> list[Path]:
+    """Write the two figures into `folder` (atomically); return their paths."""
+    return write_figures(folder, zip(FIGURES, (force_indentation_figure(result), normalized_figure(result))))
+
+
+def _title(result: IndentationResult) -> str:
+    pull_off = result.pull_off
+    control = f"{result.scene.control} control (ξ = {result.xi})"
+    if not np.isfinite(pull_off.force):
+        return f"{result.scene.name}: {control}, {result.status}"
+    return f"{result.scene.name}: {control}, pull-off F = {pull_off.force:.4g} N at d = {pull_off.indentation:.4g} m"
+
+
+def equilibrium(result: IndentationResult, points: int = 800):
+    """(a, d, F) in SI along the detach edge up to the largest radius of the run:
+    d = g(a) − √(2πaΔγ/E*), F = 2E*(a·d − G(a)) (3.27–3.28), every state stable or not."""
+    scene = result.scene
+    profile = scene.body.profile.build()
+    modulus = scene.material.effective_modulus
+    work = scene.effects.adhesion.work_of_adhesion if scene.adhesive else 0.0
+    radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
+    d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work / modulus)
+    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius)))
+    finite = np.isfinite(d) & np.isfinite(force)
+    return radius[finite], d[finite], force[finite]
+
+
+def force_indentation_figure(result: IndentationResult) -> Figure:
+    """F against d in SI: the equilibrium curve (dashed) and the program's path."""
+    figure = Figure(figsize=(7, 5.5), layout="constrained")
+    axes = figure.subplots()
+    length_factor, length_prefix = si_prefix(np.max(np.abs(result.indentation), initial=0.0))
+    force_factor, force_prefix = si_prefix(np.max(np.abs(result.force), initial=0.0))
+    _, d, F = equilibrium(result)
+    axes.plot(d * length_factor, F * force_factor, "--", color="0.45", lw=1.0, label="equilibrium curve")
+    axes.plot(result.indentation * length_factor, result.force * force_factor, color="C0", lw=1.6, label="program")
+    for kind, marker in _MARKERS.items():
+        points = [index for index, event in result.events if event == kind]
+        if points:
+            axes.plot(result.indentation[points] * length_factor, result.force[points] * force_factor, marker,
+                      color="k", mfc="none", ms=6, label=kind.replace("_", " "))
+    axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.grid(alpha=0.3)
+    axes.set_xlabel(f"indentation d ({length_prefix}m), > 0 pressed in")
+    axes.set_ylabel(f"force F ({force_prefix}N), > 0 compressive")
+    axes.legend(loc="best", fontsize="small")
+    axes.set_title(_title(result), fontsize="medium")
+    return figure
+
+
+def normalized_figure(result: IndentationResult) -> Figure:
+    """â = a/a_c, d̂ = d/|d_c|, F̂ = F/|F_c| with the run's pull-off: F̂(â), d̂(â) and F̂(d̂)."""
+    figure = Figure(figsize=(11, 4.8), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    pull_off = result.pull_off
+    a_c, d_c, F_c = abs(pull_off.contact_radius), abs(pull_off.indentation), abs(pull_off.force)
+    usable = all(np.isfinite(v) and v > 0 for v in (a_c, d_c, F_c))
+    if not usable:  # no pull-off (or one at a = 0): the largest values of the run instead
+        a_c = result.max_contact_radius or 1.0
+        d_c = np.max(np.abs(result.indentation), initial=0.0) or 1.0
+        F_c = np.max(np.abs(result.force), initial=0.0) or 1.0
+    a_eq, d_eq, F_eq = equilibrium(result)
+    left.plot(a_eq / a_c, F_eq / F_c, ":", color="C3", lw=1.0)
+    left.plot(a_eq / a_c, d_eq / d_c, ":", color="C0", lw=1.0)
+    left.plot(result.contact_radius / a_c, result.force / F_c, color="C3", lw=1.6, label="F̂ = F/|F_c|")
+    left.plot(result.contact_radius / a_c, result.indentation / d_c, color="C0", lw=1.6, label="d̂ = d/|d_c|")
+    left.set_xlabel("â = a/a_c")
+    left.legend(loc="best", fontsize="small")
+    right.plot(d_eq / d_c, F_eq / F_c, ":", color="0.45", lw=1.0, label="equilibrium curve")
+    right.plot(result.indentation / d_c, result.force / F_c, color="C0", lw=1.6, label="program")
+    right.set_xlabel("d̂ = d/|d_c|")
+    right.set_ylabel("F̂ = F/|F_c|")
+    right.legend(loc="best", fontsize="small")
+    for axes in (left, right):
+        axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+        axes.grid(alpha=0.3)
+    basis = "the pull-off of this run" if usable else "the largest values of this run"
+    figure.suptitle(f"{_title(result)}\nnormalized by {basis}", fontsize="medium")
+    return figure

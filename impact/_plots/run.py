@@ -1,0 +1,153 @@
+"""Figures of one run, drawn on matplotlib's Agg canvas (no pyplot, no display, no global state).
+
+`time_figure`: indentation and force against time, with the events marked.
+`force_indentation_figure`: the simulated force–indentation loop beside the closed-form
+equilibrium curves of the profile, d(a) = g(a) − √(2πaΔγ/E*), F(a) = 2E*(a·d − G(a))
+(JKR for adhesion, Hertz or the non-adhesive MDR curve for Δγ = 0).
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .._io.run import atomic_path
+from .._scene.scene import Scene
+from .._run.simulate import Result
+
+FIGURES = ("time.png", "force_indentation.png")
+
+_PREFIXES = {-18: "a", -15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+_EVENT_MARKERS = {
+    "touch": "o",
+    "max_indentation": "^",
+    "detach_start": "D",
+    "snap_in": ">",
+    "snap_out": "<",
+    "separation": "s",
+    "capture": "X",
+    "limit": "*",
+}
+
+
+def si_prefix(magnitude: float) -> tuple[float, str]:
+    """(factor, prefix) that brings |magnitude| into [1, 1000): 3.9e-8 → (1e9, "n")."""
+    if not math.isfinite(magnitude) or magnitude == 0:
+        return 1.0, ""
+    exponent = 3 * math.floor(math.log10(abs(magnitude)) / 3)
+    exponent = min(max(exponent, min(_PREFIXES)), max(_PREFIXES))
+    return 10.0**-exponent, _PREFIXES[exponent]
+
+
+def save_figures(result: Result, folder: str | Path) -> list[Path]:
+    """Write `time.png` and `force_indentation.png` into `folder` (atomically); return their paths."""
+    return write_figures(folder, zip(FIGURES, (time_figure(result), force_indentation_figure(result))))
+
+
+def write_figures(folder: str | Path, named) -> list[Path]:
+    """Write each (file name, figure) into `folder` at 150 dpi, atomically; return the paths."""
+    paths = []
+    for name, figure in named:
+        path = Path(folder) / name
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=150)
+        paths.append(path)
+    return paths
+
+
+def time_figure(result: Result) -> Figure:
+    """Indentation (top) and force (bottom) against time; events marked on the indentation."""
+    figure = Figure(figsize=(7.5, 6), layout="constrained")
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    time_factor, time_prefix = si_prefix(np.max(np.abs(result.t), initial=0.0))
+    length_factor, length_prefix = _scale(result.indentation)
+    force_factor, force_prefix = _scale(result.force)
+    t = result.t * time_factor
+    top.plot(t, result.indentation * length_factor, color="C0", lw=1.5, label="indentation d")
+    for kind, marker in _EVENT_MARKERS.items():
+        times = np.array([time for time, event in result.events if event == kind])
+        if times.size:
+            depth = np.interp(times, result.t, result.indentation) * length_factor
+            top.plot(times * time_factor, depth, marker, color="k", ms=6, mfc="none", label=kind.replace("_", " "))
+    bottom.plot(t, result.force * force_factor, color="C3", lw=1.5)
+    for axes in (top, bottom):
+        axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+        axes.grid(alpha=0.3)
+    top.set_ylabel(f"indentation d ({length_prefix}m)\n> 0 pressed in")
+    bottom.set_ylabel(f"force F ({force_prefix}N)\n> 0 compressive, < 0 adhesive")
+    bottom.set_xlabel(f"time t ({time_prefix}s)")
+    top.legend(loc="best", fontsize="small")
+    figure.suptitle(f"{result.scene.name}: indentation and force against time\n{_outcome(result)}")
+    return figure
+
+
+def force_indentation_figure(result: Result) -> Figure:
+    """The simulated force–indentation loop (contacts only) and the closed-form curves."""
+    figure = Figure(figsize=(7, 5.5), layout="constrained")
+    axes = figure.subplots()
+    contact = _in_contact(result.contact_radius)
+    indentation = np.where(contact, result.indentation, np.nan)
+    force = np.where(contact, result.force, np.nan)
+    length_factor, length_prefix = _scale(indentation)
+    force_factor, force_prefix = _scale(force)
+    largest_radius = np.max(result.contact_radius, initial=0.0)
+    for label, (d, F), style in _closed_form_curves(result.scene, 1.05 * largest_radius):
+        axes.plot(d * length_factor, F * force_factor, style, color="0.35", lw=1.2, label=label)
+    axes.plot(indentation * length_factor, force * force_factor, color="C0", lw=1.8, alpha=0.85, label="simulation")
+    axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.grid(alpha=0.3)
+    axes.set_xlabel(f"indentation d ({length_prefix}m), > 0 pressed in")
+    axes.set_ylabel(f"force F ({force_prefix}N), > 0 compressive")
+    axes.legend(loc="upper left", fontsize="small")
+    axes.set_title(f"{result.scene.name}: force against indentation\n{_outcome(result)}")
+    return figure
+
+
+def equilibrium_curve(scene: Scene, work_of_adhesion: float, largest_radius: float, points: int = 400):
+    """(d, F) in SI along contact radii 0 ≤ a ≤ largest_radius (m) of the scene's profile:
+    d = g(a) − √(2πaΔγ/E*), F = 2E*(a·d − G(a)); Δγ = 0 is the non-adhesive curve."""
+    profile = scene.body.profile.build()
+    modulus = scene.material.effective_modulus
+    radius = np.linspace(0.0, min(largest_radius, float(profile.extent())), points)
+    d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work_of_adhesion / modulus)
+    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius)))
+    finite = np.isfinite(d) & np.isfinite(force)
+    return d[finite], force[finite]
+
+
+def _closed_form_curves(scene: Scene, largest_radius: float):
+    """(label, (d, F), line style) of the unloading curve and, if it differs, the loading one."""
+    adhesion = scene.effects.adhesion
+    unloading = adhesion.work_of_adhesion if scene.adhesive else 0.0
+    loading = adhesion.approach if scene.adhesive else 0.0
+    curves = [(_curve_name(scene, unloading), equilibrium_curve(scene, unloading, largest_radius), "--")]
+    if loading != unloading:
+        name = f"loading: {_curve_name(scene, loading)} (Δγa)"
+        curves.append((name, equilibrium_curve(scene, loading, largest_radius), ":"))
+    return curves
+
+
+def _curve_name(scene: Scene, work_of_adhesion: float) -> str:
+    if work_of_adhesion > 0:
+        return f"JKR, Δγ = {work_of_adhesion:.3g} J/m²"
+    return "Hertz" if scene.body.profile.shape == "paraboloid" else "non-adhesive MDR"
+
+
+def _in_contact(contact_radius: np.ndarray) -> np.ndarray:
+    """Samples in contact and their neighbours (so that jump-in and pull-off show as jumps)."""
+    touching = contact_radius > 0
+    around = touching.copy()
+    around[1:] |= touching[:-1]
+    around[:-1] |= touching[1:]
+    return around
+
+
+def _scale(values: np.ndarray) -> tuple[float, str]:
+    finite = np.abs(values[np.isfinite(values)])
+    return si_prefix(np.max(finite, initial=0.0))
+
+
+def _outcome(result: Result) -> str:
+    return f"{result.status}, e = {result.restitution:.6f}, {result.bounces} contact(s)"

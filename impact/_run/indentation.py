@@ -1,0 +1,165 @@
+"""`simulate` for scenes of kind `indentation`: a quasi-static loading program, results in SI.
+
+The scene's program (peak, cycles, unload_to) becomes the legs of the march in `quasistatic`:
+load to the peak, unload (to `unload_to`, or in the last cycle to pull-off), repeated. The
+result holds the pull-off (the last stable state before the contact is lost) and the whole
+curve (a, d, F) in program order, a jump showing as two points at the same control value.
+"""
+
+from dataclasses import dataclass, field
+
+import jax.numpy as jnp
+import numpy as np
+
+from .._integrate.codes import RESULT_CODES
+from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, march
+from .._scene.scene import Scene
+from .simulate import _MANY_TURNS  # profiles whose edges turn many times: more turning points
+
+
+@dataclass(frozen=True)
+class PullOff:
+    """The last stable state before the contact is lost (SI; nan if it never was)."""
+
+    contact_radius: float  # m
+    indentation: float  # m
+    force: float  # N, < 0 adhesive
+
+
+@dataclass(frozen=True)
+class IndentationResult:
+    """Outcome of a quasi-static indentation test, in SI units.
+
+    The curve is in program order: `leg` numbers the program's legs (0 the first loading, 1 the
+    first unloading, ...); a jump of the contact (jump-in, snap, landing at constant force,
+    pull-off) shows as two consecutive points. `events` are (point index, kind) pairs with
+    kind in `quasistatic.EVENT_KINDS`.
+    """
+
+    scene: Scene
+    status: str  # "separated" (pulled off), or why the program could not finish (phases.RESULT_CODES)
+    pull_off: PullOff
+    contact_radius: np.ndarray = field(repr=False)  # m
+    indentation: np.ndarray = field(repr=False)  # m, > 0 pressed in
+    force: np.ndarray = field(repr=False)  # N, > 0 compressive
+    leg: np.ndarray = field(repr=False)  # program leg of each point
+    events: list[tuple[int, str]] = field(repr=False)
+    stats: dict = field(repr=False)  # steps; scales and the branches' reach
+
+    @property
+    def success(self) -> bool:
+        return self.status == "separated"
+
+    @property
+    def xi(self) -> int:
+        """The stability criterion of the control (3.35): 3 force, 1 displacement."""
+        return 3 if self.scene.control == "force" else 1
+
+    @property
+    def max_force(self) -> float:
+        return float(np.max(self.force, initial=0.0))
+
+    @property
+    def max_indentation(self) -> float:
+        return float(np.max(self.indentation, initial=0.0))
+
+    @property
+    def max_contact_radius(self) -> float:
+        return float(np.max(self.contact_radius, initial=0.0))
+
+
+_LEGS = 8  # programs of up to 4 cycles share one compilation (padded legs are never reached)
+
+
+def legs(scene: Scene) -> tuple[np.ndarray, np.ndarray, int]:
+    """(directions, targets in SI, count) of the program: +1 load to the peak, −1 unload
+    (−inf: to pull-off); padded to a power of two (at least 8) beyond `count`."""
+    program = scene.program
+    directions, targets = [], []
+    for cycle in range(program.cycles):
+        last = cycle == program.cycles - 1
+        directions += [1, -1]
+        targets += [program.peak, -np.inf if last or program.unload_to is None else program.unload_to]
+    count = len(targets)
+    size = max(_LEGS, 1 << (count - 1).bit_length())
+    directions += [-1] * (size - count)
+    targets += [-np.inf] * (size - count)
+    return np.array(directions), np.array(targets, dtype=float), count
+
+
+def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
+    """The static choices of an indentation scene (changing them recompiles)."""
+    max_turns, turn_grid = _MANY_TURNS.get(scene.body.profile.shape, (4, 384))
+    springs = scene.contact.springs
+    return QuasiStaticNumerics(
+        adhesive=scene.adhesive,
+        springs=None if springs == "continuum" else spring_capacity(springs),
+        max_turns=max_turns,
+        turn_grid=turn_grid,
+    )
+
+
+def spring_capacity(count: int) -> int:
+    """Slots of the compiled spring array: the next power of two (at least 64), so that arrays
+    of similar size share one compilation (the count itself is traced)."""
+    return max(64, 1 << (int(count) - 1).bit_length())
+
+
+def indentation_loading(scene: Scene) -> Loading:
+    """The traced SI parameters of an indentation scene."""
+    adhesion = scene.effects.adhesion
+    directions, targets, count = legs(scene)
+    springs = scene.contact.springs
+    return Loading(
+        profile=scene.body.profile.build(),
+        E_star=jnp.asarray(scene.material.effective_modulus, jnp.float64),
+        work_of_adhesion=jnp.asarray(adhesion.work_of_adhesion if scene.adhesive else 0.0, jnp.float64),
+        approach_work_of_adhesion=jnp.asarray(adhesion.approach if scene.adhesive else 0.0, jnp.float64),
+        force_control=jnp.asarray(scene.control == "force"),
+        directions=jnp.asarray(directions),
+        targets=jnp.asarray(targets, jnp.float64),
+        legs=jnp.asarray(count),
+        peak=jnp.asarray(scene.program.peak, jnp.float64),
+        spring_length=jnp.asarray(np.nan if scene.contact.length is None else scene.contact.length, jnp.float64),
+        spring_count=jnp.asarray(0 if springs == "continuum" else springs),
+    )
+
+
+def simulate_indentation(scene: Scene) -> IndentationResult:
+    """Run one scene of kind `indentation`."""
+    scales, outcome = march(indentation_loading(scene), indentation_numerics(scene))
+    return to_indentation_result(scene, scales, outcome)
+
+
+def to_indentation_result(scene: Scene, scales, outcome) -> IndentationResult:
+    """Scaled outcome → SI result (consecutive repeated points dropped)."""
+    radial, normal, force = (float(getattr(scales, name)) for name in ("radial", "normal", "force"))
+    rows = np.asarray(outcome.rows)
+    used = np.isfinite(rows[:, 0])
+    count = int(np.sum(used))
+    rows = rows[:count]
+    repeated = np.zeros(count, dtype=bool)
+    repeated[1:] = np.all(rows[1:, :3] == rows[:-1, :3], axis=1)
+    kept = np.cumsum(~repeated) - 1  # new index of each old point (a repeat maps onto its original)
+    rows = rows[~repeated]
+    events = [
+        (int(kept[min(max(index, 0), count - 1)]), EVENT_KINDS[int(kind)])
+        for index, kind in np.asarray(outcome.events)
+        if kind >= 0 and count
+    ]
+    a, d, F = np.asarray(outcome.pull_off, dtype=float)
+    return IndentationResult(
+        scene=scene,
+        status=RESULT_CODES[int(outcome.status)],
+        pull_off=PullOff(contact_radius=a * radial, indentation=d * normal, force=F * force),
+        contact_radius=rows[:, 0] * radial,
+        indentation=rows[:, 1] * normal,
+        force=rows[:, 2] * force,
+        leg=rows[:, 3].astype(int),
+        events=events,
+        stats={
+            "steps": int(outcome.steps),
+            "reach": float(outcome.top) * radial,
+            "scales": {"radial": radial, "normal": normal, "force": force},
+        },
+    )
