@@ -1,5 +1,5 @@
 """Test configuration: float64 physics and whole-loop compilation, as in the CLI entry point."""
 
-from impact import runtime
+import impact
 
-runtime.configure()
+impact.configure()

@@ -1,0 +1,1 @@
+"""Generic numerical tools and process settings (no physics)."""

@@ -23,3 +23,16 @@ def replace(module: Module, **changes: Any) -> Module:
 def where(condition: Any, when_true: Module, when_false: Module) -> Module:
     """Leaf by leaf, `when_true` where `condition` holds, else `when_false` (same structure)."""
     return jax.tree.map(lambda a, b: jnp.where(condition, a, b), when_true, when_false)
+
+
+def replace_where(module: Module, condition: Any, **changes: Any) -> Module:
+    """A copy of `module` with the named fields set to the given values where `condition`
+    holds (each value cast to its field's dtype), kept elsewhere."""
+    kept = {name: getattr(module, name) for name in changes}
+    return replace(
+        module,
+        **{
+            name: jnp.where(condition, jnp.asarray(value, kept[name].dtype), kept[name])
+            for name, value in changes.items()
+        },
+    )

@@ -63,7 +63,9 @@ def log_sign_change(
     return jnp.where(found, jnp.exp(0.5 * (low + high)), upper), found
 
 
-def golden_section(function: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int) -> tuple[Array, Array]:
+def golden_section(
+    function: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int
+) -> tuple[Array, Array]:
     """Shrink [lower, upper] around the minimum of a unimodal `function` by golden sections;
     returns the final bracket."""
 

@@ -1,24 +1,19 @@
-"""What an integrator returns, in scaled units, and the bookkeeping both integrators share."""
+"""What an integrator returns, in scaled units, and the bookkeeping every integrator shares: the
+carry of the phase loop, its event log and trajectory buffer, and how a stretch of contact is
+booked."""
 
 import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .._law.branches import Branch
-from .._law.law import ContactLaw
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RESULT_CODE
-from .problem import Numerics, Problem
+from .._core.pytree import replace, where
+from .codes import DONE, EVENT_CODE, FLIGHT, RESULT_CODE
+from .problem import Options
 from .transitions import Next
+from .work import ContactSummary
 
 EVENTS_PER_PHASE = 2
-
-_QUADRATURE_NODES = 48
-# The largest ln(a_high/a_low) one Gauss–Legendre panel in ln a takes at full accuracy; the rest
-# of a longer ride, ≲ e^(−10·(p+1)) of the work for F·h' ∝ a^p, gets a panel of its own.
-_LOG_PANEL = 10.0
-_SCAN_POINTS = 33
-_GOLDEN_STEPS = 60
 
 
 class Outcome(eqx.Module):
@@ -46,119 +41,14 @@ class Outcome(eqx.Module):
     trajectory: jax.Array  # [T, 5]: t, d, v, F, a (nan where unused); T = 0 without samples
 
 
-def gauss_legendre(nodes: int = _QUADRATURE_NODES):
-    """Nodes and weights on [0, 1]."""
-    import numpy as np
-
-    x, w = np.polynomial.legendre.leggauss(nodes)
-    return jnp.asarray(0.5 * (x + 1.0)), jnp.asarray(0.5 * w)
-
-
-def branch_force(law: ContactLaw, branch: Branch, radius):
-    """Force while the contact radius rides the branch: d = h(a)."""
-    return law.force(radius, branch.level(law, radius))
-
-
-def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
-    """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da.
-
-    Gauss–Legendre in u = ln a over the top e^10 of the radii, where power-law behaviour a^p
-    becomes exponential (an interval [a0, 40·a0] is no harder than [a0, 2·a0]); below that
-    (from a = 0, or from a jump-in radius decades further down), in s with
-    a = a_low + (a_split − a_low)·s².
-    """
-    nodes, weights = gauss_legendre()
-
-    def integrand(radii):
-        return branch_force(law, branch, radii) * law.edge_slope(radii, branch.coefficient)
-
-    low = jnp.minimum(start_radius, end_radius)
-    high = jnp.maximum(start_radius, end_radius)
-    sign = jnp.where(end_radius >= start_radius, 1.0, -1.0)
-    positive = low > 0.0
-    log_high = jnp.log(jnp.where(positive, high, 1.0))
-    log_split = jnp.maximum(jnp.log(jnp.where(positive, low, 1.0)), log_high - _LOG_PANEL)
-    log_span = log_high - log_split
-    logarithmic = jnp.exp(log_split + log_span * nodes)
-    top = jnp.where(positive, jnp.sum(weights * log_span * logarithmic * integrand(logarithmic)), 0.0)
-    split = jnp.where(positive, jnp.exp(log_split), high)
-    squared = low + (split - low) * nodes**2
-    bottom = jnp.sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
-    return sign * (top + bottom)
-
-
-def hold_work(law: ContactLaw, radius, start, end):
-    """∫F dd at a fixed contact radius: F = 2(a·d − G(a)) is linear in d."""
-    return radius * (end**2 - start**2) - 2.0 * law.G(radius) * (end - start)
-
-
-def extremes(function, lower, upper):
-    """(min, max) of a scalar function between two points: a scan, then golden sections."""
-    lower, upper = jnp.minimum(lower, upper), jnp.maximum(lower, upper)
-    grid = jnp.linspace(0.0, 1.0, _SCAN_POINTS)
-    points = lower + (upper - lower) * grid
-    values = function(points)
-    step = (upper - lower) / (_SCAN_POINTS - 1)
-
-    def refine(sign):
-        best = jnp.argmin(sign * values)
-        lo = jnp.maximum(points[best] - step, lower)
-        hi = jnp.minimum(points[best] + step, upper)
-        ratio = 0.5 * (jnp.sqrt(5.0) - 1.0)
-
-        def golden(_, bracket):
-            a, b = bracket
-            c = b - ratio * (b - a)
-            e = a + ratio * (b - a)
-            keep_left = sign * function(c) < sign * function(e)
-            return jnp.where(keep_left, a, c), jnp.where(keep_left, e, b)
-
-        a, b = jax.lax.fori_loop(0, _GOLDEN_STEPS, golden, (lo, hi))
-        return sign * jnp.minimum(sign * function(0.5 * (a + b)), sign * values[best])
-
-    low, high = jax.vmap(refine)(jnp.array([1.0, -1.0]))
-    return low, high
-
-
-def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start, end):
-    """Work ∫F dd, the force range and the deepest indentation of one contact phase.
-
-    `riding`: the radius follows the branch (else it is held fixed at radii[0]);
-    `radii` are the contact radii and `start`, `end` the (d, v) at the two ends of the phase.
-    """
-    a_start, a_end = radii
-    d_start, v_start = start
-    d_end, _ = end
-
-    work_riding = branch_work(law, branch, a_start, a_end)
-    low_riding, high_riding = extremes(lambda a: branch_force(law, branch, a), a_start, a_end)
-
-    # Hold: a harmonic arc about d_eq; if it starts inward it turns at d_eq + amplitude.
-    stiffness = 2.0 * jnp.maximum(a_start, 1e-300)
-    balance = (2.0 * law.G(a_start) + gravity) / stiffness
-    turn = balance + jnp.sqrt((d_start - balance) ** 2 + v_start**2 / stiffness)
-    deepest_hold = jnp.where(v_start > 0.0, jnp.maximum(turn, d_start), jnp.maximum(d_start, d_end))
-    forces_hold = law.force(a_start, jnp.stack([jnp.minimum(d_start, d_end), deepest_hold]))
-    work_hold = hold_work(law, a_start, d_start, d_end)
-
-    work = jnp.where(riding, work_riding, work_hold)
-    low = jnp.where(riding, low_riding, forces_hold[0])
-    high = jnp.where(riding, high_riding, forces_hold[1])
-    deepest = jnp.where(riding, jnp.maximum(d_start, d_end), deepest_hold)
-    return work, low, high, deepest
-
-
-def active_branch(mode, attach: Branch, detach: Branch) -> Branch:
-    """Loading rides the attach branch; hold and unloading answer to the detach branch."""
-    return jax.tree.map(lambda a, d: jnp.where(mode == ADVANCE, a, d), attach, detach)
-
-
 class Carry(eqx.Module):
+    """State of the phase loop (scaled units)."""
+
     t: jax.Array
     d: jax.Array
     v: jax.Array
-    mode: jax.Array
-    segment: jax.Array
+    mode: jax.Array  # the phase under way (`codes`)
+    segment: jax.Array  # the branch segment the radius rides
     radius: jax.Array  # contact radius at the start of the current phase
     phases: jax.Array
     contacts: jax.Array
@@ -171,7 +61,7 @@ class Carry(eqx.Module):
     max_indentation: jax.Array
     max_force: jax.Array
     min_force: jax.Array
-    contact_work: jax.Array
+    contact_work: jax.Array  # ∫F dd of the contact under way
     first_contact_work: jax.Array
     steps: jax.Array
     accepted: jax.Array
@@ -182,9 +72,11 @@ class Carry(eqx.Module):
     trajectory: jax.Array
 
 
-def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
-    events = EVENTS_PER_PHASE * numerics.max_phases
-    rows = numerics.samples_per_phase * numerics.max_phases
+def initial_carry(problem, options: Options) -> Carry:
+    """The carry before the first flight (or already done: a branch overflow, an unbounded
+    contact). `problem` has `start_indentation`, `start_velocity`, `overflow` and `bounded`."""
+    events = EVENTS_PER_PHASE * options.max_phases
+    rows = options.samples_per_phase * options.max_phases
     zero, inf = jnp.zeros(()), jnp.asarray(jnp.inf)
     return Carry(
         t=zero,
@@ -220,14 +112,37 @@ def initial_carry(problem: Problem, numerics: Numerics) -> Carry:
     )
 
 
-def close_phase(c: Carry, active, solution, end, nxt: Next, out_of_time, summary) -> Carry:
+def record_contact(c: Carry, end, summary: ContactSummary, separated, captured) -> Carry:
+    """Fold a stretch of contact into the carry: the state `end` = (t, d, v) where it ended, what
+    it did (`summary`); whether the body separated or was captured there (the first contact's
+    speed and work are kept once it ends)."""
+    t_end, d_end, v_end = end
+    contact_work = c.contact_work + summary.work
+    first = c.contacts == 1
+    return replace(
+        c,
+        t=t_end,
+        d=d_end,
+        v=v_end,
+        stuck=captured,
+        separation_velocity=jnp.where(first & separated, jnp.abs(v_end), c.separation_velocity),
+        separation_time=jnp.where(first & separated, t_end, c.separation_time),
+        max_indentation=jnp.maximum(c.max_indentation, summary.deepest),
+        max_force=jnp.maximum(c.max_force, summary.highest_force),
+        min_force=jnp.minimum(c.min_force, summary.lowest_force),
+        contact_work=contact_work,
+        first_contact_work=jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+    )
+
+
+def close_phase(
+    c: Carry, active, solution: dfx.Solution, end, nxt: Next, out_of_time, summary: ContactSummary
+) -> Carry:
     """Book a contact phase that diffrax ended (kept only where `active`).
 
     `end` is (t, d, v) at its end, `nxt` the phase after its event, `out_of_time` whether the
-    time limit fired, `summary` its (work ∫F dd, lowest force, highest force, deepest d).
+    time limit fired, `summary` what the phase did.
     """
-    t_end, d_end, v_end = end
-    work, low, high, deepest = summary
     event_found = solution.result == dfx.RESULTS.event_occurred
     failed = active & ~event_found
     in_time = ~out_of_time
@@ -244,50 +159,32 @@ def close_phase(c: Carry, active, solution, end, nxt: Next, out_of_time, summary
             jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
         ),
     )
-    contact_work = c.contact_work + work
-    first = c.contacts == 1
-    updated = eqx.tree_at(
-        lambda s: (
-            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.status, s.stuck,
-            s.separation_velocity, s.separation_time, s.max_indentation, s.max_force, s.min_force,
-            s.contact_work, s.first_contact_work, s.steps, s.accepted, s.rejected,
-        ),
-        c,
-        (
-            t_end, d_end, v_end, jnp.where(failed | stopped | out_of_time, DONE, nxt.mode), nxt.segment, nxt.radius,
-            c.phases + 1, status, captured,
-            jnp.where(first & separated, jnp.abs(v_end), c.separation_velocity),
-            jnp.where(first & separated, t_end, c.separation_time),
-            jnp.maximum(c.max_indentation, deepest),
-            jnp.maximum(c.max_force, high),
-            jnp.minimum(c.min_force, low),
-            contact_work,
-            jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
-            c.steps + solution.stats["num_steps"],
-            c.accepted + solution.stats["num_accepted_steps"],
-            c.rejected + solution.stats["num_rejected_steps"],
-        ),
+    updated = replace(
+        record_contact(c, end, summary, separated, captured),
+        mode=jnp.where(failed | stopped | out_of_time, DONE, nxt.mode),
+        segment=nxt.segment,
+        radius=nxt.radius,
+        phases=c.phases + 1,
+        status=status,
+        steps=c.steps + solution.stats["num_steps"],
+        accepted=c.accepted + solution.stats["num_accepted_steps"],
+        rejected=c.rejected + solution.stats["num_rejected_steps"],
     )
-    updated = log_event(updated, t_end, jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
-    return jax.tree.map(lambda new, old: jnp.where(active, new, old), updated, c)
+    updated = log_event(updated, end[0], jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
+    return where(active, updated, c)
 
 
-def run_phases(problem, numerics: Numerics, flight, contact) -> Outcome:
-    """Chain flights and contact phases (`flight(problem, numerics, carry)`, `contact(...)`)
-    until the run is done or holds no more phases."""
+def run_phases(problem, options: Options, flight, contact) -> Outcome:
+    """Chain flights and contact phases (`flight(carry)`, `contact(carry)`, each returning the
+    next carry) until the run is done or holds no more phases."""
 
     def running(c: Carry):
-        return (c.mode != DONE) & (c.phases < numerics.max_phases)
+        return (c.mode != DONE) & (c.phases < options.max_phases)
 
     def advance(c: Carry):
-        return jax.lax.cond(
-            c.mode == FLIGHT,
-            lambda s: flight(problem, numerics, s),
-            lambda s: contact(problem, numerics, s),
-            c,
-        )
+        return jax.lax.cond(c.mode == FLIGHT, flight, contact, c)
 
-    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, numerics)))
+    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, options)))
 
 
 def log_event(c: Carry, time, kind, valid=True) -> Carry:
@@ -295,17 +192,15 @@ def log_event(c: Carry, time, kind, valid=True) -> Carry:
     index = jnp.minimum(c.event_count, c.event_times.shape[0] - 1)
     times = c.event_times.at[index].set(jnp.where(valid, time, c.event_times[index]))
     kinds = c.event_kinds.at[index].set(jnp.where(valid, kind, c.event_kinds[index]))
-    count = c.event_count + jnp.asarray(valid, int)
-    return eqx.tree_at(lambda s: (s.event_times, s.event_kinds, s.event_count), c, (times, kinds, count))
+    return replace(c, event_times=times, event_kinds=kinds, event_count=c.event_count + jnp.asarray(valid, int))
 
 
-def store_samples(c: Carry, numerics: Numerics, rows) -> Carry:
+def store_samples(c: Carry, options: Options, rows) -> Carry:
     """Write this phase's trajectory samples ([P, 5]) in its block of the buffer."""
-    if numerics.samples_per_phase == 0:
+    if options.samples_per_phase == 0:
         return c
-    start = jnp.minimum(c.phases, numerics.max_phases - 1) * numerics.samples_per_phase
-    trajectory = jax.lax.dynamic_update_slice(c.trajectory, rows, (start, jnp.zeros((), int)))
-    return eqx.tree_at(lambda s: s.trajectory, c, trajectory)
+    start = jnp.minimum(c.phases, options.max_phases - 1) * options.samples_per_phase
+    return replace(c, trajectory=jax.lax.dynamic_update_slice(c.trajectory, rows, (start, jnp.zeros((), int))))
 
 
 def finish(c: Carry) -> Outcome:

@@ -16,48 +16,56 @@ a = 0 on a steep tip (h' → ∞ as a → 0, power laws n < 1, no jump-in) are i
 with d as state.
 """
 
-import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.pytree import where
+from .._core.types import Parameter
+from .._law.branches import Branch
+from .._law.law import ContactLaw
 from . import transitions
-from .carry import Carry, Outcome, active_branch, close_phase, log_event, phase_summary, run_phases, store_samples
-from .rootfind import BracketBisection
-from .codes import ADVANCE, DONE, EVENT_CODE, HOLD, RECEDE, RESULT_CODE
-from .problem import Numerics, Problem
-
-SOLVERS = {
-    "tsit5": dfx.Tsit5,
-    "dopri5": dfx.Dopri5,
-    "dopri8": dfx.Dopri8,
-    "bosh3": dfx.Bosh3,
-    "heun": dfx.Heun,
-    "kvaerno3": dfx.Kvaerno3,
-    "kvaerno5": dfx.Kvaerno5,
-}
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .codes import ADVANCE, HOLD, RECEDE
+from .flight import land
+from .problem import Options, Physics, Problem, build_problem
+from .work import active_branch, phase_summary
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
 # Radii (scaled) at which the edge slope is compared to tell a steep tip.
 _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
-# Events are located by bisection inside the step that crossed, to a bracket of
-# 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
-_ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
+
+
+class Continuum(AbstractAdaptiveIntegrator):
+    """The continuum MDR law (N → ∞ springs), phase by phase with an adaptive diffrax solver."""
+
+    def build(self, physics: Physics, options: Options) -> Problem:
+        return build_problem(physics, options)
+
+    def integrate(self, problem: Problem, options: Options) -> Outcome:
+        def flight(c: Carry) -> Carry:
+            touch = transitions.touch(problem)
+            return land(problem, options, c, 0.0, touch, problem.law.force(touch.radius, 0.0), samples=True)
+
+        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
 
 
 class PhaseArgs(eqx.Module):
-    law: object
-    branch: object
+    """What the vector field and the event conditions of one phase need."""
+
+    law: ContactLaw
+    branch: Branch
     riding: jax.Array  # state is (a, v, t) in pseudo-time; else (d, v, t) in time
     mode: jax.Array
     segment: jax.Array
     radius: jax.Array  # held radius (HOLD)
-    gravity: jax.Array
+    gravity: Parameter
     velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
     level_sign: jax.Array  # branch end: sign·(distance to the end) crosses zero upwards
     level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
-    time_limit: jax.Array
+    time_limit: Parameter
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
 
 
@@ -118,71 +126,9 @@ def _first_event(t, y, args: PhaseArgs, **kwargs):
     return jnp.max(_conditions(y, args))
 
 
-def flight(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
-    """Free flight (analytic) to the next touch, or out of reach for good."""
-    duration, speed, reaches = transitions.flight_to_touch(problem, c.d, c.v)
-    touch_time = c.t + duration
-    over_bounces = c.contacts >= numerics.max_bounces
-    over_time = touch_time > problem.time_limit
-    lands = reaches & ~over_bounces & ~over_time
-
-    if numerics.samples_per_phase:
-        tau = jnp.linspace(0.0, jnp.where(lands, duration, 0.0), numerics.samples_per_phase)
-        kept = lands | (jnp.arange(numerics.samples_per_phase) == 0)
-        rows = jnp.stack(
-            [
-                c.t + tau,
-                c.d + c.v * tau + 0.5 * problem.gravity * tau**2,
-                c.v + problem.gravity * tau,
-                jnp.zeros_like(tau),
-                jnp.zeros_like(tau),
-            ],
-            axis=1,
-        )
-        c = store_samples(c, numerics, jnp.where(kept[:, None], rows, jnp.nan))
-
-    nxt = transitions.touch(problem)
-    first = c.contacts == 0
-    status = jnp.where(
-        ~reaches,
-        RESULT_CODE["separated"],
-        jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
-    )
-    ended_by_limit = reaches & ~lands
-    c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
-    c = log_event(c, c.t, EVENT_CODE["limit"], ended_by_limit)
-    stopped = nxt.stop >= 0
-    c = log_event(c, touch_time, EVENT_CODE["limit"], lands & stopped)
-    start_force = problem.law.force(nxt.radius, 0.0)
-    return eqx.tree_at(
-        lambda s: (
-            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.contacts, s.status,
-            s.touch_velocity, s.touch_time, s.contact_work, s.max_force, s.min_force,
-        ),
-        c,
-        (
-            jnp.where(lands, touch_time, c.t),
-            jnp.where(lands, 0.0, c.d),
-            jnp.where(lands, speed, c.v),
-            jnp.where(lands, jnp.where(stopped, DONE, nxt.mode), DONE),
-            nxt.segment,
-            nxt.radius,
-            c.phases + 1,
-            c.contacts + jnp.asarray(lands, int),
-            jnp.where(lands, jnp.where(stopped, nxt.stop, c.status), status),
-            jnp.where(lands & first, speed, c.touch_velocity),
-            jnp.where(lands & first, touch_time, c.touch_time),
-            jnp.zeros(()),
-            jnp.where(lands, jnp.maximum(c.max_force, start_force), c.max_force),
-            jnp.where(lands, jnp.minimum(c.min_force, start_force), c.min_force),
-        ),
-    )
-
-
-def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
-    """One contact phase with diffrax, ended by its located event."""
+def _phase_args(problem: Problem, c: Carry) -> PhaseArgs:
+    """How the phase starting from the carry is integrated and where it ends."""
     law = problem.law
-    in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
     # A segment rising from (or within 1e-6 of) a steep tip (h' → ∞ at a = 0, power laws
     # n < 1) is integrated in time: in a, the pace q would never let a get there.
@@ -198,7 +144,7 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         segment_end,
         jnp.where(c.mode == HOLD, problem.detach.level(law, c.radius), branch.level(law, segment_end)),
     )
-    args = PhaseArgs(
+    return PhaseArgs(
         law=law,
         branch=branch,
         riding=riding,
@@ -212,56 +158,35 @@ def contact(problem: Problem, numerics: Numerics, c: Carry) -> Carry:
         time_limit=problem.time_limit,
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
     )
-    horizon = jnp.where(in_contact, _PHASE_HORIZON, 1e-9)
-    save_dense = numerics.samples_per_phase > 0
-    solution = dfx.diffeqsolve(
-        dfx.ODETerm(_make_vector_field(numerics.timed_loading)),
-        SOLVERS[numerics.method](),
-        t0=0.0,
-        t1=horizon,
-        dt0=None,
-        y0=jnp.stack([jnp.where(riding, c.radius, c.d), c.v, c.t]),
-        args=args,
-        saveat=dfx.SaveAt(t1=True, dense=save_dense),
-        stepsize_controller=dfx.PIDController(rtol=numerics.rtol, atol=numerics.atol),
-        event=dfx.Event(
-            _first_event,
-            root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL),
-            direction=True,
-        ),
-        max_steps=numerics.max_steps,
-        throw=False,
+
+
+def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry) -> Carry:
+    """One contact phase with diffrax, ended by its located event."""
+    law = problem.law
+    in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
+    args = _phase_args(problem, c)
+    riding, branch = args.riding, args.branch
+    solution = integrator.ride(
+        _make_vector_field(options.timed_loading),
+        _first_event,
+        jnp.stack([jnp.where(riding, c.radius, c.d), c.v, c.t]),
+        args,
+        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
+        dense=options.samples_per_phase > 0,
     )
-    x_end, v_end, t_end = solution.ys[-1, 0], solution.ys[-1, 1], solution.ys[-1, 2]
+    _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
-    a_end = jnp.where(
-        riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment))
-    )
-    event_found = solution.result == dfx.RESULTS.event_occurred
-    fired = jnp.argmax(_conditions(solution.ys[-1], args))
-    turned, out_of_time = fired == 0, fired == 2
-    # A located turnaround is v = 0: round-off of either sign would make the next phase's
-    # combined condition start positive and mask its other events.
-    v_end = jnp.where(event_found & turned, 0.0, v_end)
+    a_end = jnp.where(riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment)))
 
-    if save_dense:
-        pseudo = jnp.linspace(0.0, solution.ts[-1], numerics.samples_per_phase)
-        states = jax.vmap(solution.evaluate)(pseudo)
-        x, v, t = states[:, 0], states[:, 1], states[:, 2]
+    if options.samples_per_phase:
+        x, v, t = dense_states(solution, options.samples_per_phase).T
         radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
         d = jnp.where(riding, branch.level(law, x), x)
         rows = jnp.stack([t, d, v, law.force(radii, d), radii], axis=1)
-        c = jax.tree.map(lambda new, old: jnp.where(in_contact, new, old), store_samples(c, numerics, rows), c)
+        c = where(in_contact, store_samples(c, options, rows), c)
 
-    work, low, high, deepest = phase_summary(
-        law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end)
-    )
+    summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, (work, low, high, deepest))
-
-
-def integrate(problem: Problem, numerics: Numerics) -> Outcome:
-    """Run one impact (possibly several bounces) with the continuum law."""
-    return run_phases(problem, numerics, flight, contact)
+    return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)

@@ -3,7 +3,7 @@
 The body is free until its tip comes within the range h of the surface (d = −h, the `touch`
 event); the adhesive zone then snaps to its first stable radius. While the state sits on a
 rising segment of the curve d(s) the motion is integrated in the pseudo-time of the JKR
-integrator (continuum.py), with the curve parameter s as state:
+integrator (`continuum`), with the curve parameter s as state:
 
     s' = v·q,   v' = (g − F(s))·d'(s)·q,   t' = d'(s)·q,   q = 1/√(1 + d'(s)²).
 
@@ -13,24 +13,24 @@ a snap-in or snap-out, or the release of the body when none is left. An outward 
 the curve is a capture (the argument of `transitions.capture` holds: only the jumps dissipate).
 """
 
-import diffrax as dfx
 import equinox as eqx
-import jax
 import jax.numpy as jnp
 
-from . import transitions
-from .continuum import SOLVERS
+from .._core.pytree import where
+from .._core.quadrature import gauss_legendre
+from .._core.types import Parameter
 from .._law.dugdale import DugdaleCurve, DugdaleLaw, build_curve
-from .._law.law import ContactLaw
-from .carry import Carry, Outcome, close_phase, extremes, gauss_legendre, log_event, run_phases, store_samples
-from ..profiles import Cone, Paraboloid, PowerLaw, Profile
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
-from .rootfind import BracketBisection
 from .._law.scales import Scales, adhesive_scales
-from .problem import Numerics, Physics, touch_velocity
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .flight import land
+from .problem import Options, Physics, touch_velocity
+from .transitions import Next, next_phase
+from .work import ContactSummary, extremes
 
 _PHASE_HORIZON = 1.0e4
-_ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
+_QUADRATURE_NODES = 48
 # A landing further than this (relative) from the segment end is a jump, not a continuation.
 _SAME_STATE = 1e-12
 
@@ -40,12 +40,12 @@ class DugdaleProblem(eqx.Module):
 
     law: DugdaleLaw
     curve: DugdaleCurve
-    gravity: jax.Array
-    start_indentation: jax.Array  # −h − gap (scaled)
-    start_velocity: jax.Array
-    touch_speed: jax.Array  # speed when the tip comes within range
-    bounded: jax.Array
-    time_limit: jax.Array
+    gravity: Parameter
+    start_indentation: Parameter  # −h − gap (scaled)
+    start_velocity: Parameter
+    touch_speed: Parameter  # speed when the tip comes within range
+    bounded: Parameter
+    time_limit: Parameter
 
     @property
     def scales(self) -> Scales:
@@ -56,55 +56,49 @@ class DugdaleProblem(eqx.Module):
         return self.curve.overflow
 
 
-def build_dugdale_problem(physics: Physics, numerics: Numerics) -> DugdaleProblem:
-    """Scale (JKR units, or the impact energy's where it reaches further) and tabulate."""
-    profile = physics.profile
-    speed = touch_velocity(physics, numerics)
-    scales = adhesive_scales(profile, physics.E_star, physics.work_of_adhesion, physics.mass, speed)
-    zero = jnp.zeros(())
-    contact_law = ContactLaw(profile, scales, zero, zero, False)
-    adhesion_range = physics.work_of_adhesion / physics.adhesive_stress
-    law = DugdaleLaw(
-        law=contact_law,
-        degree=_degree(profile),
-        stress=physics.adhesive_stress * scales.radial / (physics.E_star * scales.normal),
-        range=adhesion_range / scales.normal,
-    )
-    touch_speed = speed / scales.velocity
-    curve = build_curve(law, touch_speed, numerics.max_turns)
-    gravity = physics.gravity * scales.time**2 / scales.normal if numerics.gravity else zero
-    return DugdaleProblem(
-        law=law,
-        curve=curve,
-        gravity=gravity,
-        start_indentation=-(adhesion_range + physics.gap) / scales.normal,
-        start_velocity=physics.velocity / scales.velocity,
-        touch_speed=touch_speed,
-        bounded=jnp.asarray(True),
-        time_limit=physics.time_limit / scales.time,
-    )
+class MaugisDugdale(AbstractAdaptiveIntegrator):
+    """Impacts with Maugis–Dugdale adhesion (§3.8) on power-law bodies: the body rides the
+    equilibrium curve of the finite-range law, phase by phase with an adaptive diffrax solver."""
 
+    def build(self, physics: Physics, options: Options) -> DugdaleProblem:
+        """Scale (JKR units, or the impact energy's where it reaches further) and tabulate."""
+        profile, adhesion = physics.profile, physics.adhesion
+        speed = touch_velocity(physics, options)
+        scales = adhesive_scales(profile, physics.E_star, adhesion.work_of_adhesion, physics.mass, speed)
+        law = DugdaleLaw.scaled(profile, scales, physics.E_star, adhesion.adhesive_stress, adhesion.adhesion_range)
+        touch_speed = speed / scales.velocity
+        return DugdaleProblem(
+            law=law,
+            curve=build_curve(law, touch_speed, options.tabulation.max_turns),
+            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+            start_indentation=-(adhesion.adhesion_range + physics.gap) / scales.normal,
+            start_velocity=physics.velocity / scales.velocity,
+            touch_speed=touch_speed,
+            bounded=jnp.asarray(True),
+            time_limit=physics.time_limit / scales.time,
+        )
 
-def _degree(profile: Profile):
-    """n of a body f = c·rⁿ (the shapes `scene.DUGDALE_SHAPES` admits)."""
-    if isinstance(profile, PowerLaw):
-        return profile.n
-    if isinstance(profile, Paraboloid):
-        return jnp.asarray(2.0)
-    if isinstance(profile, Cone):
-        return jnp.asarray(1.0)
-    raise ValueError(f"Maugis–Dugdale adhesion needs a power-law body, not {type(profile).__name__}")
+    def integrate(self, problem: DugdaleProblem, options: Options) -> Outcome:
+        def flight(c: Carry) -> Carry:
+            # The tip comes within range at d = −h; the zone snaps to the first rising state there.
+            reach = -problem.law.range
+            landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
+            stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], -1)
+            touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
+            return land(problem, options, c, reach, touch, problem.curve.force(problem.law, landing), samples=True)
+
+        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
 
 
 class _Args(eqx.Module):
     law: DugdaleLaw
     curve: DugdaleCurve
-    gravity: jax.Array
-    velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
-    end: jax.Array  # the segment end in s the phase runs to
-    end_sign: jax.Array
-    time_limit: jax.Array
-    speed_scale: jax.Array
+    gravity: Parameter
+    velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
+    end: Parameter  # the segment end in s the phase runs to
+    end_sign: Parameter
+    time_limit: Parameter
+    speed_scale: Parameter
 
 
 def _vector_field(pseudo_time, y, args: _Args):
@@ -129,62 +123,9 @@ def _first_event(t, y, args: _Args, **kwargs):
     return jnp.max(_conditions(y, args))
 
 
-def flight(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
-    """Free flight (analytic) until the tip comes within range, or out of reach for good."""
-    reach = -problem.law.range
-    duration, speed, reaches = transitions.flight_to_touch(problem, c.d - reach, c.v)
-    touch_time = c.t + duration
-    over_bounces = c.contacts >= numerics.max_bounces
-    lands = reaches & ~over_bounces & (touch_time <= problem.time_limit)
-    if numerics.samples_per_phase:
-        tau = jnp.linspace(0.0, jnp.where(lands, duration, 0.0), numerics.samples_per_phase)
-        kept = lands | (jnp.arange(numerics.samples_per_phase) == 0)
-        zeros = jnp.zeros_like(tau)
-        rows = jnp.stack(
-            [c.t + tau, c.d + c.v * tau + 0.5 * problem.gravity * tau**2, c.v + problem.gravity * tau, zeros, zeros],
-            axis=1,
-        )
-        c = store_samples(c, numerics, jnp.where(kept[:, None], rows, jnp.nan))
-    # The zone snaps to the first rising state at d = −h.
-    landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-    status = jnp.where(
-        ~reaches,
-        RESULT_CODE["separated"],
-        jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
-    )
-    status = jnp.where(lands, jnp.where(blocked, RESULT_CODE["radius_overflow"], c.status), status)
-    c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
-    c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
-    first = c.contacts == 0
-    start_force = problem.curve.force(problem.law, landing)
-    return eqx.tree_at(
-        lambda s: (
-            s.t, s.d, s.v, s.mode, s.segment, s.radius, s.phases, s.contacts, s.status,
-            s.touch_velocity, s.touch_time, s.contact_work, s.max_force, s.min_force,
-        ),
-        c,
-        (
-            jnp.where(lands, touch_time, c.t),
-            jnp.where(lands, reach, c.d),
-            jnp.where(lands, speed, c.v),
-            jnp.where(lands & ~blocked, ADVANCE, DONE),
-            segment,
-            landing,
-            c.phases + 1,
-            c.contacts + jnp.asarray(lands, int),
-            status,
-            jnp.where(lands & first, speed, c.touch_velocity),
-            jnp.where(lands & first, touch_time, c.touch_time),
-            jnp.zeros(()),
-            jnp.where(lands, jnp.maximum(c.max_force, start_force), c.max_force),
-            jnp.where(lands, jnp.minimum(c.min_force, start_force), c.min_force),
-        ),
-    )
-
-
 def _work(law: DugdaleLaw, curve: DugdaleCurve, start, end):
     """∫F dd along the curve from s = start to end (Gauss–Legendre; smooth on a segment)."""
-    nodes, weights = gauss_legendre()
+    nodes, weights = gauss_legendre(_QUADRATURE_NODES)
     points = start + (end - start) * nodes
     _, force, slope = curve.riding(law, points)
     return (end - start) * jnp.sum(weights * force * slope)
@@ -218,7 +159,7 @@ def _after(problem: DugdaleProblem, advancing, turned, segment, s_end, d_end):
         jnp.where(turned, EVENT_CODE["max_indentation"], out_event),
         jnp.where(turned, EVENT_CODE["capture"], in_event),
     )
-    return transitions.Next(
+    return Next(
         mode=mode,
         segment=new_segment,
         radius=new_s,
@@ -229,60 +170,43 @@ def _after(problem: DugdaleProblem, advancing, turned, segment, s_end, d_end):
     )
 
 
-def contact(problem: DugdaleProblem, numerics: Numerics, c: Carry) -> Carry:
+def _contact(integrator: MaugisDugdale, problem: DugdaleProblem, options: Options, c: Carry) -> Carry:
     """One ride along a rising segment with diffrax, ended by its located event."""
     law, curve = problem.law, problem.curve
     riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
     advancing = c.mode == ADVANCE
-    end = jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment])
     args = _Args(
         law=law,
         curve=curve,
         gravity=problem.gravity,
         velocity_sign=jnp.where(advancing, -1.0, 1.0),
-        end=end,
+        end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
         end_sign=jnp.where(advancing, 1.0, -1.0),
         time_limit=problem.time_limit,
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
     )
     s_start = c.radius
-    solution = dfx.diffeqsolve(
-        dfx.ODETerm(_vector_field),
-        SOLVERS[numerics.method](),
-        t0=0.0,
-        t1=jnp.where(riding, _PHASE_HORIZON, 1e-9),
-        dt0=None,
-        y0=jnp.stack([s_start, c.v, c.t]),
-        args=args,
-        saveat=dfx.SaveAt(t1=True, dense=numerics.samples_per_phase > 0),
-        stepsize_controller=dfx.PIDController(rtol=numerics.rtol, atol=numerics.atol),
-        event=dfx.Event(_first_event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True),
-        max_steps=numerics.max_steps,
-        throw=False,
+    solution = integrator.ride(
+        _vector_field,
+        _first_event,
+        jnp.stack([s_start, c.v, c.t]),
+        args,
+        horizon=jnp.where(riding, _PHASE_HORIZON, 1e-9),
+        dense=options.samples_per_phase > 0,
     )
-    s_end = jnp.clip(solution.ys[-1, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
-    v_end, t_end = solution.ys[-1, 1], solution.ys[-1, 2]
+    _, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
     d_end = curve.depth(law, s_end)
-    event_found = solution.result == dfx.RESULTS.event_occurred
-    fired = jnp.argmax(_conditions(solution.ys[-1], args))
-    turned, out_of_time = fired == 0, fired == 2
-    v_end = jnp.where(event_found & turned, 0.0, v_end)
 
-    if numerics.samples_per_phase:
-        pseudo = jnp.linspace(0.0, solution.ts[-1], numerics.samples_per_phase)
-        states = jax.vmap(solution.evaluate)(pseudo)
+    if options.samples_per_phase:
+        states = dense_states(solution, options.samples_per_phase)
         s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
         depth, force, radius, _ = curve.state(law, s)
         rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
-        c = jax.tree.map(lambda new, old: jnp.where(riding, new, old), store_samples(c, numerics, rows), c)
+        c = where(riding, store_samples(c, options, rows), c)
 
     work = _work(law, curve, s_start, s_end)
     low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
     nxt = _after(problem, advancing, turned, c.segment, s_end, d_end)
-    summary = (work, low, high, jnp.maximum(c.d, d_end))
+    summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
     return close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
-
-
-def integrate(problem: DugdaleProblem, numerics: Numerics) -> Outcome:
-    """Run one impact (possibly several bounces) on the Maugis–Dugdale curve."""
-    return run_phases(problem, numerics, flight, contact)

@@ -1,13 +1,15 @@
 """What happens at the end of each phase: the rules of attach, hold, detach and cascade.
 
 Each function takes the phase state at a located event and returns the next one. They are
-written once and used by both integrators (continuum and spring array).
+written once for the continuum law (its impacts and spring arrays land through `touch`); the
+Maugis–Dugdale integrator states its own `Next` with `next_phase`.
 """
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.pytree import where
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .problem import Problem
 
@@ -28,7 +30,8 @@ class Next(eqx.Module):
     stop: jax.Array  # a result code that ends the run, or −1
 
 
-def _next(mode, segment, radius, event, separated=False, captured=False, stop=-1):
+def next_phase(mode, segment, radius, event, separated=False, captured=False, stop=-1) -> Next:
+    """A `Next` from plain values (a stop code of −1: the run goes on)."""
     return Next(
         mode=jnp.asarray(mode, int),
         segment=jnp.asarray(segment, int),
@@ -40,16 +43,12 @@ def _next(mode, segment, radius, event, separated=False, captured=False, stop=-1
     )
 
 
-def select(condition, when_true: Next, when_false: Next) -> Next:
-    return jax.tree.map(lambda a, b: jnp.where(condition, a, b), when_true, when_false)
-
-
 def recede_from(problem: Problem, radius, indentation, event) -> Next:
     """Inward cascade from `radius` at level d: unloading on a lower segment, or separation."""
     law, detach = problem.law, problem.detach
     landing, segment, separated = detach.cascade_in(law, radius, indentation)
-    gone = _next(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True)
-    return select(separated, gone, _next(RECEDE, segment, landing, event))
+    gone = next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True)
+    return where(separated, gone, next_phase(RECEDE, segment, landing, event))
 
 
 def touch(problem: Problem) -> Next:
@@ -62,15 +61,15 @@ def advance_from(problem: Problem, radius, indentation, event) -> Next:
     law, attach = problem.law, problem.attach
     wall, segment, blocked = attach.cascade_out(law, radius, indentation)
     at_wall = blocked & (attach.nodes[-1] >= law.extent())
-    held = _next(HOLD, 0, wall, event)
+    held = next_phase(HOLD, 0, wall, event)
     # No spring beyond holds: the attach edge falls for good (n ≤ 1/2), or the tables end.
     falling = ~attach.increasing[-1]
-    grows = _next(DONE, 0, wall, event, stop=RESULT_CODE["unbounded_contact"])
-    beyond = _next(DONE, 0, wall, event, stop=RESULT_CODE["radius_overflow"])
-    return select(
+    grows = next_phase(DONE, 0, wall, event, stop=RESULT_CODE["unbounded_contact"])
+    beyond = next_phase(DONE, 0, wall, event, stop=RESULT_CODE["radius_overflow"])
+    return where(
         blocked,
-        select(at_wall, held, select(falling & ~jnp.isfinite(law.extent()), grows, beyond)),
-        _next(ADVANCE, segment, wall, event),
+        where(at_wall, held, where(falling & ~jnp.isfinite(law.extent()), grows, beyond)),
+        next_phase(ADVANCE, segment, wall, event),
     )
 
 
@@ -94,11 +93,11 @@ def after_phase(problem: Problem, mode, segment, radius, indentation, turned) ->
     )
     inward = recede_from(problem, inward_start, indentation, inward_event)
     outward = advance_from(problem, attach.nodes[segment + 1], indentation, EVENT_CODE["snap_in"])
-    hold = _next(HOLD, 0, radius, EVENT_CODE["max_indentation"])
-    return select(
+    hold = next_phase(HOLD, 0, radius, EVENT_CODE["max_indentation"])
+    return where(
         advancing & ~turned,
         outward,
-        select(advancing & ~on_edge, hold, select(~advancing & turned, capture(), inward)),
+        where(advancing & ~on_edge, hold, where(~advancing & turned, capture(), inward)),
     )
 
 
@@ -108,26 +107,4 @@ def capture() -> Next:
     The contact dissipates on every closed path and gravity only pulls the body in, so from
     rest at d_turn it cannot come back out below d_turn with any kinetic energy left.
     """
-    return _next(DONE, 0, 0.0, EVENT_CODE["capture"], captured=True)
-
-
-def flight_to_touch(problem: Problem, indentation, velocity):
-    """Analytic flight from d ≤ 0 to the touch at d = 0: (duration, touch speed, reaches).
-
-    Without gravity the body reaches the surface only if it moves towards it.
-    """
-    gravity = problem.gravity
-    speed_at_touch = jnp.sqrt(jnp.maximum(velocity**2 - 2.0 * gravity * indentation, 0.0))
-    falling = gravity > 0.0
-    closing = velocity + speed_at_touch
-    safe_gravity = jnp.where(falling, gravity, 1.0)
-    duration_falling = jnp.where(
-        velocity < 0.0,
-        (speed_at_touch - velocity) / safe_gravity,
-        -2.0 * indentation / jnp.where(closing > 0.0, closing, 1.0),
-    )
-    duration_free = -indentation / jnp.where(velocity > 0.0, velocity, 1.0)
-    duration = jnp.where(falling, duration_falling, duration_free)
-    reaches = falling | (velocity > 0.0)
-    return duration, jnp.where(falling, speed_at_touch, velocity), reaches
-
+    return next_phase(DONE, 0, 0.0, EVENT_CODE["capture"], captured=True)

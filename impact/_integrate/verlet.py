@@ -1,6 +1,6 @@
 """The MDR spring array stepped with a fixed-step velocity Verlet (the classical alternative).
 
-The same array as `springs` (`ComputedSpringArray` from `springs.build_array`; the attached
+The same array as `springs.SpringArray` (`ComputedSpringArray`; the attached
 springs and their running sum S_k in `Attached`), but integrated in time with a fixed step Δt
 instead of from one spring event to the next:
 
@@ -21,21 +21,34 @@ lost = ∮F dd + ⅛Δt²(a_first² − a_last²), a the acceleration (it tends 
 dissipation at first order in Δt).
 
 Free flight between contacts is analytic, as in the other integrators: a contact starts at
-d = 0 at the exact touch time. Lengths and times are scaled (units of `Scales`); the step is
-`Numerics.dt` in seconds (scene: `solver: {method: verlet, dt: …}` with `contact.springs: N`).
+d = 0 at the exact touch time. Lengths and times are scaled (units of `Scales`); the step `Verlet.dt` is in seconds
+(scene: `solver: {method: verlet, dt: …}` with `contact.springs: N`).
 """
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .carry import Carry, Outcome, finish, initial_carry, log_event
+from .._core.pytree import replace
+from .._law.springs import Attached, ComputedSpringArray
+from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
-from .problem import Numerics, Problem
-from .springs import Attached, ComputedSpringArray, build_array, land
+from .problem import Options, Problem
+from .springs import AbstractSpringArrayIntegrator, SpringArrayProblem, touch_down
+from .work import ContactSummary
 
 # Steps allowed in all (a guard against a runaway; about 20 s of stepping).
 _MAX_STEPS = 1_000_000_000
+
+
+class Verlet(AbstractSpringArrayIntegrator):
+    """The spring array stepped with a fixed-step velocity Verlet."""
+
+    dt: float | jax.Array  # time step (s); traced when given as an array
+
+    def integrate(self, problem: SpringArrayProblem, options: Options) -> Outcome:
+        step = jnp.asarray(self.dt / problem.scales.time, jnp.float64)
+        return _run_steps(problem.problem, options, problem.array, step)
 
 
 class _Stretch(eqx.Module):
@@ -73,121 +86,125 @@ def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _S
     def thin(s: _Stretch) -> _Stretch:
         kept = s.trajectory[::2]
         trajectory = jnp.full_like(s.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
-        return eqx.tree_at(lambda x: (x.trajectory, x.stored, x.stride), s, (trajectory, (rows + 1) // 2, 2 * s.stride))
+        return replace(s, trajectory=trajectory, stored=(rows + 1) // 2, stride=2 * s.stride)
 
     s = jax.lax.cond(valid & full, thin, lambda s: s, s)
     keep = valid & (s.steps % s.stride == 0)
     row = jnp.stack([s.t, s.d, s.v, array.force(s.attached, s.d), s.attached.count * array.spacing])
     target = jnp.minimum(s.stored, rows - 1)
     trajectory = s.trajectory.at[target].set(jnp.where(keep, row, s.trajectory[target]))
-    return eqx.tree_at(lambda x: (x.trajectory, x.stored), s, (trajectory, s.stored + jnp.asarray(keep, int)))
+    return replace(s, trajectory=trajectory, stored=s.stored + jnp.asarray(keep, int))
 
 
-def integrate(problem: Problem, numerics: Numerics, length, count, step=None) -> Outcome:
-    """Run one impact (possibly several bounces) on the spring array with velocity Verlet.
+def _verlet_step(array: ComputedSpringArray, gravity, time_limit, dt, inward, rows: int, s: _Stretch) -> _Stretch:
+    """One kick–drift–kick step; the springs attach (moving in) or detach (moving out) after the drift."""
+    old_force = array.force(s.attached, s.d)
+    half = s.v + 0.5 * dt * (gravity - old_force)
+    d = s.d + dt * half
+    attached = array.cascade(s.attached, d, inward)
+    k = attached.count
+    force = array.force(attached, d)
+    v = half + 0.5 * dt * (gravity - force)
+    t = s.t + dt
+    s = replace(
+        s,
+        t=t,
+        d=d,
+        v=v,
+        attached=attached,
+        steps=s.steps + 1,
+        work=s.work + 0.5 * (old_force + force) * (d - s.d),  # the kicks' mean force
+        deepest=jnp.maximum(s.deepest, d),
+        high=jnp.maximum(s.high, force),
+        low=jnp.minimum(s.low, force),
+        turned=inward & (v < 0.0),
+        separated=~inward & (k == 0),
+        captured=~inward & (k > 0) & (v > 0.0),
+        overflow=inward & (k >= array.count) & (d >= array.beyond_level),
+        out_of_time=t > time_limit,
+    )
+    return _store(s, array, rows)
 
-    The step is `numerics.dt` (s), or `step` in scaled time when given; N is `count` (both may
-    be traced, so that a sweep over Δt or N compiles once).
-    """
-    array = build_array(problem, count, length)
-    if step is None:
-        if numerics.dt is None:
-            raise ValueError("velocity Verlet needs a time step: numerics.dt (s)")
-        step = numerics.dt / problem.scales.time
-    dt = jnp.asarray(step, jnp.float64)
-    gravity = problem.gravity
-    rows = numerics.samples_per_phase * numerics.max_phases
+
+def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, c: Carry, attached: Attached, stored, stride):
+    """Step until the phase ends: turnaround (loading), separation or capture (unloading), the
+    contact outgrowing the array, or the time limit."""
+    inward = c.mode == ADVANCE
+    start_force = array.force(attached, c.d)
+    false = jnp.asarray(False)
+    start = _Stretch(
+        t=c.t,
+        d=c.d,
+        v=c.v,
+        attached=attached,
+        steps=c.steps,
+        work=jnp.zeros(()),
+        deepest=c.d,
+        high=start_force,
+        low=start_force,
+        turned=false,
+        separated=false,
+        captured=false,
+        overflow=false,
+        out_of_time=false,
+        trajectory=c.trajectory,
+        stored=stored,
+        stride=stride,
+    )
+
+    def running(s: _Stretch):
+        return ~s.stopped() & (s.steps < _MAX_STEPS)
+
+    def step(s: _Stretch) -> _Stretch:
+        return _verlet_step(array, problem.gravity, problem.time_limit, dt, inward, rows, s)
+
+    return jax.lax.while_loop(running, step, _store(start, array, rows))
+
+
+def _book(c: Carry, s: _Stretch) -> Carry:
+    """Fold a finished stretch into the carry: its events, the next phase and the result code."""
+    inward = c.mode == ADVANCE
+    capped = ~s.stopped()
+    turned, separated, captured, overflow = (
+        flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
+    )
+    mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
+    status = jnp.where(
+        s.out_of_time,
+        RESULT_CODE["time_limit"],
+        jnp.where(
+            capped,
+            RESULT_CODE["solver_failure"],
+            jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        ),
+    )
+    c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
+    c = log_event(c, s.t, EVENT_CODE["separation"], separated)
+    c = log_event(c, s.t, EVENT_CODE["capture"], captured)
+    c = log_event(c, s.t, EVENT_CODE["limit"], s.out_of_time | capped)
+    summary = ContactSummary(work=s.work, lowest_force=s.low, highest_force=s.high, deepest=s.deepest)
+    c = record_contact(c, (s.t, s.d, s.v), summary, separated, captured)
+    return replace(
+        c,
+        mode=mode,
+        status=status,
+        steps=s.steps,
+        accepted=c.accepted + (s.steps - c.steps),
+        phases=c.phases + 1,
+        trajectory=s.trajectory,
+    )
+
+
+def _run_steps(problem: Problem, options: Options, array: ComputedSpringArray, dt) -> Outcome:
+    """Run one impact (possibly several bounces) on the array with velocity Verlet."""
+    rows = options.samples_per_phase * options.max_phases
 
     def contact(c: Carry, attached: Attached, stored, stride):
-        """Step until the phase ends: turnaround (loading), separation or capture (unloading),
-        the contact outgrowing the array, or the time limit."""
-        inward = c.mode == ADVANCE
-
-        def verlet_step(s: _Stretch) -> _Stretch:
-            old_force = array.force(s.attached, s.d)
-            half = s.v + 0.5 * dt * (gravity - old_force)
-            d = s.d + dt * half
-            attached = array.cascade(s.attached, d, inward)
-            k = attached.count
-            force = array.force(attached, d)
-            v = half + 0.5 * dt * (gravity - force)
-            t = s.t + dt
-            s = eqx.tree_at(
-                lambda x: (x.t, x.d, x.v, x.attached, x.steps, x.work, x.deepest, x.high, x.low,
-                           x.turned, x.separated, x.captured, x.overflow, x.out_of_time),
-                s,
-                (
-                    t, d, v, attached, s.steps + 1,
-                    s.work + 0.5 * (old_force + force) * (d - s.d),  # the kicks' mean force
-                    jnp.maximum(s.deepest, d),
-                    jnp.maximum(s.high, force),
-                    jnp.minimum(s.low, force),
-                    inward & (v < 0.0),
-                    ~inward & (k == 0),
-                    ~inward & (k > 0) & (v > 0.0),
-                    inward & (k >= array.count) & (d >= array.beyond_level),
-                    t > problem.time_limit,
-                ),
-            )
-            return _store(s, array, rows)
-
-        def running(s: _Stretch):
-            return ~s.stopped() & (s.steps < _MAX_STEPS)
-
-        start_force = array.force(attached, c.d)
-        false = jnp.asarray(False)
-        start = _Stretch(
-            t=c.t, d=c.d, v=c.v, attached=attached, steps=c.steps, work=jnp.zeros(()),
-            deepest=c.d, high=start_force, low=start_force,
-            turned=false, separated=false, captured=false, overflow=false, out_of_time=false,
-            trajectory=c.trajectory, stored=stored, stride=stride,
-        )
-        s = jax.lax.while_loop(running, verlet_step, _store(start, array, rows))
-
-        capped = ~s.stopped()
-        turned, separated, captured, overflow = (
-            flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
-        )
-        mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
-        status = jnp.where(
-            s.out_of_time,
-            RESULT_CODE["time_limit"],
-            jnp.where(
-                capped,
-                RESULT_CODE["solver_failure"],
-                jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
-            ),
-        )
-        first = c.contacts == 1
-        contact_work = c.contact_work + s.work
-        c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
-        c = log_event(c, s.t, EVENT_CODE["separation"], separated)
-        c = log_event(c, s.t, EVENT_CODE["capture"], captured)
-        c = log_event(c, s.t, EVENT_CODE["limit"], s.out_of_time | capped)
-        c = eqx.tree_at(
-            lambda x: (x.t, x.d, x.v, x.mode, x.status, x.stuck, x.separation_velocity,
-                       x.separation_time, x.max_indentation, x.max_force, x.min_force, x.contact_work,
-                       x.first_contact_work, x.steps, x.accepted, x.phases, x.trajectory),
-            c,
-            (
-                s.t, s.d, s.v, mode, status, captured,
-                jnp.where(first & separated, jnp.abs(s.v), c.separation_velocity),
-                jnp.where(first & separated, s.t, c.separation_time),
-                jnp.maximum(c.max_indentation, s.deepest),
-                jnp.maximum(c.max_force, s.high),
-                jnp.minimum(c.min_force, s.low),
-                contact_work,
-                jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
-                s.steps,
-                c.accepted + (s.steps - c.steps),
-                c.phases + 1,
-                s.trajectory,
-            ),
-        )
-        return c, s.attached, s.stored, s.stride
+        s = _stretch(problem, array, dt, rows, c, attached, stored, stride)
+        return _book(c, s), s.attached, s.stored, s.stride
 
     def flight(c: Carry, attached: Attached, stored, stride):
-        return *land(problem, numerics, array, c), stored, stride
+        return *touch_down(problem, options, array, c), stored, stride
 
     def running(state):
         return state[0].mode != DONE
@@ -196,6 +213,6 @@ def integrate(problem: Problem, numerics: Numerics, length, count, step=None) ->
         return jax.lax.cond(state[0].mode == FLIGHT, flight, contact, *state)
 
     one = jnp.ones((), int)
-    start = (initial_carry(problem, numerics), Attached.none(), 0 * one, one)
+    start = (initial_carry(problem, options), Attached.none(), 0 * one, one)
     c, _, _, _ = jax.lax.while_loop(running, advance, start)
     return finish(c)

@@ -1,6 +1,6 @@
 """One indentation test (scene kind `indentation`) in an HDF5 file after H5MD 1.1.
 
-Layout (the impact run's, DESIGN.md §5, with a curve in program order instead of a trajectory
+Layout (the impact run's, `impact._io.run`, with a curve in program order instead of a trajectory
 in time; values SI with a `unit` attribute):
 
     h5md/                      version, author, creator, modules/units (system = "SI")
@@ -24,11 +24,10 @@ from pathlib import Path
 
 import h5py
 import numpy as np
-import yaml
 
 from .._run.indentation import IndentationResult, PullOff
-from .run import _open_run, _string, _user, _write_h5md, atomic_path, read_provenance, stamp_provenance
-from .._scene.scene import load_scene, scene_yaml
+from .files import atomic_path
+from .h5md import current_user, open_run, read_provenance, read_scene, read_string, write_header, write_scene
 
 KIND = "indentation"
 CURVE = {
@@ -51,13 +50,14 @@ def is_indentation_run(path: str | Path) -> bool:
         return False
 
 
-def write_indentation(result: IndentationResult, path: str | Path, *, wall_time: float | None = None,
-                      author: str | None = None) -> Path:
+def write_indentation(
+    result: IndentationResult, path: str | Path, *, wall_time: float | None = None, author: str | None = None
+) -> Path:
     """Store an indentation result (and the wall time of its simulation, s), atomically."""
     path = Path(path)
     with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
         file.attrs["impact_kind"] = KIND
-        _write_h5md(file.create_group("h5md"), author or _user())
+        write_header(file.create_group("h5md"), author or current_user())
         observables = file.create_group("observables")
         curve = observables.create_group("curve")
         step = None
@@ -80,9 +80,11 @@ def write_indentation(result: IndentationResult, path: str | Path, *, wall_time:
             observables.create_dataset(name, data=getattr(result, name)).attrs["unit"] = unit
         events = observables.create_group("events")
         events.create_dataset("point", data=np.array([i for i, _ in result.events], dtype=np.int64))
-        events.create_dataset("kind", data=np.array([k for _, k in result.events], dtype=object), dtype=h5py.string_dtype())
+        events.create_dataset(
+            "kind", data=np.array([k for _, k in result.events], dtype=object), dtype=h5py.string_dtype()
+        )
         parameters = file.create_group("parameters")
-        stamp_provenance(parameters.create_dataset("config.yaml", data=scene_yaml(result.scene), dtype=h5py.string_dtype()))
+        write_scene(parameters, result.scene)
         stats = parameters.create_group("stats")
         stats.create_dataset("steps", data=np.int64(result.stats["steps"]))
         stats.create_dataset("reach", data=float(result.stats["reach"])).attrs["unit"] = "m"
@@ -99,7 +101,7 @@ def read_indentation(path: str | Path) -> IndentationResult:
     """The IndentationResult stored by `write_indentation` (the scene rebuilt from its YAML).
 
     Raises FileNotFoundError for a missing file and ValueError for a file that is not one."""
-    with _open_run(path) as file:
+    with open_run(path) as file:
         if file.attrs.get("impact_kind") != KIND:
             raise ValueError(f"{path} is not an indentation run")
         observables = file["observables"]
@@ -108,14 +110,14 @@ def read_indentation(path: str | Path) -> IndentationResult:
         events = observables["events"]
         stats = file["parameters/stats"]
         return IndentationResult(
-            scene=load_scene(yaml.safe_load(_string(file["parameters/config.yaml"]))),
-            status=_string(observables["status"]),
+            scene=read_scene(file),
+            status=read_string(observables["status"]),
             pull_off=PullOff(**{name: float(pull_off[name][()]) for name in PULL_OFF}),
             contact_radius=curve["contact_radius/value"][()],
             indentation=curve["indentation/value"][()],
             force=curve["force/value"][()],
             leg=curve["leg/value"][()].astype(int),
-            events=[(int(i), str(k)) for i, k in zip(events["point"][()], events["kind"].asstr()[()])],
+            events=[(int(i), str(k)) for i, k in zip(events["point"][()], events["kind"].asstr()[()], strict=True)],
             stats={
                 "steps": int(stats["steps"][()]),
                 "reach": float(stats["reach"][()]),
@@ -126,5 +128,5 @@ def read_indentation(path: str | Path) -> IndentationResult:
 
 def read_indentation_provenance(path: str | Path) -> dict:
     """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored test,
-    as `io.read_provenance` gives them for an impact run."""
+    as `h5md.read_provenance` gives them for an impact run."""
     return read_provenance(path, "parameters/stats")

@@ -1,4 +1,4 @@
-"""A sweep in an HDF5 file (H5MD flavoured, DESIGN.md §5), written chunk by chunk.
+"""A sweep in an HDF5 file (after H5MD 1.1, as `impact._io.run`), written chunk by chunk.
 
 Layout (values SI, `unit` attributes where dimensioned):
 
@@ -20,18 +20,9 @@ Rows follow the processing order (group by group, by expected cost), so `index` 
 to the grid; `read_sweep` returns arrays in the sweep's shape. Every dataset along R is
 resizable, chunked and compressed. A chunk of points is appended by opening the file, resizing,
 writing, setting `rows` last and closing it, so the file on disk is closed and consistent
-while the next chunk computes.
-
-HDF5 is not crash-safe: a SIGKILL inside a write (with small chunks most of the run is
-writing) can leave the file unreadable. So `SweepWriter` first writes each chunk to a journal,
-`.<name>.chunks/<first row>.npz` beside the file (each written whole, then renamed: it exists
-complete or not at all), then appends it to the HDF5 file. A restart drops rows beyond `rows`,
-appends the chunks the journal holds beyond them, or rebuilds an unreadable file from the
-journal; a finished sweep deletes its journal.
+while the next chunk computes. A running sweep writes through a journal (`sweep_journal`).
 """
 
-import os
-import shutil
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -39,11 +30,15 @@ import h5py
 import numpy as np
 import yaml
 
-from .run import _user, _write_h5md, atomic_path, stamp_provenance
 from .._integrate.codes import RESULT_CODES
+from .._run.sweep.plan import plan_sweep
+from .._run.sweep.result import RESULTS, SweepResult, empty_results
+from .._scene.errors import SweepError
 from .._scene.scene import scene_yaml
-from .._run.sweep import RESULTS, SweepResult, empty_results, plan_sweep
-from .._scene.sweep import SweepError, SweepSpec, make_spec
+from .._scene.sweep import make_spec
+from .._scene.sweep_spec import SweepSpec
+from .files import atomic_path
+from .h5md import current_user, read_string, stamp_provenance, write_header, write_string
 
 SWEEP_FILE = "sweep.h5"
 _COMPRESSION = dict(compression="gzip", compression_opts=4, shuffle=True)
@@ -60,12 +55,12 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
     path = Path(path)
     rows_per_chunk = max(1, min(chunk, _MAX_CHUNK_ROWS))
     with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
-        _write_h5md(file.create_group("h5md"), _user())
+        write_header(file.create_group("h5md"), current_user())
         parameters = file.create_group("parameters")
-        _string(parameters, "scene.yaml", scene_yaml(spec.scene))
-        stamp_provenance(_string(parameters, "sweep.yaml", spec.definition()))
+        write_string(parameters, "scene.yaml", scene_yaml(spec.scene))
+        stamp_provenance(write_string(parameters, "sweep.yaml", spec.definition()))
         if spec.source is not None:
-            _string(parameters, "source.yaml", spec.source)
+            write_string(parameters, "source.yaml", spec.source)
         group = file.create_group("sweep")
         group.attrs.update(
             mode=spec.mode,
@@ -84,7 +79,9 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
         axes = group.create_group("axes")
         for axis in spec.axes:
             axes.create_dataset(axis.path, data=axis.values)
-        _column(group, "index", np.int64, rows_per_chunk).attrs["description"] = "flat index (C order of shape) of each row's point"
+        _column(group, "index", np.int64, rows_per_chunk).attrs["description"] = (
+            "flat index (C order of shape) of each row's point"
+        )
         params = group.create_group("params")
         for axis in spec.axes:
             _column(params, axis.path, axis.values.dtype, rows_per_chunk)
@@ -97,11 +94,9 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
 
 
 def _column(group: h5py.Group, name: str, dtype, rows_per_chunk: int) -> h5py.Dataset:
-    return group.create_dataset(name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(rows_per_chunk,), **_COMPRESSION)
-
-
-def _string(group: h5py.Group, name: str, text: str) -> h5py.Dataset:
-    return group.create_dataset(name, data=text, dtype=h5py.string_dtype())
+    return group.create_dataset(
+        name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(rows_per_chunk,), **_COMPRESSION
+    )
 
 
 def _datasets(group: h5py.Group):
@@ -116,8 +111,11 @@ def append_chunk(path: Path, points: np.ndarray, params: dict, results: dict) ->
         group = file["sweep"]
         start = int(group.attrs["rows"])
         stop = start + len(points)
-        columns = {"index": points, **{f"params/{p}": v[points] for p, v in params.items()},
-                   **{f"results/{n}": v for n, v in results.items()}}
+        columns = {
+            "index": points,
+            **{f"params/{p}": v[points] for p, v in params.items()},
+            **{f"results/{n}": v for n, v in results.items()},
+        }
         for name, values in columns.items():
             dataset = group[name]
             dataset.resize((stop,))
@@ -134,14 +132,16 @@ def set_attributes(path: Path, **attributes) -> None:
 
 
 @contextmanager
-def _open(path: Path, mode: str = "r"):
+def _open_sweep(path: Path, mode: str = "r"):
     path = Path(path)
     if not path.is_file():
         raise SweepError([("", f"no such file: {path}")])
     try:
         file = h5py.File(path, mode)
     except OSError as error:
-        raise SweepError([("", f"{path} is not a readable HDF5 file ({error}); remove it or pass --overwrite")]) from None
+        raise SweepError(
+            [("", f"{path} is not a readable HDF5 file ({error}); remove it or pass --overwrite")]
+        ) from None
     with file:
         if "sweep" not in file or "parameters/sweep.yaml" not in file:
             raise SweepError([("", f"{path} is not an impact sweep file (no sweep group or parameters/sweep.yaml)")])
@@ -150,10 +150,10 @@ def _open(path: Path, mode: str = "r"):
 
 def state(path: Path) -> dict:
     """What a sweep file holds: definition, rows, expected, complete, chunk, share."""
-    with _open(path) as file:
+    with _open_sweep(path) as file:
         group = file["sweep"]
         return {
-            "definition": file["parameters/sweep.yaml"].asstr()[()],
+            "definition": read_string(file["parameters/sweep.yaml"]),
             "rows": int(group.attrs["rows"]),
             "expected": int(group.attrs["expected"]),
             "complete": bool(group.attrs["complete"]),
@@ -164,7 +164,7 @@ def state(path: Path) -> dict:
 
 def truncate(path: Path) -> int:
     """Drop rows beyond `rows` (a write cut short); returns `rows`."""
-    with _open(path, "r+") as file:
+    with _open_sweep(path, "r+") as file:
         group = file["sweep"]
         rows = int(group.attrs["rows"])
         for dataset in _datasets(group):
@@ -176,9 +176,11 @@ def truncate(path: Path) -> int:
 
 def read_spec(path: Path) -> SweepSpec:
     """The sweep definition stored in a file."""
-    with _open(path) as file:
-        return spec_from_definition(file["parameters/sweep.yaml"].asstr()[()],
-                                    file["parameters/source.yaml"].asstr()[()] if "parameters/source.yaml" in file else None)
+    with _open_sweep(path) as file:
+        return spec_from_definition(
+            read_string(file["parameters/sweep.yaml"]),
+            read_string(file["parameters/source.yaml"]) if "parameters/source.yaml" in file else None,
+        )
 
 
 def spec_from_definition(definition: str, source: str | None = None) -> SweepSpec:
@@ -200,7 +202,7 @@ def read_sweep(path: Path) -> SweepResult:
     """A stored sweep (or shard) as a SweepResult in the sweep's shape; points not in the file
     have status -1 and NaN results. `stats` holds the file's attributes (rows, complete, ...)."""
     spec = read_spec(path)
-    with _open(path) as file:
+    with _open_sweep(path) as file:
         index, _, stored = _rows(file)
         attributes = {key: _plain(value) for key, value in file["sweep"].attrs.items()}
     results = empty_results(spec.size)
@@ -226,11 +228,12 @@ def merge(paths: list[Path], output: Path) -> SweepResult:
     states = [state(path) for path in paths]
     definition = states[0]["definition"]
     problems = []
-    for path, entry in zip(paths, states):
+    for path, entry in zip(paths, states, strict=True):
         if entry["definition"] != definition:
             problems.append((str(path), f"holds another sweep than {paths[0]} (its parameters/sweep.yaml differs)"))
         if not entry["complete"]:
-            problems.append((str(path), f"is not complete ({entry['rows']} of {entry['expected']} points); run its process again to resume it"))
+            done = f"{entry['rows']} of {entry['expected']} points"
+            problems.append((str(path), f"is not complete ({done}); run its process again to resume it"))
     counts = {entry["share"][1] for entry in states}
     indices = sorted(entry["share"][0] for entry in states)
     if len(counts) > 1:
@@ -239,14 +242,16 @@ def merge(paths: list[Path], output: Path) -> SweepResult:
         expected = states[0]["share"][1]
         missing = sorted(set(range(expected)) - set(indices))
         duplicated = sorted({i for i in indices if indices.count(i) > 1})
-        detail = (f"missing process(es) {missing}" if missing else "") + (f" duplicated process(es) {duplicated}" if duplicated else "")
+        detail = (f"missing process(es) {missing}" if missing else "") + (
+            f" duplicated process(es) {duplicated}" if duplicated else ""
+        )
         problems.append(("SHARD.h5", f"expected the shards of all {expected} processes: {detail.strip()}"))
     if problems:
         raise SweepError(problems)
     spec = read_spec(paths[0])
     parts = []
     for path in paths:
-        with _open(path) as file:
+        with _open_sweep(path) as file:
             parts.append(_rows(file))
     index = np.concatenate([part[0] for part in parts])
     if len(index) != spec.size or len(np.unique(index)) != spec.size:
@@ -266,118 +271,3 @@ def merge(paths: list[Path], output: Path) -> SweepResult:
     for name in RESULTS:
         flat[name][points] = results[name]
     return SweepResult.from_flat(spec, plan.params, flat, {"points": spec.size, "merged_from": [str(p) for p in paths]})
-
-
-# --- the journal and the writer ----------------------------------------------------------------
-
-
-def journal_folder(path: Path) -> Path:
-    path = Path(path)
-    return path.with_name(f".{path.stem}.chunks")
-
-
-class SweepWriter:
-    """Appends finished chunks to a sweep file through the journal (see the module doc)."""
-
-    def __init__(self, path: Path, plan, rows: int):
-        self.path = Path(path)
-        self.plan = plan
-        self.rows = rows
-        self.journal = journal_folder(self.path)
-
-    @classmethod
-    def start(cls, path: Path, spec: SweepSpec, plan, *, expected: int, chunk: int, share=(0, 1)) -> "SweepWriter":
-        """A fresh sweep file and journal (removing old ones)."""
-        path = Path(path)
-        discard(path)
-        journal = journal_folder(path)
-        journal.mkdir()
-        record = {"definition": spec.definition(), "chunk": int(chunk), "share": [int(share[0]), int(share[1])]}
-        _write_atomic(journal / "state.yaml", yaml.safe_dump(record, sort_keys=False).encode())
-        create_sweep_file(path, spec, expected=expected, chunk=chunk, share=share)
-        return cls(path, plan, 0)
-
-    @classmethod
-    def resume(cls, path: Path, spec: SweepSpec, plan, *, expected: int, chunk: int, share=(0, 1)) -> "SweepWriter":
-        """Continue a partial sweep: recover rows from the journal, or rebuild from it."""
-        path = Path(path)
-        journal = journal_folder(path)
-        chunks = _journal_chunks(journal)
-        try:
-            rows = truncate(path)
-        except SweepError:
-            create_sweep_file(path, spec, expected=expected, chunk=chunk, share=share)  # rebuilt from the journal
-            rows = 0
-        writer = cls(path, plan, rows)
-        for start, file in chunks:
-            if start >= writer.rows:
-                with np.load(file) as stored:
-                    points = stored["index"]
-                    writer._append_h5(points, {name: stored[name] for name in RESULTS})
-        return writer
-
-    def append(self, points: np.ndarray, results: dict) -> None:
-        _write_atomic(self.journal / f"{self.rows:012d}.npz", _npz_bytes(points, results))
-        self._append_h5(points, results)
-
-    def _append_h5(self, points, results) -> None:
-        self.rows = append_chunk(self.path, points, self.plan.params, results)
-
-    def finish(self) -> None:
-        """Once complete, the journal goes."""
-        if state(self.path)["complete"]:
-            shutil.rmtree(self.journal, ignore_errors=True)
-
-
-def discard(path: Path) -> None:
-    """Remove a sweep file and its journal."""
-    Path(path).unlink(missing_ok=True)
-    shutil.rmtree(journal_folder(path), ignore_errors=True)
-
-
-def journal_state(path: Path) -> dict | None:
-    """What the journal of a sweep file was started for: definition, chunk, share (None: no
-    journal), and the rows it holds."""
-    file = journal_folder(path) / "state.yaml"
-    if not file.is_file():
-        return None
-    record = yaml.safe_load(file.read_text())
-    return {"definition": record["definition"], "chunk": int(record["chunk"]), "share": tuple(record["share"]),
-            "rows": journal_rows(path)}
-
-
-def journal_rows(path: Path) -> int:
-    return sum(_rows_of(file) for _, file in _journal_chunks(journal_folder(path)))
-
-
-def _rows_of(file: Path) -> int:
-    with np.load(file) as stored:
-        return len(stored["index"])
-
-
-def _journal_chunks(journal: Path) -> list[tuple[int, Path]]:
-    """(first row, file) of the contiguous journal chunks from row 0."""
-    if not journal.is_dir():
-        return []
-    found = sorted((int(file.stem), file) for file in journal.glob("*.npz") if file.stem.isdigit())
-    chunks, expected = [], 0
-    for start, file in found:
-        if start != expected:
-            break
-        chunks.append((start, file))
-        expected = start + _rows_of(file)
-    return chunks
-
-
-def _npz_bytes(points, results) -> bytes:
-    import io
-
-    buffer = io.BytesIO()
-    np.savez(buffer, index=points, **results)
-    return buffer.getvalue()
-
-
-def _write_atomic(path: Path, data: bytes) -> None:
-    temporary = path.with_name(f".{path.name}.tmp")
-    temporary.write_bytes(data)
-    os.replace(temporary, path)

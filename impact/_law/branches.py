@@ -13,10 +13,14 @@ Cascades: when the edge spring at a turning point lets go (detach) or the next o
 `cascade_in` and `cascade_out` find it.
 """
 
+from dataclasses import dataclass
+
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.search import bisect
+from ..profiles import Profile, Tabulated, WavyParaboloid
 from .law import ContactLaw
 
 # The search grid starts at the smaller of 1e-8 (scaled: the adhesion scale is 1) and
@@ -35,6 +39,25 @@ _BISECTION_STEPS = 64
 _TABLE_BISECTION_STEPS = 32  # the table only starts Newton: 2^-32 of a segment is plenty
 _SAFEGUARDED_STEPS = 80
 _NEWTON_STEPS = 3
+
+
+@dataclass(frozen=True)
+class Tabulation:
+    """How the edge functions are searched for turning points (static: changing it recompiles)."""
+
+    max_turns: int = 4  # turning points an edge function may have
+    turn_grid: int = 384  # points searched for them
+    tip_search: bool = True  # also look below the grid for the attach edge's turn (0 < Δγa < Δγ)
+
+    @staticmethod
+    def for_profile(profile: Profile, tip_search: bool = True) -> "Tabulation":
+        """The default, or more turning points and a finer search for the profiles whose edge
+        functions may turn many times (wavy and tabulated bodies)."""
+        turns, grid = _MANY_TURNS.get(type(profile), (4, 384))
+        return Tabulation(max_turns=turns, turn_grid=grid, tip_search=tip_search)
+
+
+_MANY_TURNS = {WavyParaboloid: (64, 8192), Tabulated: (32, 4096)}
 
 
 class Branch(eqx.Module):
@@ -164,13 +187,12 @@ def previous_rising(nodes, levels, increasing, start, level):
     return candidate.shape[0] - 1 - jnp.argmax(candidate[::-1]), ~jnp.any(candidate)
 
 
-def build_branch(
-    law: ContactLaw, coefficient, top, max_turns: int, grid_size: int, table_size: int, tip_search: bool = True
-) -> Branch:
+def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, table_size: int) -> Branch:
     """Find the turning points of h on (0, top]; tabulate its increasing segments if
     `table_size` > 0. The search grid is a third logarithmic, two thirds uniform; with
-    `tip_search` it also brackets a turn from falling to rising below the grid (an attach edge
-    with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of decades down)."""
+    `tabulation.tip_search` it also brackets a turn from falling to rising below the grid (an
+    attach edge with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of decades down)."""
+    max_turns, grid_size, tip_search = tabulation.max_turns, tabulation.turn_grid, tabulation.tip_search
 
     def slope(x):
         return law.edge_slope(x, coefficient)
@@ -211,14 +233,8 @@ def sign_changes(slope, grid, rising, max_turns: int):
     count = jnp.sum(change)
     (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
 
-    def refine(_, bracket):
-        lo, hi = bracket
-        mid = 0.5 * (lo + hi)
-        signs = slope(jnp.stack([lo, mid])) > 0.0
-        same = signs[1] == signs[0]
-        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
-
-    lo, hi = jax.lax.fori_loop(0, _BISECTION_STEPS, refine, (grid[index], grid[index + 1]))
+    rising_below = rising[index]  # the lower end keeps its sign: bisect towards the other one
+    lo, hi = bisect(lambda x: (slope(x) > 0.0) == rising_below, grid[index], grid[index + 1], _BISECTION_STEPS)
     return 0.5 * (lo + hi), jnp.arange(max_turns) < count, count
 
 
@@ -228,15 +244,12 @@ def _tip_turn_bracket(slope, lower, upper):
     without that term) or rise at the upper. `lower` is the smallest radius whose SI value is
     a normal float: below it g' underflows."""
     turns = (slope(lower) < 0.0) & (slope(upper) > 0.0)
-
-    def step(_, bracket):
-        lo, hi = bracket
-        mid = jnp.sqrt(lo) * jnp.sqrt(hi)
-        falling = slope(mid) <= 0.0
-        return jnp.where(falling, mid, lo), jnp.where(falling, hi, mid)
-
-    lo, hi = jax.lax.fori_loop(0, _TIP_BISECTION_STEPS, step, (lower, upper))
+    lo, hi = bisect(lambda x: slope(x) <= 0.0, lower, upper, _TIP_BISECTION_STEPS, midpoint=_geometric_mean)
     return jnp.where(turns, lo, upper), jnp.where(turns, hi, upper)
+
+
+def _geometric_mean(lower, upper):
+    return jnp.sqrt(lower) * jnp.sqrt(upper)
 
 
 def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_size):
@@ -244,14 +257,8 @@ def _tabulate(law: ContactLaw, coefficient, nodes, levels, increasing, table_siz
     u = jnp.linspace(0.0, 1.0, table_size)
     targets = levels[:-1, None] + u[None, :] ** 2 * (levels[1:] - levels[:-1])[:, None]
 
-    def invert(_, bracket):
-        lo, hi = bracket
-        mid = 0.5 * (lo + hi)
-        below = law.edge(mid, coefficient) < targets
-        return jnp.where(below, mid, lo), jnp.where(below, hi, mid)
-
     lower = jnp.broadcast_to(nodes[:-1, None], targets.shape)
     upper = jnp.broadcast_to(nodes[1:, None], targets.shape)
-    lo, hi = jax.lax.fori_loop(0, _TABLE_BISECTION_STEPS, invert, (lower, upper))
+    lo, hi = bisect(lambda x: law.edge(x, coefficient) < targets, lower, upper, _TABLE_BISECTION_STEPS)
     table = jnp.where(increasing[:, None], 0.5 * (lo + hi), lower)
     return table.at[:, 0].set(nodes[:-1]).at[:, -1].set(jnp.where(increasing, nodes[1:], nodes[:-1]))

@@ -27,10 +27,13 @@ over y = cos φ ∈ [0, u], in y = u·t² (smooth for any n).
 import equinox as eqx
 import jax
 import jax.numpy as jnp
-import numpy as np
 
+from .._core.quadrature import gauss_legendre
+from .._core.search import bisect
+from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import next_rising, previous_rising, sign_changes
 from .law import ContactLaw
+from .scales import Scales
 
 _QUADRATURE_NODES = 32
 _RADIUS_NEWTON_STEPS = 12
@@ -43,9 +46,15 @@ _CONTACT_POINTS = 640
 _TOP_MARGIN = 4.0
 
 
-def _gauss_legendre():
-    nodes, weights = np.polynomial.legendre.leggauss(_QUADRATURE_NODES)
-    return jnp.asarray(0.5 * (nodes + 1.0)), jnp.asarray(0.5 * weights)
+def degree_of(profile: Profile) -> jax.Array:
+    """n of a body f = c·rⁿ: the paraboloid (n = 2), the cone (n = 1) or a power law."""
+    if isinstance(profile, PowerLaw):
+        return jnp.asarray(profile.n)
+    if isinstance(profile, Paraboloid):
+        return jnp.asarray(2.0)
+    if isinstance(profile, Cone):
+        return jnp.asarray(1.0)
+    raise ValueError(f"Maugis–Dugdale adhesion needs a power-law body, not {type(profile).__name__}")
 
 
 class DugdaleLaw(eqx.Module):
@@ -55,6 +64,18 @@ class DugdaleLaw(eqx.Module):
     degree: jax.Array  # n
     stress: jax.Array  # σ̂ = σ0·ℓx/(E*·ℓz)
     range: jax.Array  # ĥ = h/ℓz
+
+    @staticmethod
+    def scaled(profile: Profile, scales: Scales, E_star, adhesive_stress, adhesion_range) -> "DugdaleLaw":
+        """The law of a power-law body with the stress σ0 (Pa) up to the range h (m), in the units
+        of `scales`."""
+        zero = jnp.zeros(())
+        return DugdaleLaw(
+            law=ContactLaw(profile, scales, zero, zero, False),
+            degree=degree_of(profile),
+            stress=adhesive_stress * scales.radial / (E_star * scales.normal),
+            range=adhesion_range / scales.normal,
+        )
 
     def g_unit(self):
         """C_g = ĝ(1)."""
@@ -73,7 +94,7 @@ class DugdaleLaw(eqx.Module):
     def shape_term(self, share):
         """P(p) of the range condition."""
         n, unit = self.degree, self.g_unit()
-        nodes, weights = _gauss_legendre()
+        nodes, weights = gauss_legendre(_QUADRATURE_NODES)
         ratio = 1.0 - share  # u = a/b
         opening = jnp.sqrt(share * (2.0 - share))  # √(1 − u²)
         angle = jnp.arctan2(opening, ratio)  # θ = arccos u
@@ -165,14 +186,7 @@ class DugdaleCurve(eqx.Module):
     def invert(self, law: DugdaleLaw, depth, segment):
         """s with d(s) = depth on a rising segment (clamped to it), by bisection."""
         lower, upper = self.nodes[segment], self.nodes[segment + 1]
-
-        def step(_, bracket):
-            lo, hi = bracket
-            mid = 0.5 * (lo + hi)
-            below = self.depth(law, mid) < depth
-            return jnp.where(below, mid, lo), jnp.where(below, hi, mid)
-
-        lo, hi = jax.lax.fori_loop(0, _INVERSION_STEPS, step, (lower, upper))
+        lo, hi = bisect(lambda s: self.depth(law, s) < depth, lower, upper, _INVERSION_STEPS)
         return 0.5 * (lo + hi)
 
     def cascade_out(self, law: DugdaleLaw, start, depth):

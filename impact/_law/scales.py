@@ -11,6 +11,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.search import log_sign_change
 from ..profiles import Profile
 
 _BISECTION_STEPS = 100
@@ -39,25 +40,6 @@ class Scales(eqx.Module):
         return self.force * self.normal
 
 
-def _log_bisect(excess, lower, upper):
-    """Crossing of `excess` between two radii, bisected in log x: (radius, found).
-
-    Returns `upper` (and found = False) when `excess` does not change sign on the bracket.
-    """
-    log_lo, log_hi = jnp.log(lower), jnp.log(upper)
-    sign_lo = jnp.sign(excess(lower))
-    crosses = sign_lo != jnp.sign(excess(upper))
-
-    def step(_, bracket):
-        lo, hi = bracket
-        mid = 0.5 * (lo + hi)
-        same = jnp.sign(excess(jnp.exp(mid))) == sign_lo
-        return jnp.where(same, mid, lo), jnp.where(same, hi, mid)
-
-    log_lo, log_hi = jax.lax.fori_loop(0, _BISECTION_STEPS, step, (log_lo, log_hi))
-    return jnp.where(crosses, jnp.exp(0.5 * (log_lo + log_hi)), upper), crosses
-
-
 def _bracket(profile: Profile):
     reference = profile.radius_scale()
     lower = jnp.maximum(reference * 10.0 ** (-_BRACKET_DECADES), _SMALLEST)
@@ -76,7 +58,7 @@ def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, t
         return jnp.sqrt(2.0 * jnp.pi * x * approach_work_of_adhesion / E_star)
 
     lower, upper = _bracket(profile)
-    radial, crosses = _log_bisect(lambda x: profile.g(x) - elongation(x), lower, upper)
+    radial, crosses = log_sign_change(lambda x: profile.g(x) - elongation(x), lower, upper, _BISECTION_STEPS)
     # A jump-in needs h = g − Δl below zero at the bracket's lower end (for n < 1/2 the crossing
     # is the far zero of h instead; for a tiny Δγa the jump-in lies below the bracket); it
     # reaches the crossing, or the wall of a body that h stays below (the flat punch).
@@ -92,7 +74,7 @@ def energy_scales(profile: Profile, E_star, mass, touch_velocity) -> Scales:
     """Units from the impact energy: E*·ℓx·g(ℓx)² = ½·m·v²."""
     energy = 0.5 * mass * touch_velocity**2
     lower, upper = _bracket(profile)
-    radial, _ = _log_bisect(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper)
+    radial, _ = log_sign_change(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper, _BISECTION_STEPS)
     normal = jnp.sqrt(energy / (E_star * radial))
     return _complete(radial, normal, E_star, mass)
 

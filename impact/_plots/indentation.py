@@ -1,4 +1,4 @@
-"""Figures of one indentation test, drawn on matplotlib's Agg canvas (no pyplot, no display).
+"""Figures of one indentation test (matplotlib's Agg canvas, imported only where a figure is drawn).
 
 `force_indentation_figure`: the force–indentation curve in SI, the program's path (jumps as
 straight segments) over the whole equilibrium curve d(a) = g(a) − Δl(a), F(a) = 2E*(a·d − G(a)),
@@ -9,12 +9,15 @@ against â, and F̂ against d̂, in units of the pull-off |F_c|, |d_c| and a_c o
 """
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from .._run.indentation import IndentationResult
-from .run import si_prefix, write_figures
+from .figures import si_prefix, write_figures
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 FIGURES = ("force_indentation.png", "normalized.png")
 _MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "reversal": "^"}
@@ -22,7 +25,9 @@ _MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "rev
 
 def save_indentation_figures(result: IndentationResult, folder: str | Path) -> list[Path]:
     """Write the two figures into `folder` (atomically); return their paths."""
-    return write_figures(folder, zip(FIGURES, (force_indentation_figure(result), normalized_figure(result))))
+    return write_figures(
+        folder, zip(FIGURES, (force_indentation_figure(result), normalized_figure(result)), strict=True)
+    )
 
 
 def _title(result: IndentationResult) -> str:
@@ -39,7 +44,8 @@ def equilibrium(result: IndentationResult, points: int = 800):
     scene = result.scene
     profile = scene.body.profile.build()
     modulus = scene.material.effective_modulus
-    work = scene.effects.adhesion.work_of_adhesion if scene.adhesive else 0.0
+    adhesion = scene.active_adhesion
+    work = adhesion.work_of_adhesion if adhesion is not None else 0.0
     radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
     d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work / modulus)
     force = 2 * modulus * (radius * d - np.asarray(profile.G(radius)))
@@ -47,8 +53,10 @@ def equilibrium(result: IndentationResult, points: int = 800):
     return radius[finite], d[finite], force[finite]
 
 
-def force_indentation_figure(result: IndentationResult) -> Figure:
+def force_indentation_figure(result: IndentationResult) -> "Figure":
     """F against d in SI: the equilibrium curve (dashed) and the program's path."""
+    from matplotlib.figure import Figure
+
     figure = Figure(figsize=(7, 5.5), layout="constrained")
     axes = figure.subplots()
     length_factor, length_prefix = si_prefix(np.max(np.abs(result.indentation), initial=0.0))
@@ -59,8 +67,15 @@ def force_indentation_figure(result: IndentationResult) -> Figure:
     for kind, marker in _MARKERS.items():
         points = [index for index, event in result.events if event == kind]
         if points:
-            axes.plot(result.indentation[points] * length_factor, result.force[points] * force_factor, marker,
-                      color="k", mfc="none", ms=6, label=kind.replace("_", " "))
+            axes.plot(
+                result.indentation[points] * length_factor,
+                result.force[points] * force_factor,
+                marker,
+                color="k",
+                mfc="none",
+                ms=6,
+                label=kind.replace("_", " "),
+            )
     axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
     axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
     axes.grid(alpha=0.3)
@@ -71,8 +86,10 @@ def force_indentation_figure(result: IndentationResult) -> Figure:
     return figure
 
 
-def normalized_figure(result: IndentationResult) -> Figure:
+def normalized_figure(result: IndentationResult) -> "Figure":
     """â = a/a_c, d̂ = d/|d_c|, F̂ = F/|F_c| with the run's pull-off: F̂(â), d̂(â) and F̂(d̂)."""
+    from matplotlib.figure import Figure
+
     figure = Figure(figsize=(11, 4.8), layout="constrained")
     left, right = figure.subplots(1, 2)
     pull_off = result.pull_off

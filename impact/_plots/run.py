@@ -1,4 +1,4 @@
-"""Figures of one run, drawn on matplotlib's Agg canvas (no pyplot, no display, no global state).
+"""Figures of one impact run (matplotlib's Agg canvas, imported only where a figure is drawn).
 
 `time_figure`: indentation and force against time, with the events marked.
 `force_indentation_figure`: the simulated force–indentation loop beside the closed-form
@@ -6,19 +6,19 @@ equilibrium curves of the profile, d(a) = g(a) − √(2πaΔγ/E*), F(a) = 2E*(
 (JKR for adhesion, Hertz or the non-adhesive MDR curve for Δγ = 0).
 """
 
-import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.figure import Figure
 
-from .._io.run import atomic_path
+from .._run.impacts import Result
 from .._scene.scene import Scene
-from .._run.simulate import Result
+from .figures import si_prefix, write_figures
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 FIGURES = ("time.png", "force_indentation.png")
-
-_PREFIXES = {-18: "a", -15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
 _EVENT_MARKERS = {
     "touch": "o",
     "max_indentation": "^",
@@ -31,33 +31,15 @@ _EVENT_MARKERS = {
 }
 
 
-def si_prefix(magnitude: float) -> tuple[float, str]:
-    """(factor, prefix) that brings |magnitude| into [1, 1000): 3.9e-8 → (1e9, "n")."""
-    if not math.isfinite(magnitude) or magnitude == 0:
-        return 1.0, ""
-    exponent = 3 * math.floor(math.log10(abs(magnitude)) / 3)
-    exponent = min(max(exponent, min(_PREFIXES)), max(_PREFIXES))
-    return 10.0**-exponent, _PREFIXES[exponent]
-
-
 def save_figures(result: Result, folder: str | Path) -> list[Path]:
     """Write `time.png` and `force_indentation.png` into `folder` (atomically); return their paths."""
-    return write_figures(folder, zip(FIGURES, (time_figure(result), force_indentation_figure(result))))
+    return write_figures(folder, zip(FIGURES, (time_figure(result), force_indentation_figure(result)), strict=True))
 
 
-def write_figures(folder: str | Path, named) -> list[Path]:
-    """Write each (file name, figure) into `folder` at 150 dpi, atomically; return the paths."""
-    paths = []
-    for name, figure in named:
-        path = Path(folder) / name
-        with atomic_path(path) as temporary:
-            figure.savefig(temporary, dpi=150)
-        paths.append(path)
-    return paths
-
-
-def time_figure(result: Result) -> Figure:
+def time_figure(result: Result) -> "Figure":
     """Indentation (top) and force (bottom) against time; events marked on the indentation."""
+    from matplotlib.figure import Figure
+
     figure = Figure(figsize=(7.5, 6), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True)
     time_factor, time_prefix = si_prefix(np.max(np.abs(result.t), initial=0.0))
@@ -82,8 +64,10 @@ def time_figure(result: Result) -> Figure:
     return figure
 
 
-def force_indentation_figure(result: Result) -> Figure:
+def force_indentation_figure(result: Result) -> "Figure":
     """The simulated force–indentation loop (contacts only) and the closed-form curves."""
+    from matplotlib.figure import Figure
+
     figure = Figure(figsize=(7, 5.5), layout="constrained")
     axes = figure.subplots()
     contact = _in_contact(result.contact_radius)
@@ -119,9 +103,9 @@ def equilibrium_curve(scene: Scene, work_of_adhesion: float, largest_radius: flo
 
 def _closed_form_curves(scene: Scene, largest_radius: float):
     """(label, (d, F), line style) of the unloading curve and, if it differs, the loading one."""
-    adhesion = scene.effects.adhesion
-    unloading = adhesion.work_of_adhesion if scene.adhesive else 0.0
-    loading = adhesion.approach if scene.adhesive else 0.0
+    adhesion = scene.active_adhesion
+    unloading = adhesion.work_of_adhesion if adhesion is not None else 0.0
+    loading = adhesion.approach if adhesion is not None else 0.0
     curves = [(_curve_name(scene, unloading), equilibrium_curve(scene, unloading, largest_radius), "--")]
     if loading != unloading:
         name = f"loading: {_curve_name(scene, loading)} (Δγa)"

@@ -13,8 +13,9 @@ import numpy as np
 
 from .._integrate.codes import RESULT_CODES
 from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, march
+from .._law.branches import Tabulation
 from .._scene.scene import Scene
-from .simulate import _MANY_TURNS  # profiles whose edges turn many times: more turning points
+from .parameters import adhesion_for
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,7 @@ _LEGS = 8  # programs of up to 4 cycles share one compilation (padded legs are n
 def legs(scene: Scene) -> tuple[np.ndarray, np.ndarray, int]:
     """(directions, targets in SI, count) of the program: +1 load to the peak, −1 unload
     (−inf: to pull-off); padded to a power of two (at least 8) beyond `count`."""
-    program = scene.program
+    program = scene.loading
     directions, targets = [], []
     for cycle in range(program.cycles):
         last = cycle == program.cycles - 1
@@ -89,13 +90,11 @@ def legs(scene: Scene) -> tuple[np.ndarray, np.ndarray, int]:
 
 def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
     """The static choices of an indentation scene (changing them recompiles)."""
-    max_turns, turn_grid = _MANY_TURNS.get(scene.body.profile.shape, (4, 384))
     springs = scene.contact.springs
     return QuasiStaticNumerics(
         adhesive=scene.adhesive,
         springs=None if springs == "continuum" else spring_capacity(springs),
-        max_turns=max_turns,
-        turn_grid=turn_grid,
+        tabulation=Tabulation.for_profile(scene.body.profile.build()),
     )
 
 
@@ -107,19 +106,17 @@ def spring_capacity(count: int) -> int:
 
 def indentation_loading(scene: Scene) -> Loading:
     """The traced SI parameters of an indentation scene."""
-    adhesion = scene.effects.adhesion
     directions, targets, count = legs(scene)
     springs = scene.contact.springs
     return Loading(
         profile=scene.body.profile.build(),
         E_star=jnp.asarray(scene.material.effective_modulus, jnp.float64),
-        work_of_adhesion=jnp.asarray(adhesion.work_of_adhesion if scene.adhesive else 0.0, jnp.float64),
-        approach_work_of_adhesion=jnp.asarray(adhesion.approach if scene.adhesive else 0.0, jnp.float64),
+        adhesion=adhesion_for(scene),
         force_control=jnp.asarray(scene.control == "force"),
         directions=jnp.asarray(directions),
         targets=jnp.asarray(targets, jnp.float64),
         legs=jnp.asarray(count),
-        peak=jnp.asarray(scene.program.peak, jnp.float64),
+        peak=jnp.asarray(scene.loading.peak, jnp.float64),
         spring_length=jnp.asarray(np.nan if scene.contact.length is None else scene.contact.length, jnp.float64),
         spring_count=jnp.asarray(0 if springs == "continuum" else springs),
     )

@@ -7,8 +7,10 @@ discriminated union to use as a field type, e.g. `profile: ProfileSpec`.
 
 import abc
 import math
-from typing import Annotated, Literal, Union
+from itertools import pairwise
+from typing import Annotated, Any, Literal
 
+import numpy as np
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 from .. import profiles
@@ -55,11 +57,11 @@ Number = Annotated[float, BeforeValidator(_number), Field(allow_inf_nan=False)]
 Angle = Annotated[Number, AfterValidator(_cone_angle)]
 
 
-def _length(meaning: str) -> object:
+def _length(meaning: str) -> Any:
     return Field(gt=0, description=f"{meaning} (m), > 0")
 
 
-def _angle() -> object:
+def _angle() -> Any:
     return Field(description="slope angle of the cone flank against the contact plane (rad), in (0, pi/2)")
 
 
@@ -253,7 +255,7 @@ class TabulatedSpec(_Spec):
             raise ValueError("tabulated r needs at least 2 points")
         if r[0] != 0:
             raise ValueError("tabulated r must start at r = 0")
-        if any(b <= a for a, b in zip(r, r[1:])):
+        if any(b <= a for a, b in pairwise(r)):
             raise ValueError("tabulated r must be strictly increasing")
         return r
 
@@ -273,27 +275,25 @@ class TabulatedSpec(_Spec):
         return self
 
     def build(self) -> profiles.Tabulated:
-        return profiles.Tabulated(r=self.r, f=self.f)
+        return profiles.Tabulated(r=np.asarray(self.r, float), f=np.asarray(self.f, float))
 
 
 ProfileSpec = Annotated[
-    Union[
-        ParaboloidSpec,
-        SphereSpec,
-        EllipsoidSpec,
-        ConeSpec,
-        PowerLawSpec,
-        FlatPunchSpec,
-        TruncatedConeSpec,
-        TruncatedParaboloidSpec,
-        CappedFlatPunchSpec,
-        CappedConeSpec,
-        CappedParaboloidSpec,
-        RoundedFlatPunchSpec,
-        WavyParaboloidSpec,
-        ConstantStressSpec,
-        TabulatedSpec,
-    ],
+    ParaboloidSpec
+    | SphereSpec
+    | EllipsoidSpec
+    | ConeSpec
+    | PowerLawSpec
+    | FlatPunchSpec
+    | TruncatedConeSpec
+    | TruncatedParaboloidSpec
+    | CappedFlatPunchSpec
+    | CappedConeSpec
+    | CappedParaboloidSpec
+    | RoundedFlatPunchSpec
+    | WavyParaboloidSpec
+    | ConstantStressSpec
+    | TabulatedSpec,
     Field(discriminator="shape"),
 ]
 """Any body profile of the scene file, selected by its `shape` key."""

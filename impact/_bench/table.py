@@ -1,0 +1,191 @@
+"""table.md of a benchmark run: what each digit of accuracy costs, then every measurement."""
+
+import numpy as np
+
+
+def table_markdown(data: dict) -> str:
+    """table.md: the cost of each digit, then every measurement (times in s, µs or ms)."""
+    lines = _summary(data) + _continuum(data) + _spring_array(data["springs"]) + _verlet(data["springs"])
+    lines += _scipy(data["scipy"])
+    return "\n".join(lines) + "\n"
+
+
+def _ms(seconds: float) -> str:
+    if not np.isfinite(seconds):
+        return "—"
+    if seconds >= 1.0:
+        return f"{seconds:.2f} s"
+    if seconds >= 1e-3:
+        return f"{seconds * 1e3:.3g} ms"
+    return f"{seconds * 1e6:.3g} µs"
+
+
+def _err(value: float) -> str:
+    return "failed" if not np.isfinite(value) else f"{value:.1e}"
+
+
+def _ratio(numerator: float, denominator: float) -> str:
+    if not (np.isfinite(numerator) and np.isfinite(denominator)) or denominator <= 0:
+        return "—"
+    return f"{numerator / denominator:.0f}×" if numerator / denominator >= 10 else f"{numerator / denominator:.1f}×"
+
+
+def _summary(data: dict) -> list[str]:
+    """The title, the provenance and the cheapest setting of each method at each target error."""
+    p, cases, equal = data["provenance"], data["cases"], data["equal"]
+    lines = [
+        f"# Work-precision benchmark ({p['plan']} run)",
+        "",
+        f"{p['date']}; impact {p['impact']}, jax {p['jax']}, diffrax {p['diffrax']}, scipy {p['scipy']}, "
+        f"Python {p['python']}; {p['machine']}; float64. Times are the best of a few repeats.",
+        "",
+        f"Error: max |e − e_ref| over {len(cases)} reference cases ({', '.join(c.name for c in cases)}); "
+        f"the spring array rows are Thornton–Ning at 2·v_s only.",
+        "",
+        "## What a digit costs: the cheapest setting that reaches each error",
+        "",
+        "A setting counts when it and every tighter setting of the same method reach the error "
+        "(no credit for a lucky point of a zigzagging error).",
+        "",
+        "| error ≤ | continuum, single | continuum, batched (per impact) | scipy solve_ivp | springs, exact "
+        "| springs, Verlet | scipy ÷ single | scipy ÷ batched |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    cost = equal["cost"]
+    for t, target in enumerate(equal["targets"]):
+        single = cost["continuum, single"][t]
+        batched = cost["continuum, batched"][t]
+        base = cost.get("scipy solve_ivp", np.full(len(equal["targets"]), np.nan))[t]
+        solver = equal["best_solver"][float(target)]
+        lines.append(
+            f"| {target:.0e} | {_ms(single)}{f' ({solver})' if solver else ''} | {_ms(batched)} | {_ms(base)} | "
+            f"{_ms(cost['springs, exact'][t])} | {_ms(cost['springs, Verlet'][t])} | "
+            f"{_ratio(base, single)} | {_ratio(base, batched)} |"
+        )
+    return lines
+
+
+def _continuum(data: dict) -> list[str]:
+    """Every solver × rtol of the continuum law, its compile times and the check against `solve`."""
+    cont = data["continuum"]
+    lines = ["", "## Continuum law (diffrax): solver × rtol (atol = rtol/100, scaled units)", ""]
+    lines += [
+        "| solver | rtol | max error | steps per impact (accepted / rejected) | single impact | batched, per impact "
+        "| batch max error |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for solver, s in cont["solvers"].items():
+        for r, rtol in enumerate(cont["rtols"]):
+            failed = s["failures"][r]
+            error = (
+                _err(s["error_max"][r])
+                if not failed
+                else f"failed: {failed} ({s['error_max_solved'][r]:.1e} on the rest)"
+            )
+            batch_error = _err(s["batch_error"][r]) if np.isfinite(s["time_batch"][r]) else "—"
+            lines.append(
+                f"| {solver} | {rtol:.0e} | {error} | {np.mean(s['accepted'][r]):.0f} / "
+                f"{np.mean(s['rejected'][r]):.0f} | {_ms(s['time_single_mean'][r])} | "
+                f"{_ms(s['time_batch'][r])} | {batch_error} |"
+            )
+    lines += ["", "Compile times (trace + XLA compile, once per solver for the whole rtol sweep):", ""]
+    for solver, s in cont["solvers"].items():
+        groups = ", ".join(f"{g} {t:.1f} s" for g, t in s["compile_single"].items())
+        lines.append(
+            f"- {solver}: single impact {groups}; batch of {data['plan'].batch_size} {s['compile_batch']:.1f} s"
+        )
+    return lines + _solve_check(cont)
+
+
+def _solve_check(cont: dict) -> list[str]:
+    """`solve` with static tolerances beside the traced-rtol sweep (only where it was run)."""
+    checks = [(solver, s) for solver, s in cont["solvers"].items() if "check_rtol" in s]
+    if not checks:
+        return []
+    lines = [
+        "",
+        "Check against `impact._run.impacts.solve` itself (static tolerances, own compile), Thornton–Ning 2·v_s:",
+        "",
+        "| solver | rtol | solve: compile | solve: run | traced-rtol run | same e |",
+        "|---|---|---|---|---|---|",
+    ]
+    for solver, s in checks:
+        for k, rtol in enumerate(s["check_rtol"]):
+            lines.append(
+                f"| {solver} | {rtol:.0e} | {s['check_compile'][k]:.1f} s | {_ms(s['check_time'][k])} | "
+                f"{_ms(s['check_time_traced'][k])} | {'yes' if s['check_same'][k] else 'no'} |"
+            )
+    return lines
+
+
+def _spring_array(springs: dict) -> list[str]:
+    """The exact event-driven stepper over N, and its time per spring event and memory."""
+    exact, cost = springs["exact"], springs["cost"]
+    lines = [
+        "",
+        f"## Spring array, exact event-driven stepper (spatial error; fitted order in N: {exact['order']:.2f})",
+        "",
+        "| N | e − e_TN | events | time | compile |",
+        "|---|---|---|---|---|",
+    ]
+    for k, count in enumerate(exact["N"]):
+        lines.append(
+            f"| {count} | {exact['error'][k]:+.2e} | {exact['events'][k]} | {_ms(exact['time'][k])} | "
+            f"{exact['compile'][k]:.1f} s |"
+        )
+    lines += [
+        "",
+        "Time per spring event (a run's time over its events, fixed costs included) and the buffers of the "
+        "compiled program:",
+        "",
+    ]
+    for k, count in enumerate(cost["N"]):
+        lines.append(
+            f"- N = {count}: {cost['time_per_event'][k] * 1e6:.2f} µs per event ({cost['events'][k]} events), "
+            f"{cost['memory'][k] / 1024:.1f} kB"
+        )
+    return lines
+
+
+def _verlet(springs: dict) -> list[str]:
+    """Velocity Verlet over (N, Δt): its spatial and time-stepping errors and energy identity."""
+    lines = ["", "## Spring array, velocity Verlet (error = spatial part + time-stepping part)", ""]
+    for count, row in springs["verlet"].items():
+        lines.append(
+            f"- N = {count}: spatial part e_exact − e_TN = {row['spatial_error']:+.2e}; time-stepping part "
+            f"|e − e_exact| fitted order in Δt {row['order']:.2f}, bounded by {row['bound']:.2g}·Δt (scaled Δt)"
+        )
+    lines += [
+        "",
+        "| N | Δt (scaled) | Δt | steps | time | e − e_exact (time stepping) | e − e_TN (total) "
+        "| KE lost − ∮F dd, relative (= ⅛Δt²a₀²: Verlet's identity) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for count, row in springs["verlet"].items():
+        for k, step in enumerate(row["dt"]):
+            mismatch = (row["energy_lost"][k] - row["work"][k]) / row["energy_lost"][k]
+            lines.append(
+                f"| {count} | {step:.2e} | {row['dt_si'][k]:.2e} s | {row['steps'][k]} | {_ms(row['time'][k])} | "
+                f"{row['time_error'][k]:+.2e} | {row['total_error'][k]:+.2e} | {mismatch:+.1e} |"
+            )
+    return lines
+
+
+def _scipy(scipy_results: dict) -> list[str]:
+    """The solve_ivp baseline over method × rtol (absent when it was not run)."""
+    if not scipy_results:
+        return []
+    lines = [
+        "",
+        "## Baseline: scipy.integrate.solve_ivp, (d, v) in JKR units, a(d) by brentq in the right-hand side",
+        "",
+        "| method | rtol | max error | right-hand sides per impact | steps per impact | time per impact |",
+        "|---|---|---|---|---|---|",
+    ]
+    for method, s in scipy_results.items():
+        for r, rtol in enumerate(s["rtols"]):
+            lines.append(
+                f"| {method} | {rtol:.0e} | {_err(s['error_max'][r])} | {np.mean(s['nfev'][r]):.0f} | "
+                f"{np.mean(s['steps'][r]):.0f} | {_ms(s['time_mean'][r])} |"
+            )
+    return lines

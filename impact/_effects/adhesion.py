@@ -1,0 +1,42 @@
+"""Adhesion of the interface: the work of adhesion, its approach value and, for Maugis–Dugdale,
+the adhesive stress.
+
+Zero range (JKR) by the rule of Heß (3.26): the edge spring at x lets go at the elongation
+Δl(x) = √(2πxΔγ/E*), and on approach the next spring attaches once its gap closes to
+√(2πxΔγa/E*), 0 ≤ Δγa ≤ Δγ (Δγa = Δγ: the reversible JKR law with its jump-in; Δγa = 0:
+attach on touch). Finite range (Maugis–Dugdale, §3.8): the stress σ0 acts up to the range
+h = Δγ/σ0 (3.4).
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._core.types import Parameter
+from .._law.scales import Scales
+
+
+class Adhesion(eqx.Module):
+    """Adhesion parameters (SI, traced: new values do not recompile)."""
+
+    work_of_adhesion: Parameter  # Δγ (J/m²): the Dupré work of separation
+    approach_work_of_adhesion: Parameter  # Δγa ≤ Δγ (J/m²): the JKR law's attachment on approach
+    adhesive_stress: Parameter  # σ0 (Pa) of Maugis–Dugdale adhesion; nan for the JKR law
+
+    @staticmethod
+    def none() -> "Adhesion":
+        """No adhesion (the effect switched off)."""
+        zero = jnp.zeros(())
+        return Adhesion(zero, zero, jnp.full((), jnp.nan))
+
+    @property
+    def adhesion_range(self) -> Parameter:
+        """h = Δγ/σ0 (m) of the Maugis–Dugdale stress (3.4)."""
+        return self.work_of_adhesion / self.adhesive_stress
+
+    def hess_coefficients(self, scales: Scales, E_star) -> tuple[jax.Array, jax.Array]:
+        """(λ, λa) of the scaled Heß rule: the edge spring at x̂ detaches at the elongation λ·√x̂
+        and the next one attaches at λa·√x̂, λa = λ·√(Δγa/Δγ) (3.26 in the units of `scales`)."""
+        detach = jnp.sqrt(2.0 * jnp.pi * scales.radial * self.work_of_adhesion / E_star) / scales.normal
+        attach = detach * jnp.sqrt(self.approach_work_of_adhesion / self.work_of_adhesion)
+        return detach, attach

@@ -1,0 +1,108 @@
+"""The integrator interface: every way of stepping an impact builds a scaled problem from the
+physics and integrates it, phase by phase, to an `Outcome`.
+
+An integrator is an `equinox.Module` whose fields are its settings (solver, tolerances, step).
+Its string and integer settings are static; its float settings are static too when given as
+Python floats (a new value recompiles) and traced when given as arrays (a benchmark sweeps them).
+"""
+
+import abc
+
+import diffrax as dfx
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._law.scales import Scales
+from .carry import Outcome
+from .problem import Options, Physics
+from .rootfind import BracketBisection
+
+# The diffrax solvers a scene may name for the adaptive integrators.
+SOLVERS = {
+    "tsit5": dfx.Tsit5,
+    "dopri5": dfx.Dopri5,
+    "dopri8": dfx.Dopri8,
+    "bosh3": dfx.Bosh3,
+    "heun": dfx.Heun,
+    "kvaerno3": dfx.Kvaerno3,
+    "kvaerno5": dfx.Kvaerno5,
+}
+
+# Events are located by bisection inside the step that crossed, to a bracket of
+# 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
+_ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
+
+
+class AbstractIntegrator(eqx.Module):
+    """Integrates one impact (possibly several bounces) from SI parameters to scaled results."""
+
+    @abc.abstractmethod
+    def build(self, physics: Physics, options: Options):
+        """The scaled problem (it has `.scales`, the SI values of its units)."""
+
+    @abc.abstractmethod
+    def integrate(self, problem, options: Options) -> Outcome:
+        """Run the problem to its outcome, in its scaled units."""
+
+    def solve(self, physics: Physics, options: Options) -> tuple[Scales, Outcome]:
+        """Scale, tabulate and integrate: (the units, the scaled outcome)."""
+        problem = self.build(physics, options)
+        return problem.scales, self.integrate(problem, options)
+
+
+class AbstractAdaptiveIntegrator(AbstractIntegrator):
+    """An adaptive diffrax solver over contact phases, each ended by a located event."""
+
+    method: str = eqx.field(default="tsit5", static=True)  # a key of SOLVERS
+    rtol: float | jax.Array = 1e-10
+    atol: float | jax.Array = 1e-12  # in scaled units
+    max_steps: int = eqx.field(default=4096, static=True)  # per phase
+
+    def __check_init__(self):
+        if self.method not in SOLVERS:
+            raise ValueError(f"unknown solver {self.method!r}; known: {', '.join(SOLVERS)}")
+
+    def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> dfx.Solution:
+        """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
+        upwards (located by bisection to a few ulps) or `horizon` is reached."""
+        return dfx.diffeqsolve(
+            dfx.ODETerm(vector_field),
+            SOLVERS[self.method](),
+            t0=0.0,
+            t1=horizon,
+            dt0=None,
+            y0=y0,
+            args=args,
+            saveat=dfx.SaveAt(t1=True, dense=dense),
+            stepsize_controller=dfx.PIDController(rtol=self.rtol, atol=self.atol),
+            event=dfx.Event(
+                first_event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True
+            ),
+            max_steps=self.max_steps,
+            throw=False,
+        )
+
+
+def located_end(solution: dfx.Solution, conditions, args):
+    """Where a ride ended: (event found, state y at the end, turned, out of time).
+
+    `conditions(y, args)` lists the ride's event conditions in the order (turnaround, end of the
+    segment, time limit), each negative until its event; the largest at the end is the one that
+    fired. A located turnaround has v = y[1] = 0 exactly: round-off of either sign would make the
+    next phase's combined condition start positive and mask its other events.
+    """
+    assert solution.ys is not None, "a ride saves its end state (SaveAt(t1=True))"
+    event_found = solution.result == dfx.RESULTS.event_occurred
+    y_end = solution.ys[-1]
+    fired = jnp.argmax(conditions(y_end, args))
+    turned, out_of_time = fired == 0, fired == 2
+    y_end = y_end.at[1].set(jnp.where(event_found & turned, 0.0, y_end[1]))
+    return event_found, y_end, turned, out_of_time
+
+
+def dense_states(solution: dfx.Solution, samples: int):
+    """The ride's state at `samples` evenly spaced pseudo-times ([samples, 3])."""
+    assert solution.ts is not None, "a ride saves its end time (SaveAt(t1=True))"
+    pseudo = jnp.linspace(0.0, solution.ts[-1], samples)
+    return jax.vmap(solution.evaluate)(pseudo)

@@ -1,0 +1,120 @@
+"""What a contact phase did, from its two ends: the work ∫F dd, the force range and the deepest
+indentation, in closed form or by quadrature along the branch the radius rode."""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._core.quadrature import gauss_legendre
+from .._core.search import golden_section
+from .._law.branches import Branch
+from .._law.law import ContactLaw
+from .codes import ADVANCE
+
+
+class ContactSummary(eqx.Module):
+    """What a stretch of contact did, in scaled units."""
+
+    work: jax.Array  # ∫F dd along the stretch
+    lowest_force: jax.Array
+    highest_force: jax.Array
+    deepest: jax.Array  # the largest indentation reached
+
+
+_QUADRATURE_NODES = 48
+# The largest ln(a_high/a_low) one Gauss–Legendre panel in ln a takes at full accuracy; the rest
+# of a longer ride, ≲ e^(−10·(p+1)) of the work for F·h' ∝ a^p, gets a panel of its own.
+_LOG_PANEL = 10.0
+_SCAN_POINTS = 33
+_GOLDEN_STEPS = 60
+
+
+def branch_force(law: ContactLaw, branch: Branch, radius):
+    """Force while the contact radius rides the branch: d = h(a)."""
+    return law.force(radius, branch.level(law, radius))
+
+
+def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
+    """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da.
+
+    Gauss–Legendre in u = ln a over the top e^10 of the radii, where power-law behaviour a^p
+    becomes exponential (an interval [a0, 40·a0] is no harder than [a0, 2·a0]); below that
+    (from a = 0, or from a jump-in radius decades further down), in s with
+    a = a_low + (a_split − a_low)·s².
+    """
+    nodes, weights = gauss_legendre(_QUADRATURE_NODES)
+
+    def integrand(radii):
+        return branch_force(law, branch, radii) * law.edge_slope(radii, branch.coefficient)
+
+    low = jnp.minimum(start_radius, end_radius)
+    high = jnp.maximum(start_radius, end_radius)
+    sign = jnp.where(end_radius >= start_radius, 1.0, -1.0)
+    positive = low > 0.0
+    log_high = jnp.log(jnp.where(positive, high, 1.0))
+    log_split = jnp.maximum(jnp.log(jnp.where(positive, low, 1.0)), log_high - _LOG_PANEL)
+    log_span = log_high - log_split
+    logarithmic = jnp.exp(log_split + log_span * nodes)
+    top = jnp.where(positive, jnp.sum(weights * log_span * logarithmic * integrand(logarithmic)), 0.0)
+    split = jnp.where(positive, jnp.exp(log_split), high)
+    squared = low + (split - low) * nodes**2
+    bottom = jnp.sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
+    return sign * (top + bottom)
+
+
+def hold_work(law: ContactLaw, radius, start, end):
+    """∫F dd at a fixed contact radius: F = 2(a·d − G(a)) is linear in d."""
+    return radius * (end**2 - start**2) - 2.0 * law.G(radius) * (end - start)
+
+
+def extremes(function, lower, upper):
+    """(min, max) of a scalar function between two points: a scan, then golden sections."""
+    lower, upper = jnp.minimum(lower, upper), jnp.maximum(lower, upper)
+    grid = jnp.linspace(0.0, 1.0, _SCAN_POINTS)
+    points = lower + (upper - lower) * grid
+    values = function(points)
+    step = (upper - lower) / (_SCAN_POINTS - 1)
+
+    def refine(sign):
+        best = jnp.argmin(sign * values)
+        lo = jnp.maximum(points[best] - step, lower)
+        hi = jnp.minimum(points[best] + step, upper)
+        a, b = golden_section(lambda x: sign * function(x), lo, hi, _GOLDEN_STEPS)
+        return sign * jnp.minimum(sign * function(0.5 * (a + b)), sign * values[best])
+
+    low, high = jax.vmap(refine)(jnp.array([1.0, -1.0]))
+    return low, high
+
+
+def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start, end) -> ContactSummary:
+    """Work ∫F dd, the force range and the deepest indentation of one contact phase.
+
+    `riding`: the radius follows the branch (else it is held fixed at radii[0]);
+    `radii` are the contact radii and `start`, `end` the (d, v) at the two ends of the phase.
+    """
+    a_start, a_end = radii
+    d_start, v_start = start
+    d_end, _ = end
+
+    work_riding = branch_work(law, branch, a_start, a_end)
+    low_riding, high_riding = extremes(lambda a: branch_force(law, branch, a), a_start, a_end)
+
+    # Hold: a harmonic arc about d_eq; if it starts inward it turns at d_eq + amplitude.
+    stiffness = 2.0 * jnp.maximum(a_start, 1e-300)
+    balance = (2.0 * law.G(a_start) + gravity) / stiffness
+    turn = balance + jnp.sqrt((d_start - balance) ** 2 + v_start**2 / stiffness)
+    deepest_hold = jnp.where(v_start > 0.0, jnp.maximum(turn, d_start), jnp.maximum(d_start, d_end))
+    forces_hold = law.force(a_start, jnp.stack([jnp.minimum(d_start, d_end), deepest_hold]))
+    work_hold = hold_work(law, a_start, d_start, d_end)
+
+    return ContactSummary(
+        work=jnp.where(riding, work_riding, work_hold),
+        lowest_force=jnp.where(riding, low_riding, forces_hold[0]),
+        highest_force=jnp.where(riding, high_riding, forces_hold[1]),
+        deepest=jnp.where(riding, jnp.maximum(d_start, d_end), deepest_hold),
+    )
+
+
+def active_branch(mode, attach: Branch, detach: Branch) -> Branch:
+    """Loading rides the attach branch; hold and unloading answer to the detach branch."""
+    return jax.tree.map(lambda a, d: jnp.where(mode == ADVANCE, a, d), attach, detach)

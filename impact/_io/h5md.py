@@ -1,0 +1,105 @@
+"""What every impact HDF5 file shares (after H5MD 1.1: de Buyl et al., Comput. Phys. Commun.
+185, 1546 (2014)): the `h5md` header, string datasets, the stored scene with its provenance
+(package, jax and diffrax versions, x64), and opening a stored run for reading."""
+
+import getpass
+from contextlib import contextmanager
+from pathlib import Path
+
+import diffrax
+import h5py
+import jax
+import numpy as np
+import yaml
+
+from .._core.package import __version__
+from .._scene.scene import Scene, load_scene, scene_yaml
+
+H5MD_VERSION = (1, 1)
+CONFIG = "parameters/config.yaml"
+
+
+def current_user() -> str:
+    """The login name of the user writing a file ("unknown" where there is none)."""
+    try:
+        return getpass.getuser()
+    except (KeyError, OSError):
+        return "unknown"
+
+
+def write_header(h5md: h5py.Group, author: str) -> None:
+    """The `h5md` group: version, author, creator (impact and its version), SI units."""
+    h5md.attrs["version"] = np.array(H5MD_VERSION, dtype=np.int32)
+    h5md.create_group("author").attrs["name"] = author
+    creator = h5md.create_group("creator")
+    creator.attrs["name"] = "impact"
+    creator.attrs["version"] = __version__
+    units = h5md.create_group("modules/units")
+    units.attrs["version"] = np.array((1, 0), dtype=np.int32)
+    units.attrs["system"] = "SI"
+
+
+def write_string(group: h5py.Group, name: str, text: str) -> h5py.Dataset:
+    """A variable-length UTF-8 string dataset."""
+    return group.create_dataset(name, data=text, dtype=h5py.string_dtype())
+
+
+def read_string(dataset: h5py.Dataset) -> str:
+    return dataset.asstr()[()]
+
+
+def stamp_provenance(dataset: h5py.Dataset) -> h5py.Dataset:
+    """Attach the versions (impact, jax, diffrax) and the x64 flag that produced a file."""
+    dataset.attrs["impact_version"] = __version__
+    dataset.attrs["jax_version"] = jax.__version__
+    dataset.attrs["diffrax_version"] = diffrax.__version__
+    dataset.attrs["x64"] = bool(jax.config.read("jax_enable_x64"))
+    return dataset
+
+
+def write_scene(parameters: h5py.Group, scene: Scene) -> None:
+    """`parameters/config.yaml`: the resolved scene YAML, stamped with the provenance."""
+    stamp_provenance(write_string(parameters, "config.yaml", scene_yaml(scene)))
+
+
+def read_scene(file: h5py.File) -> Scene:
+    """The scene stored by `write_scene`, validated anew."""
+    return load_scene(yaml.safe_load(read_string(file[CONFIG])))
+
+
+@contextmanager
+def open_run(path: str | Path):
+    """The HDF5 file of a stored run (impact or indentation), open for reading.
+
+    FileNotFoundError for a missing file; ValueError for a file that is no HDF5 file, no run,
+    or (a KeyError while reading) not a complete run."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such file: {path}")
+    try:
+        file = h5py.File(path, "r")
+    except OSError:
+        raise ValueError(f"{path} is not an HDF5 file") from None
+    with file:
+        if "h5md" not in file or CONFIG not in file:
+            raise ValueError(f"{path} is not an impact run (no h5md group or parameters/config.yaml)")
+        try:
+            yield file
+        except KeyError as error:
+            raise ValueError(f"{path} is not a complete impact run: {error}") from None
+
+
+def read_provenance(path: str | Path, stats_group: str = "parameters/solver_stats") -> dict:
+    """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored run
+    (`stats_group`: where its wall time lives)."""
+    with open_run(path) as file:
+        attributes = dict(file[CONFIG].attrs)
+        stats = file[stats_group]
+        wall_time = float(stats["wall_time"][()]) if "wall_time" in stats else None
+    return {
+        "impact": str(attributes["impact_version"]),
+        "jax": str(attributes["jax_version"]),
+        "diffrax": str(attributes["diffrax_version"]),
+        "x64": bool(attributes["x64"]),
+        "wall_time": wall_time,
+    }

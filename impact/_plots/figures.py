@@ -1,0 +1,32 @@
+"""What every figure shares: SI prefixes for axis units, and writing figures atomically.
+
+Figures are drawn on matplotlib's Agg canvas (no pyplot, no display, no global state), and
+matplotlib is imported only inside the functions that draw, so `import impact` never loads it.
+"""
+
+import math
+from pathlib import Path
+
+from .._io.files import atomic_path
+
+_PREFIXES = {-18: "a", -15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+
+
+def si_prefix(magnitude: float) -> tuple[float, str]:
+    """(factor, prefix) that brings |magnitude| into [1, 1000): 3.9e-8 → (1e9, "n")."""
+    if not math.isfinite(magnitude) or magnitude == 0:
+        return 1.0, ""
+    exponent = 3 * math.floor(math.log10(abs(magnitude)) / 3)
+    exponent = min(max(exponent, min(_PREFIXES)), max(_PREFIXES))
+    return 10.0**-exponent, _PREFIXES[exponent]
+
+
+def write_figures(folder: str | Path, named) -> list[Path]:
+    """Write each (file name, figure) into `folder` at 150 dpi, atomically; return the paths."""
+    paths = []
+    for name, figure in named:
+        path = Path(folder) / name
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=150)
+        paths.append(path)
+    return paths

@@ -1,0 +1,1 @@
+"""Running scenes: impacts, indentation tests and parameter sweeps, results in SI units."""

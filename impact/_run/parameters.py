@@ -1,0 +1,91 @@
+"""A scene's numbers as the integrators take them: its integrator, its static options and its
+traced SI parameters."""
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .._effects.adhesion import Adhesion
+from .._effects.gravity import Gravity
+from .._integrate.base import AbstractIntegrator
+from .._integrate.continuum import Continuum
+from .._integrate.dugdale import MaugisDugdale
+from .._integrate.problem import Options, Physics
+from .._integrate.springs import SpringArray
+from .._integrate.verlet import Verlet
+from .._law.branches import Tabulation
+from .._scene.scene import Scene
+
+_SAMPLES_PER_PHASE = 64
+
+
+def integrator_for(scene: Scene) -> AbstractIntegrator:
+    """The integrator a scene names: the continuum law with a diffrax solver, a spring array
+    (exact, or stepped with Verlet), or the Maugis–Dugdale law."""
+    solver = scene.solver
+    adhesion = scene.active_adhesion
+    if adhesion is not None and adhesion.model == "maugis_dugdale":
+        return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+    if scene.contact.springs == "continuum":
+        return Continuum(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+    if solver.method == "verlet":
+        assert solver.dt is not None, "validated: method 'verlet' takes dt"
+        return Verlet(dt=solver.dt)
+    return SpringArray()
+
+
+def options_for(scene: Scene, trajectory: bool = True) -> Options:
+    """The static choices of a scene besides its integrator (changing them recompiles)."""
+    adhesion = scene.active_adhesion
+    partial_approach = adhesion is not None and 0.0 < adhesion.approach < adhesion.work_of_adhesion
+    return Options(
+        adhesive=adhesion is not None,
+        gravity=scene.effects.gravity is not None,
+        max_bounces=scene.limits.max_bounces,
+        # Only a partial approach work of adhesion puts the attach edge's turn decades below the
+        # branch grid (Δγa = Δγ turns at the jump-in scale, Δγa = 0 does not turn).
+        tabulation=Tabulation.for_profile(
+            scene.body.profile.build(),
+            tip_search=partial_approach,
+        ),
+        # Loading from a = 0 on a steep tip needs the timed path: no jump-in, or a power law
+        # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
+        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.body.profile.shape == "power_law",
+        samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
+    )
+
+
+def physics_for(scene: Scene) -> Physics:
+    """The traced SI parameters of a scene."""
+    springs = scene.contact.springs
+    gravity = scene.effects.gravity
+    duration = scene.limits.duration
+    return Physics(
+        profile=scene.body.profile.build(),
+        E_star=_float64(scene.material.effective_modulus),
+        mass=_float64(scene.body.resolved_mass),
+        velocity=_float64(scene.start.velocity),
+        gap=_float64(scene.start.gap),
+        adhesion=adhesion_for(scene),
+        gravity=Gravity(_float64(gravity.g)) if gravity else Gravity.none(),
+        time_limit=_float64(np.inf if duration is None else duration),
+        spring_length=_float64(np.nan if scene.contact.length is None else scene.contact.length),
+        spring_count=_float64(np.nan if springs == "continuum" else springs),
+    )
+
+
+def adhesion_for(scene: Scene) -> Adhesion:
+    """The adhesion parameters of a scene (those of no adhesion where it names none)."""
+    adhesion = scene.active_adhesion
+    if adhesion is None:
+        return Adhesion.none()
+    dugdale = adhesion.model == "maugis_dugdale"
+    return Adhesion(
+        work_of_adhesion=_float64(adhesion.work_of_adhesion),
+        approach_work_of_adhesion=_float64(adhesion.approach),
+        adhesive_stress=_float64(adhesion.adhesive_stress if dugdale else np.nan),
+    )
+
+
+def _float64(value) -> jax.Array:
+    return jnp.asarray(value, jnp.float64)

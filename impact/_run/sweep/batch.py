@@ -1,0 +1,149 @@
+"""The compiled batch: one impact as a function of its Physics (SI results), vmapped and
+sharded over the local devices; the unbatched fallbacks."""
+
+import operator
+import time
+from collections.abc import Callable, Sequence
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax.sharding import AxisType, NamedSharding, PartitionSpec
+
+from ..._integrate.codes import RESULT_CODE
+from ..._integrate.problem import Physics
+from ..._scene.errors import SweepError
+from ..impacts import solve
+from .closed_forms import closed_form_restitution
+from .plan import Plan, StaticChoices
+from .result import RESULTS, empty_results
+
+# Compiled batches by (static choices, Physics structure and shapes, devices), this session.
+_COMPILED: dict = {}
+
+
+def point_function(choices: StaticChoices) -> Callable:
+    """One impact → its scalar results in SI (the arithmetic of `impact._run.impacts.to_result`)."""
+    separated, captured = RESULT_CODE["separated"], RESULT_CODE["captured"]
+
+    def point(physics: Physics) -> dict:
+        scales, o = solve(choices.integrator, physics, choices.options)
+        time_unit, length, force = scales.time, scales.normal, scales.force
+        speed = length / time_unit
+        touch = o.touch_velocity
+        success = (o.status == separated) | (o.status == captured)
+        ratio = o.separation_velocity / jnp.where(touch > 0, touch, 1.0)
+        return {
+            "restitution": jnp.where((touch > 0) & success, ratio, jnp.nan),
+            "stuck": o.stuck,
+            "status": o.status.astype(jnp.int32),
+            "contact_time": jnp.where(
+                ~jnp.isfinite(o.touch_time),
+                jnp.nan,  # never touched
+                jnp.where(~jnp.isfinite(o.separation_time), jnp.inf, (o.separation_time - o.touch_time) * time_unit),
+            ),
+            "max_indentation": o.max_indentation * length,
+            "max_force": o.max_force * force,
+            "min_force": o.min_force * force,
+            "bounces": o.contacts.astype(jnp.int32),
+            "touch_velocity": touch * speed,
+            "separation_velocity": o.separation_velocity * speed,
+            "dissipated_energy": o.first_contact_work * force * length,
+            "steps": o.steps,
+            "accepted_steps": o.accepted_steps,
+            "rejected_steps": o.rejected_steps,
+            "theory_restitution": closed_form_restitution(physics, choices),
+        }
+
+    return point
+
+
+def local_devices(devices: "int | Sequence | None" = None) -> list:
+    """The devices a sweep runs on: all local ones (None), the first n, or the ones given."""
+    available = jax.local_devices()
+    if devices is None:
+        return available
+    if isinstance(devices, int):
+        if not 1 <= devices <= len(available):
+            raise SweepError(
+                [
+                    (
+                        "--devices",
+                        f"{devices} devices asked for, {len(available)} visible "
+                        f"({available[0].platform}); on CPU set JAX_NUM_CPU_DEVICES before jax starts",
+                    )
+                ]
+            )
+        return available[:devices]
+    return list(devices)
+
+
+def batch_sharding(devices: Sequence) -> NamedSharding:
+    """The points' axis split over a 1-D mesh of the devices (AxisType.Auto: diffrax's events
+    work under it, where an Explicit mesh, shard_map and pmap fail)."""
+    mesh = jax.make_mesh((len(devices),), ("batch",), axis_types=(AxisType.Auto,), devices=devices)
+    return NamedSharding(mesh, PartitionSpec("batch"))
+
+
+def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices: Sequence):
+    """(compiled jit(vmap(point)) for `size` points of this structure, compile time in s).
+
+    Compiled once per (choices, leaf structure, size, devices) and kept for the session."""
+    leaves, treedef = jax.tree.flatten(physics)
+    key = (choices, treedef, tuple((leaf.shape[1:], leaf.dtype) for leaf in leaves), size, tuple(d.id for d in devices))
+    if key in _COMPILED:
+        return _COMPILED[key], 0.0
+    start = time.perf_counter()
+    sharding = batch_sharding(devices)
+    dtype = jnp.result_type(float)
+    abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
+    function = jax.jit(jax.vmap(point_function(choices)))
+    compiled = function.lower(jax.tree.unflatten(treedef, abstract)).compile()
+    _COMPILED[key] = compiled
+    return compiled, time.perf_counter() - start
+
+
+_MAPPED: dict = {}
+_SINGLE: dict = {}
+COMPILE_SECONDS = {"unbatched": 0.0}  # time spent compiling the fallbacks, this session
+
+
+def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
+    """Results of the points solved one after another inside one compiled `lax.map` (no
+    batching: each point takes only its own branches). The fallback for a chunk whose
+    batched run raised; a point that raises even so is isolated by `one_by_one`."""
+    choices = plan.choices[group]
+    padded = np.concatenate([points, np.full(size - len(points), points[-1])])
+    batch = jax.device_put(jax.tree.map(lambda leaf: leaf[padded], plan.physics), jax.local_devices()[0])
+    leaves, treedef = jax.tree.flatten(batch)
+    key = (choices, treedef, tuple((leaf.shape, leaf.dtype) for leaf in leaves))
+    if key not in _MAPPED:
+        start = time.perf_counter()
+        function = jax.jit(lambda physics: jax.lax.map(point_function(choices), physics))
+        _MAPPED[key] = function.lower(batch).compile()
+        COMPILE_SECONDS["unbatched"] += time.perf_counter() - start
+    try:
+        values = jax.device_get(_MAPPED[key](batch))
+    except jax.errors.JaxRuntimeError:
+        return one_by_one(plan, group, points)
+    return {name: np.asarray(values[name])[: len(points)] for name in RESULTS}
+
+
+def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
+    """Results of the points solved one call each; a point whose solve raises gets the result
+    code solver_failure."""
+    choices = plan.choices[group]
+    if choices not in _SINGLE:
+        _SINGLE[choices] = jax.jit(point_function(choices))
+    function = _SINGLE[choices]
+    results = empty_results(len(points))
+    for row, point in enumerate(points):
+        physics = jax.tree.map(operator.itemgetter(point), plan.physics)
+        try:
+            values = jax.device_get(function(physics))
+        except jax.errors.JaxRuntimeError:
+            results["status"][row] = RESULT_CODE["solver_failure"]
+            continue
+        for name in RESULTS:
+            results[name][row] = values[name]
+    return results

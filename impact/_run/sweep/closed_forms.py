@@ -1,0 +1,96 @@
+"""The closed forms a sweep compares with, where the theory gives them: the restitution of each
+point (traced, inside the compiled batch), the sticking velocity of each point (numpy, to order
+the points by cost) and the name of the closed form (Popov, Heß & Willert, Handbook of Contact
+Mechanics (Springer 2019), ch. 3, eqs. (3.50–51), (3.81–82))."""
+
+from typing import TYPE_CHECKING
+
+import jax.numpy as jnp
+import numpy as np
+
+from ... import profiles, theory
+from ..._integrate.dugdale import MaugisDugdale
+from ..._integrate.problem import Physics, touch_velocity
+from ..._scene.scene import Scene
+
+if TYPE_CHECKING:
+    from .plan import StaticChoices
+
+
+def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
+    """The chapter's restitution for one point (traced): Thornton–Ning for the paraboloid with
+    Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
+    attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
+    NaN elsewhere. Maugis–Dugdale points get their JKR limit (Λ → ∞): no closed form has a
+    finite range."""
+    options = choices.options
+    if not options.adhesive:
+        return jnp.ones(())
+    nan = jnp.full((), jnp.nan)
+    if options.gravity:
+        return nan
+    profile = physics.profile
+    v, m, modulus = touch_velocity(physics, options), physics.mass, physics.E_star
+    work, approach = physics.adhesion.work_of_adhesion, physics.adhesion.approach_work_of_adhesion
+    reversible = (approach == work) | isinstance(choices.integrator, MaugisDugdale)
+    if type(profile) is profiles.Paraboloid:
+        jkr = theory.thornton_ning_restitution(v, m, profile.R, modulus, work)
+        on_touch = theory.attach_on_touch_restitution(v, m, profile.R, modulus, work)
+        return jnp.where(reversible, jkr, jnp.where(approach == 0, on_touch, nan))
+    if type(profile) is profiles.PowerLaw:
+        exponent = jnp.asarray(profile.n)
+        n = jnp.where(exponent > 0.5, exponent, 2.0)
+        power = theory.power_law_restitution(v, m, n, profile.c, modulus, work)
+        return jnp.where(reversible & (exponent > 0.5), power, nan)
+    if type(profile) is profiles.Cone:
+        power = theory.power_law_restitution(v, m, 1.0, jnp.tan(profile.theta), modulus, work)
+        return jnp.where(reversible, power, nan)
+    return nan
+
+
+def closed_form_name(scene: Scene) -> str:
+    """Which closed form `theory_restitution` holds for a scene (as the figure names it)."""
+    adhesion = scene.effects.adhesion
+    if adhesion is None or not adhesion.work_of_adhesion > 0:
+        return "no adhesion: e = 1"
+    if scene.effects.gravity is not None:
+        return "no closed form (gravity)"
+    shape = scene.body.profile.shape
+    if adhesion.model == "maugis_dugdale":
+        limit = {
+            "paraboloid": "Thornton–Ning (3.50–51)",
+            "power_law": "power law (3.81–82)",
+            "cone": "power law (3.81–82)",
+        }
+        return f"{limit[shape]}: the JKR limit Λ → ∞ of Maugis–Dugdale"
+    if shape == "paraboloid":
+        if adhesion.approach == adhesion.work_of_adhesion:
+            return "Thornton–Ning (3.50–51)"
+        if adhesion.approach == 0:
+            return "attach on touch (theory.attach_on_touch_restitution)"
+    if shape in ("power_law", "cone") and adhesion.approach == adhesion.work_of_adhesion:
+        return "power law (3.81–82)"
+    return "closed form"
+
+
+def sticking_velocity(scene: Scene, physics: Physics) -> np.ndarray:
+    """Closed-form sticking velocity (m/s) of each point of a batched Physics, numpy; NaN where
+    the chapter gives none (the same formulas as `theory.*_sticking_velocity`)."""
+    profile, mass, modulus, work = physics.profile, physics.mass, physics.E_star, physics.adhesion.work_of_adhesion
+    nan = np.full(np.shape(mass), np.nan)
+    with np.errstate(all="ignore"):
+        if isinstance(profile, profiles.Paraboloid):
+            loss = np.cbrt(profile.R**4 * (np.pi * work) ** 5 / modulus**2) * (1 + np.cbrt(864.0)) / 10
+            return np.where(work > 0, np.sqrt(2 * loss / mass), nan)
+        if isinstance(profile, (profiles.PowerLaw, profiles.Cone)):
+            if isinstance(profile, profiles.Cone):
+                n, c = np.ones_like(mass), np.tan(profile.theta)
+            else:
+                n, c = np.asarray(profile.n), np.asarray(profile.c)
+            kappa = np.asarray(profiles.kappa(n))
+            p = 1 / (2 * n - 1)
+            stiffness = modulus * (n * c * kappa) ** 2
+            scale = ((np.pi * work / 2) ** (2 * n + 1) / stiffness**2) ** p
+            shape = (8 * n - 4) / (2 * n**2 + 3 * n + 1) * (n + (n + 1) * (2 * n) ** (4 * p))
+            return np.where((work > 0) & (n > 0.5), np.sqrt(scale * shape / mass), nan)
+    return nan

@@ -1,0 +1,293 @@
+"""The sections of a scene file: pydantic models in SI units, each forbidding unknown keys.
+
+Numbers may be written as YAML numbers or numeric strings (PyYAML reads `1e-3` as a string).
+Cross-field checks raise `FieldProblem` to name the field at fault.
+"""
+
+import math
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from .._integrate.base import SOLVERS
+from .errors import FieldProblem
+from .profiles import Number, ProfileSpec
+
+# Adaptive diffrax methods of the continuum law (and of a spring array), by their scene names.
+SOLVER_METHODS = tuple(SOLVERS)
+# Fixed-step integrators of the spring array (contact.springs: N).
+SPRING_METHODS = ("verlet",)
+METHODS = SOLVER_METHODS + SPRING_METHODS
+MASS_OR_DENSITY = "give exactly one of mass (kg) and density (kg/m³)"
+
+
+class Section(BaseModel):
+    """A section of the scene file: unknown keys are refused."""
+
+    model_config = ConfigDict(extra="forbid")
+
+
+def _poisson(meaning: str):
+    return Field(None, gt=-1.0, lt=0.5, description=f"Poisson's ratio of {meaning}, in (-1, 0.5)")
+
+
+class Body(Section):
+    """The rigid falling body: its profile and its mass (or density)."""
+
+    profile: ProfileSpec
+    mass: Number | None = Field(None, gt=0, description="mass (kg), > 0")
+    density: Number | None = Field(
+        None, gt=0, description="density (kg/m³); mass = density × volume of the closed body"
+    )
+
+    @model_validator(mode="after")
+    def _one_of_mass_and_density(self):
+        # Neither is refused by the scene for impacts (an indentation needs no mass).
+        if self.mass is not None and self.density is not None:
+            raise ValueError(MASS_OR_DENSITY)
+        if self.density is not None and body_volume(self.profile) is None:
+            raise ValueError(
+                f"density needs a closed body, and shape {self.profile.shape!r} has no volume; give mass instead"
+            )
+        return self
+
+    @property
+    def resolved_mass(self) -> float:
+        """Mass in kg (from density and volume if needed)."""
+        if self.mass is not None:
+            return self.mass
+        volume = body_volume(self.profile)
+        assert self.density is not None and volume is not None, MASS_OR_DENSITY  # validated
+        return self.density * volume
+
+
+def body_volume(profile) -> float | None:
+    """Volume (m³) of the closed body a profile belongs to: a sphere of radius R for the
+    paraboloid and the sphere, the spheroid of semi-axes 1/k, 1/k, R for the ellipsoid."""
+    if profile.shape in ("paraboloid", "sphere"):
+        return 4.0 / 3.0 * math.pi * profile.R**3
+    if profile.shape == "ellipsoid":
+        return 4.0 / 3.0 * math.pi * profile.R / profile.k**2
+    return None
+
+
+class Material(Section):
+    """The elastic half-space (and body): E* directly, or Young's moduli and Poisson's ratios."""
+
+    E_star: Number | None = Field(None, gt=0, description="effective modulus E* (Pa), > 0")
+    E: Number | None = Field(None, gt=0, description="Young's modulus of the half-space (Pa), > 0")
+    nu: Number | None = _poisson("the half-space")
+    E_body: Number | None = Field(
+        None, gt=0, description="Young's modulus of the body (Pa), > 0; omit for a rigid body"
+    )
+    nu_body: Number | None = _poisson("the body")
+
+    @model_validator(mode="after")
+    def _one_description(self):
+        moduli = (self.E, self.nu, self.E_body, self.nu_body)
+        if self.E_star is not None:
+            if any(value is not None for value in moduli):
+                raise ValueError("give either E_star or E and nu (with E_body and nu_body), not both")
+            return self
+        if self.E is None or self.nu is None:
+            raise ValueError("give E_star, or E and nu of the half-space")
+        if (self.E_body is None) != (self.nu_body is None):
+            raise ValueError("give E_body and nu_body together (omit both for a rigid body)")
+        return self
+
+    @property
+    def effective_modulus(self) -> float:
+        """E* (Pa): 1/E* = (1 − ν²)/E + (1 − ν_body²)/E_body."""
+        if self.E_star is not None:
+            return self.E_star
+        assert self.E is not None and self.nu is not None, "validated: E_star, or E and nu"
+        compliance = (1.0 - self.nu**2) / self.E
+        if self.E_body is not None:
+            assert self.nu_body is not None, "validated: E_body comes with nu_body"
+            compliance += (1.0 - self.nu_body**2) / self.E_body
+        return 1.0 / compliance
+
+
+class Initial(Section):
+    """Where the body starts: its approach speed and its distance from the surface."""
+
+    velocity: Number = Field(
+        ge=0,
+        description="approach speed towards the surface (m/s), > 0 (0 allowed when gravity drops the body from a gap)",
+    )
+    gap: Number = Field(
+        0.0,
+        ge=0,
+        description=(
+            "initial distance between tip and surface (m), >= 0; with maugis_dugdale adhesion, beyond the range h"
+        ),
+    )
+
+
+# Profiles the Maugis–Dugdale zone is built for: smooth, unbounded, with a finite slope at the
+# tip (the zone's radius must grow from 0 where the tip comes within range).
+DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
+
+
+class Adhesion(Section):
+    """Adhesion: JKR (zero range) by the rule of Heß, with hysteretic attachment; or
+    Maugis–Dugdale (a constant stress σ0 up to the range h, Δγ = σ0·h)."""
+
+    model: Literal["jkr", "maugis_dugdale"] = Field(
+        "jkr", description="'jkr' (zero range, rule of Heß) or 'maugis_dugdale' (stress σ0 up to the range h)"
+    )
+    work_of_adhesion: Number = Field(
+        ge=0, description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
+    )
+    approach_work_of_adhesion: Number | None = Field(
+        None,
+        ge=0,
+        description=(
+            "jkr only: work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; "
+            "default Δγ (JKR jump-in); 0 attaches on touch"
+        ),
+    )
+    stress: Number | None = Field(
+        None, gt=0, description="maugis_dugdale only: adhesive stress σ0 (Pa), > 0; or give range"
+    )
+    range: Number | None = Field(
+        None, gt=0, description="maugis_dugdale only: range h (m) of the adhesive stress, > 0; or give stress"
+    )
+
+    @model_validator(mode="after")
+    def _approach_not_above(self):
+        if self.approach_work_of_adhesion is not None and self.approach_work_of_adhesion > self.work_of_adhesion:
+            raise FieldProblem("approach_work_of_adhesion", "must not exceed work_of_adhesion")
+        return self
+
+    @model_validator(mode="after")
+    def _parameters_of_the_model(self):
+        if self.model == "jkr":
+            for name in ("stress", "range"):
+                if getattr(self, name) is not None:
+                    raise FieldProblem(name, "only for model 'maugis_dugdale' (jkr has zero range)")
+            return self
+        if self.approach_work_of_adhesion is not None:
+            raise FieldProblem(
+                "approach_work_of_adhesion",
+                "only for model 'jkr': Maugis–Dugdale attaches where its zone equilibrium jumps",
+            )
+        if (self.stress is None) == (self.range is None):
+            raise FieldProblem(
+                "stress", "model 'maugis_dugdale' needs exactly one of stress (Pa) and range (m): Δγ = σ0·h"
+            )
+        if self.work_of_adhesion == 0:
+            raise FieldProblem("work_of_adhesion", "must be > 0 for model 'maugis_dugdale' (drop adhesion for none)")
+        return self
+
+    @property
+    def approach(self) -> float:
+        """Δγa (J/m²), defaulting to Δγ."""
+        return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
+
+    @property
+    def adhesive_stress(self) -> float:
+        """σ0 (Pa) of the Maugis–Dugdale model: given, or Δγ/h."""
+        if self.stress is not None:
+            return self.stress
+        assert self.range is not None, "validated: maugis_dugdale takes stress or range"
+        return self.work_of_adhesion / self.range
+
+    @property
+    def adhesion_range(self) -> float:
+        """h (m) of the Maugis–Dugdale model: given, or Δγ/σ0."""
+        if self.range is not None:
+            return self.range
+        assert self.stress is not None, "validated: maugis_dugdale takes stress or range"
+        return self.work_of_adhesion / self.stress
+
+
+class Gravity(Section):
+    """A constant acceleration towards the surface."""
+
+    g: Number = Field(9.81, gt=0, description="gravitational acceleration towards the surface (m/s²)")
+
+
+class Effects(Section):
+    """The effects the scene names; those left out are not simulated at all."""
+
+    adhesion: Adhesion | None = None
+    gravity: Gravity | None = None
+
+
+class Contact(Section):
+    """How the MDR spring foundation is discretised."""
+
+    springs: Literal["continuum"] | int = Field(
+        "continuum", description="'continuum' (N → ∞) or the number N >= 1 of springs of the array"
+    )
+    length: Number | None = Field(
+        None,
+        gt=0,
+        description="radius covered by the spring array (m); default: the body's extent or twice the energy radius",
+    )
+
+    @field_validator("springs")
+    @classmethod
+    def _springs_positive(cls, springs):
+        if isinstance(springs, int) and springs < 1:
+            raise ValueError("springs must be 'continuum' or an integer >= 1")
+        return springs
+
+
+class Solver(Section):
+    """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
+    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
+
+    method: str = Field("tsit5", description="integrator: " + ", ".join(METHODS))
+    rtol: Number = Field(1e-10, gt=0, lt=1, description="relative tolerance, in (0, 1)")
+    atol: Number = Field(1e-12, gt=0, description="absolute tolerance in scaled units, > 0")
+    max_steps: int = Field(4096, ge=16, description="solver steps allowed per phase")
+    dt: Number | None = Field(None, gt=0, description="time step (s) of method 'verlet', > 0; only for it")
+
+    @field_validator("method")
+    @classmethod
+    def _known_method(cls, method: str) -> str:
+        if method not in METHODS:
+            raise ValueError(f"unknown method {method!r}; expected one of: {', '.join(METHODS)}")
+        return method
+
+    @model_validator(mode="after")
+    def _step_with_verlet_only(self):
+        if self.method == "verlet" and self.dt is None:
+            raise FieldProblem("dt", "missing: method 'verlet' needs its fixed time step (s)")
+        if self.method != "verlet" and self.dt is not None:
+            raise FieldProblem("dt", f"only for method 'verlet'; method {self.method!r} is adaptive (rtol, atol)")
+        return self
+
+
+class Limits(Section):
+    """Bounds that end a run which would otherwise not end (e.g. elastic bouncing)."""
+
+    max_bounces: int = Field(64, ge=1, description="contacts simulated at most")
+    duration: Number | None = Field(None, gt=0, description="simulated time at most (s); default: no bound")
+
+
+class Program(Section):
+    """The loading program of a quasi-static indentation: load to the peak, unload; repeated."""
+
+    peak: Number = Field(
+        ge=0,
+        description=(
+            "largest load of every cycle: force (N) under force control, "
+            "indentation (m) under displacement control; >= 0"
+        ),
+    )
+    cycles: int = Field(1, ge=1, description="load–unload cycles; the last one retracts to pull-off")
+    unload_to: Number | None = Field(
+        None,
+        description=(
+            "where the cycles before the last stop unloading (N or m, below peak); default: each retracts to pull-off"
+        ),
+    )
+
+    @model_validator(mode="after")
+    def _unload_below_peak(self):
+        if self.unload_to is not None and self.unload_to >= self.peak:
+            raise FieldProblem("unload_to", "must lie below peak")
+        return self

@@ -1,0 +1,170 @@
+"""`impact run`, `impact validate` and `impact show`: one scene on the command line.
+
+A refusal of bad input (scene file, `--set`, output folder) exits with code 2, names the field
+by its dotted path, prints no traceback and leaves nothing on disk. A simulation that ends
+without a physical outcome (status other than separated or captured) is still written, and
+`impact run` exits with code 1.
+"""
+
+import copy
+import shutil
+import time
+from datetime import datetime
+from pathlib import Path
+from typing import Annotated
+
+import typer
+import yaml
+from rich.text import Text
+
+from .._io.files import write_text
+from .._io.h5md import read_provenance
+from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance, write_indentation
+from .._io.run import read_run, write_run
+from .._plots.indentation import save_indentation_figures
+from .._plots.run import save_figures
+from .._run.impacts import Result
+from .._run.indentation import IndentationResult
+from .._run.simulate import simulate
+from .._scene.errors import SceneError
+from .._scene.paths import NoField, NotASection, assign, check_path
+from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
+from .console import out, refuse, say, warn
+from .tables import facts_table, result_table
+
+FLAG = ""  # metavar of a boolean flag: it takes no value, so `--help` shows none
+
+SceneArgument = Annotated[Path, typer.Argument(metavar="SCENE.yaml", help="scene YAML file", show_default=False)]
+SetOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--set",
+        metavar="PATH=VALUE",
+        help="override a scene field by its dotted path, e.g. --set initial.velocity=0.8 (repeatable)",
+        show_default=False,
+    ),
+]
+OutputFolder = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False),
+]
+Overwrite = Annotated[
+    bool, typer.Option("--overwrite", metavar=FLAG, help="write into an existing output folder", show_default=False)
+]
+RunFile = Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]
+
+
+def register(app: typer.Typer) -> None:
+    """Add the `run`, `validate` and `show` commands to the app."""
+    app.command("run")(run_command)
+    app.command("validate")(validate_command)
+    app.command("show")(show_command)
+
+
+def run_command(
+    scene_file: SceneArgument, output: OutputFolder = None, assignments: SetOption = None, overwrite: Overwrite = False
+) -> None:
+    """Run one scene; write run.h5, config.yaml and plots to an output folder."""
+    scene = scene_of(scene_file, assignments)
+    folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
+    check_output(folder, overwrite)
+    start = time.perf_counter()
+    result = simulate(scene)
+    wall_time = time.perf_counter() - start
+    write_outputs(result, folder, wall_time, overwrite)
+    out.print(result_table(result, wall_time))
+    say(f"run written to {folder}")
+    if not result.success:
+        warn(f"warning: the run ended with status {result.status!r}, not a physical outcome")
+        raise typer.Exit(1)
+
+
+def validate_command(scene_file: SceneArgument, assignments: SetOption = None) -> None:
+    """Check a scene without running it; print its resolved key facts."""
+    scene = scene_of(scene_file, assignments)
+    out.print(Text(f"OK: {scene_file} is a valid scene", "green"), soft_wrap=True)
+    out.print(facts_table(scene))
+
+
+def show_command(run_file: RunFile) -> None:
+    """Print the summary of a stored run (run.h5)."""
+    indentation = is_indentation_run(run_file)
+    try:
+        result = read_indentation(run_file) if indentation else read_run(run_file)
+        provenance = (read_indentation_provenance if indentation else read_provenance)(run_file)
+    except (OSError, ValueError) as error:
+        refuse(f"cannot show {run_file}", [("", str(error))])
+    out.print(result_table(result, provenance["wall_time"]))
+    versions = f"jax {provenance['jax']}, diffrax {provenance['diffrax']}"
+    precision = "float64" if provenance["x64"] else "float32"
+    say(f"written by impact {provenance['impact']} ({versions}, {precision})")
+
+
+# --- scene input and --set ------------------------------------------------------------------
+
+
+def scene_of(scene_file: Path, assignments: list[str] | None) -> Scene:
+    """The validated scene of a file with its overrides, or a refusal (exit code 2)."""
+    try:
+        return load_scene(apply_overrides(read_yaml(scene_file), assignments or []))
+    except SceneError as error:
+        refuse(f"{scene_file} is not a valid scene", error.problems)
+
+
+def apply_overrides(data: dict, assignments: list[str]) -> dict:
+    """A copy of the scene mapping with each `dotted.path=value` applied (value read as YAML).
+
+    Raises SceneError for a malformed assignment or a path that is no field of the schema."""
+    data = copy.deepcopy(data)
+    for assignment in assignments:
+        path, separator, text = assignment.partition("=")
+        keys = path.strip().split(".")
+        if not separator or not all(keys):
+            raise SceneError([("--set", f"expected dotted.path=value, got {assignment!r}")])
+        try:
+            value = yaml.safe_load(text)
+        except yaml.YAMLError:
+            raise SceneError([(f"--set {path}", f"value {text!r} is not valid YAML")]) from None
+        try:
+            check_path(data, keys)
+            assign(data, keys, value)
+        except NoField as error:
+            raise SceneError([("--set", str(error))]) from None
+        except NotASection as error:
+            raise SceneError([(error.section, f"must be a mapping to --set {'.'.join(keys)}")]) from None
+    return data
+
+
+# --- output ---------------------------------------------------------------------------------
+
+
+def check_output(folder: Path, overwrite: bool) -> None:
+    """Refuse an output folder that is a file, or that exists without --overwrite."""
+    if folder.exists() and not folder.is_dir():
+        refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
+    if folder.exists() and not overwrite:
+        refuse("output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the run in it")])
+
+
+def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time: float, overwrite: bool) -> None:
+    """Create the folder and write config.yaml, run.h5 and the plots, each atomically; a folder
+    created here is removed again if a write fails."""
+    created = not folder.exists()
+    try:
+        folder.mkdir(parents=True, exist_ok=overwrite)
+    except FileExistsError:
+        check_output(folder, overwrite)
+    except OSError as error:
+        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
+    try:
+        write_text(folder / "config.yaml", scene_yaml(result.scene))
+        if isinstance(result, IndentationResult):
+            write_indentation(result, folder / "run.h5", wall_time=wall_time)
+            save_indentation_figures(result, folder)
+        else:
+            write_run(result, folder / "run.h5", wall_time=wall_time)
+            save_figures(result, folder)
+    except BaseException:
+        if created:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise

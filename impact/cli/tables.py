@@ -1,0 +1,230 @@
+"""The rich tables the command line prints: a scene's key facts, the results of a run or an
+indentation test, and the summary of a sweep with its sticking velocities."""
+
+import math
+
+import numpy as np
+from rich import box
+from rich.table import Table
+from rich.text import Text
+
+from .._integrate.codes import RESULT_CODES
+from .._plots.figures import si_prefix
+from .._run.impacts import Result
+from .._run.indentation import IndentationResult
+from .._run.sweep import SweepResult, closed_form_names
+from .._scene.scene import Scene
+
+OUTCOMES = ("separated", "captured")
+
+
+def quantity(value: float, unit: str) -> str:
+    """A value with an SI prefix: 3.92e-8, "s" → "39.21 ns"."""
+    factor, prefix = si_prefix(value)
+    return f"{value * factor:.4g} {prefix}{unit}"
+
+
+def key_value_table(title: str, rows: list[tuple[str, str]]) -> Table:
+    """A headerless two-column table: names in bold, values as plain text."""
+    table = Table(title=Text(title), show_header=False)
+    table.add_column(style="bold")
+    table.add_column()
+    for name, value in rows:
+        table.add_row(Text(name), Text(value))
+    return table
+
+
+def result_table(result: "Result | IndentationResult", wall_time: float | None) -> Table:
+    """The key results of an impact or an indentation test (wall time in s, if known)."""
+    if isinstance(result, IndentationResult):
+        return indentation_table(result, wall_time)
+    return impact_table(result, wall_time)
+
+
+def _wall_time(wall_time: float | None) -> tuple[str, str]:
+    return ("wall time", "unknown" if wall_time is None else quantity(wall_time, "s"))
+
+
+def indentation_table(result: IndentationResult, wall_time: float | None) -> Table:
+    """The pull-off (last stable state before the contact is lost) and the extremes of a test."""
+    pull_off = result.pull_off
+
+    def value(number: float, unit: str) -> str:
+        return quantity(number, unit) if math.isfinite(number) else "—"
+
+    snaps = sum(kind in ("snap_in", "snap_out") for _, kind in result.events)
+    rows = [
+        ("control", f"{result.scene.control} (ξ = {result.xi})"),
+        ("status", result.status),
+        ("pull-off force", value(pull_off.force, "N")),
+        ("pull-off indentation", value(pull_off.indentation, "m")),
+        ("pull-off contact radius", value(pull_off.contact_radius, "m")),
+        ("max force", quantity(result.max_force, "N")),
+        ("max indentation", quantity(result.max_indentation, "m")),
+        ("max contact radius", quantity(result.max_contact_radius, "m")),
+        ("jumps (snaps, jump-in)", str(snaps)),
+        ("points", str(len(result.force))),
+        _wall_time(wall_time),
+    ]
+    return key_value_table(f"{result.scene.name} (indentation)", rows)
+
+
+def impact_table(result: Result, wall_time: float | None) -> Table:
+    """The key results of an impact."""
+    stats = result.stats
+    contact_time = result.contact_time
+    tabor = result.tabor_parameter
+    rows = [
+        ("restitution e", f"{result.restitution:.8g}"),
+        ("stuck", "yes" if result.stuck else "no"),
+        ("status", result.status),
+        ("contact time", quantity(contact_time, "s") if math.isfinite(contact_time) else "∞ (never let go)"),
+        ("max indentation", quantity(result.max_indentation, "m")),
+        ("max force", quantity(result.max_force, "N")),
+        ("min force", quantity(result.min_force, "N")),
+        *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
+        ("bounces (contacts)", str(result.bounces)),
+        ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
+        _wall_time(wall_time),
+    ]
+    return key_value_table(f"{result.scene.name}", rows)
+
+
+def _effects(scene: Scene) -> str:
+    """The adhesion and gravity a scene names, with their parameters in SI units."""
+    adhesion, gravity = scene.active_adhesion, scene.effects.gravity
+    effects = []
+    if adhesion is not None and adhesion.model == "maugis_dugdale":
+        effects.append(
+            f"Maugis–Dugdale adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², "
+            f"σ0 = {adhesion.adhesive_stress:.6g} Pa, h = {adhesion.adhesion_range:.6g} m)"
+        )
+    elif adhesion is not None:
+        effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
+    if gravity is not None:
+        effects.append(f"gravity (g = {gravity.g:g} m/s²)")
+    return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
+
+
+def facts_table(scene: Scene) -> Table:
+    """The resolved key facts of a scene, in SI units."""
+    body, material = scene.body, scene.material
+    parameters = ", ".join(
+        f"{name} = {value:g}" if isinstance(value, float) else f"{name} = {value}"
+        for name, value in body.profile.model_dump(exclude={"shape"}).items()
+    )
+    springs = scene.contact.springs
+    derived = "" if material.E_star is not None else " (from E and ν)"
+    shape = ("shape", f"{body.profile.shape} ({parameters})")
+    modulus = ("E*", f"{material.effective_modulus:.6g} Pa{derived}")
+    effect_rows = [
+        ("effects", _effects(scene)),
+        ("contact", "continuum" if springs == "continuum" else f"{springs} springs"),
+    ]
+    if scene.kind == "indentation":
+        program = scene.loading
+        unit = "N" if scene.control == "force" else "m"
+        unloading = "" if program.unload_to is None else f" unloading to {program.unload_to:g} {unit}"
+        cycles = f", {program.cycles} cycles{unloading}" if program.cycles > 1 else ""
+        rows = [
+            ("kind", f"indentation, {scene.control} control"),
+            shape,
+            modulus,
+            ("program", f"peak {program.peak:g} {unit}{cycles}, then to pull-off"),
+            *effect_rows,
+        ]
+        return key_value_table(f"{scene.name} (SI units)", rows)
+    density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
+    solver = scene.solver
+    steps = f"dt {solver.dt:g} s" if solver.method == "verlet" else f"rtol {solver.rtol:g}, atol {solver.atol:g}"
+    rows = [
+        shape,
+        ("mass", f"{body.resolved_mass:.6g} kg{density}"),
+        modulus,
+        ("initial", f"velocity {scene.start.velocity:g} m/s, gap {scene.start.gap:g} m"),
+        *effect_rows,
+        ("solver", f"{solver.method}, {steps}"),
+    ]
+    return key_value_table(f"{scene.name} (SI units)", rows)
+
+
+def outcome_counts(result: SweepResult) -> dict[str, int]:
+    """Points per result code name ('not run' included), for the codes that occur."""
+    names = result.status_names().reshape(-1)
+    return {name: int(np.sum(names == name)) for name in (*RESULT_CODES, "not run") if np.any(names == name)}
+
+
+def _run_rows(stats: dict) -> list[tuple[str, str]]:
+    """What a sweep's run cost: chunks, devices, times, speed, points solved unbatched."""
+    calls = ", ".join(map(str, stats["call_sizes"]))
+    rows = [
+        (
+            "chunks",
+            f"up to {stats['chunk']} points (calls of {calls}) "
+            f"on {stats['devices']} device(s), {stats['groups']} compiled group(s)",
+        ),
+        (
+            "time",
+            f"plan {stats['plan_time']:.3g} s, compile {stats['compile_time']:.3g} s, "
+            f"solve {stats['solve_time']:.3g} s",
+        ),
+        ("speed", f"{stats['points_per_second']:,.0f} points/s (this run: {stats['points']} points)"),
+    ]
+    if stats.get("solved_unbatched"):
+        rows.append(
+            (
+                "unbatched",
+                f"{stats['solved_unbatched']} points: a runtime check stopped their batch, "
+                "so they were solved one after another (slower, same results)",
+            )
+        )
+    return rows
+
+
+def sweep_table(result: SweepResult, stats: dict) -> Table:
+    """A sweep's points, outcomes, run cost (where `stats` holds a run's) and max |e − e_theory|."""
+    counts = outcome_counts(result)
+    shape = " × ".join(map(str, result.shape))
+    rows = [
+        ("points", f"{result.restitution.size} ({result.spec.mode} {shape}: {', '.join(result.spec.paths)})"),
+        ("outcomes", ", ".join(f"{name} {count}" for name, count in counts.items())),
+    ]
+    if "solve_time" in stats:
+        rows += _run_rows(stats)
+    error = result.max_theory_error()
+    closed_forms = (
+        "no closed form for this scene"
+        if math.isnan(error)
+        else f"{error:.3g} ({'; '.join(closed_form_names(result))})"
+    )
+    rows.append(("max |e − e_theory|", closed_forms))
+    return key_value_table(f"{result.scene.name} sweep", rows)
+
+
+def _number(value: float, form: str) -> str:
+    return "—" if math.isnan(value) else format(value, form)
+
+
+def sticking_table(estimates: list[dict]) -> Table:
+    """Per series along the velocity: the bracket of the sticking velocity v_s (m/s), its
+    estimate, the closed form and max |e − e_theory| (rows of `sticking_estimates`)."""
+    table = Table(
+        title=Text("sticking velocity v_s (m/s): where e leaves 0 along initial.velocity"),
+        caption=Text("closed form: where e_theory leaves 0; Δe = e − e_theory"),
+        box=box.SIMPLE_HEAD,
+        show_edge=False,
+        pad_edge=False,
+    )
+    table.add_column("other axes", overflow="fold")
+    for column in ("captured ≤", "separated ≥", "estimate", "closed form", "max |Δe|"):
+        table.add_column(column, justify="right")
+    for row in estimates:
+        label = ", ".join(f"{p.split('.')[-1]} = {v:.4g}" for p, v in row["fixed"].items()) or "—"
+        low = "none" if math.isnan(row["low"]) else f"{row['low']:.6g}"
+        high = "none" if math.isnan(row["high"]) else f"{row['high']:.6g}"
+        if math.isnan(row["low"]) and not math.isnan(row["high"]):
+            estimate = f"< {row['high']:.6g}"
+        else:
+            estimate = _number(row["estimate"], ".6g")
+        table.add_row(Text(label), low, high, estimate, _number(row["theory"], ".6g"), _number(row["max_error"], ".3g"))
+    return table

@@ -1,0 +1,258 @@
+"""The command line: one end-to-end run in a subprocess, then runs, overrides, stored runs and
+refusals of bad input through typer's runner (exit code 2, dotted path, no traceback, no files)."""
+
+import copy
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from impact import theory
+from impact._io.run import read_run
+from impact._scene.scene import load_scene, scene_yaml
+from impact.cli import app
+
+CONFIGS = Path(__file__).parents[2] / "configs"
+THORNTON_NING = CONFIGS / "thornton_ning.yaml"
+OUTPUTS = {"run.h5", "config.yaml", "time.png", "force_indentation.png"}
+DELETE = object()
+
+
+def invoke(*args):
+    return CliRunner().invoke(app, [str(arg) for arg in args])
+
+
+@pytest.fixture(scope="module")
+def end_to_end(tmp_path_factory):
+    """`impact run configs/thornton_ning.yaml -o DIR` through the console entry point."""
+    folder = tmp_path_factory.mktemp("end_to_end") / "tn"
+    command = shutil.which("impact")
+    prefix = [command] if command else [sys.executable, "-c", "from impact.cli import main; main()"]
+    process = subprocess.run([*prefix, "run", str(THORNTON_NING), "-o", str(folder)], capture_output=True, text=True)
+    return folder, process
+
+
+def test_help_lists_every_command():
+    result = invoke("--help")
+    assert result.exit_code == 0
+    for command in ("run", "validate", "show"):
+        assert command in result.output
+
+
+def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
+    folder, process = end_to_end
+    assert process.returncode == 0, process.stderr
+    assert "Traceback" not in process.stderr
+    for phrase in ("restitution e", "0.862944", "separated", "contact time", "wall time", f"run written to {folder}"):
+        assert phrase in process.stdout
+    assert {entry.name for entry in folder.iterdir()} == OUTPUTS
+    for plot in ("time.png", "force_indentation.png"):
+        assert (folder / plot).read_bytes().startswith(b"\x89PNG")
+    scene = load_scene(THORNTON_NING)
+    assert (folder / "config.yaml").read_text() == scene_yaml(scene)
+    result = read_run(folder / "run.h5")
+    assert result.scene == scene
+    expected = theory.thornton_ning_restitution(0.6, scene.body.resolved_mass, 1e-6, 1e9, 0.05)
+    assert math.isclose(result.restitution, float(expected), abs_tol=1e-6)
+    with h5py.File(folder / "run.h5", "r") as file:
+        assert bool(file["parameters/config.yaml"].attrs["x64"])  # main() enabled float64
+
+
+def test_show_prints_the_stored_summary(end_to_end):
+    folder, _ = end_to_end
+    result = invoke("show", folder / "run.h5")
+    assert result.exit_code == 0, result.output
+    for phrase in ("thornton_ning", "restitution e", "0.862944", "separated", "written by impact"):
+        assert phrase in result.output
+
+
+def test_run_defaults_to_a_time_stamped_folder_and_applies_overrides(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    overrides = ["--set", "initial.velocity=0.8", "--set", "effects.adhesion.work_of_adhesion=4e-2"]
+    result = invoke("run", THORNTON_NING, *overrides)
+    assert result.exit_code == 0, result.output
+    (folder,) = (tmp_path / "runs" / "thornton_ning").iterdir()
+    assert {entry.name for entry in folder.iterdir()} == OUTPUTS
+    config = yaml.safe_load((folder / "config.yaml").read_text())
+    assert config["initial"]["velocity"] == 0.8
+    assert config["effects"]["adhesion"]["work_of_adhesion"] == 0.04  # "4e-2" is a YAML string, coerced
+    assert str(Path("runs") / "thornton_ning" / folder.name) in result.output
+
+
+def test_existing_folder_is_refused_unless_overwrite(tmp_path):
+    folder = tmp_path / "out"
+    folder.mkdir()
+    (folder / "notes.txt").write_text("keep")
+    refused = invoke("run", THORNTON_NING, "-o", folder)
+    assert refused.exit_code == 2
+    assert "--output" in refused.output and "exists" in refused.output and "--overwrite" in refused.output
+    assert {entry.name for entry in folder.iterdir()} == {"notes.txt"}
+    accepted = invoke("run", THORNTON_NING, "-o", folder, "--overwrite")
+    assert accepted.exit_code == 0, accepted.output
+    assert {entry.name for entry in folder.iterdir()} == OUTPUTS | {"notes.txt"}
+
+
+def test_unsuccessful_run_is_written_and_exits_1(tmp_path):
+    # touch would come at 1.67 µs, after the time limit
+    overrides = ["--set", "initial.gap=1e-6", "--set", "limits.duration=1e-7"]
+    result = invoke("run", THORNTON_NING, "-o", tmp_path / "out", *overrides)
+    assert result.exit_code == 1
+    assert "time_limit" in result.output
+    assert read_run(tmp_path / "out" / "run.h5").status == "time_limit"
+
+
+def test_validate_prints_the_resolved_key_facts():
+    result = invoke(
+        "validate",
+        CONFIGS / "gravity_bounces.yaml",
+        "--set",
+        "contact.springs=500",
+        "--set",
+        "body.profile.R=2e-3",
+    )
+    assert result.exit_code == 0, result.output
+    for phrase in (
+        "OK",
+        "paraboloid",
+        "R = 0.002",
+        "8.37758e-05 kg",
+        "density 2500",
+        "1e+10 Pa",
+        "Δγ = 0.1 J/m²",
+        "gravity (g = 9.81",
+        "500 springs",
+    ):
+        assert phrase in result.output
+
+
+# --- refusals -------------------------------------------------------------------------------
+
+TABULATED = {"shape": "tabulated", "r": [0.0, 1e-6, 2e-6], "f": [0.0, 1e-9, 4e-9]}
+
+# (case, changes to configs/thornton_ning.yaml by dotted path, dotted path named, phrase)
+BAD_SCENES = [
+    ("unknown top-level key", {"colour": "red"}, "colour", "unknown key"),
+    ("unknown nested key", {"initial.speed": 0.6}, "initial.speed", "unknown key"),
+    ("unknown shape", {"body.profile.shape": "banana"}, "body.profile.shape", "unknown shape 'banana'"),
+    ("missing shape parameter", {"body.profile.R": DELETE}, "body.profile.R", "missing"),
+    ("string for a number", {"material.E_star": "stiff"}, "material.E_star", "expected a number"),
+    ("zero mass", {"body.mass": 0}, "body.mass", "greater than 0"),
+    ("negative mass", {"body.mass": -1e-14}, "body.mass", "greater than 0"),
+    ("negative density", {"body.mass": DELETE, "body.density": -2500}, "body.density", "greater than 0"),
+    ("zero R", {"body.profile.R": 0}, "body.profile.R", "greater than 0"),
+    ("negative E_star", {"material.E_star": -1e9}, "material.E_star", "greater than 0"),
+    ("negative velocity", {"initial.velocity": -0.6}, "initial.velocity", "greater than or equal to 0"),
+    ("zero velocity, no gravity", {"initial.velocity": 0}, "initial.velocity", "must be > 0"),
+    ("nu = 0.5", {"material": {"E": 1e9, "nu": 0.5}}, "material.nu", "less than 0.5"),
+    ("nu = -1", {"material": {"E": 1e9, "nu": -1}}, "material.nu", "greater than -1"),
+    (
+        "approach above work of adhesion",
+        {"effects.adhesion.approach_work_of_adhesion": 0.1},
+        "effects.adhesion.approach_work_of_adhesion",
+        "must not exceed work_of_adhesion",
+    ),
+    (
+        "negative work of adhesion",
+        {"effects.adhesion.work_of_adhesion": -0.05},
+        "effects.adhesion.work_of_adhesion",
+        "greater than or equal to 0",
+    ),
+    (
+        "power law n = 0",
+        {"body.profile": {"shape": "power_law", "n": 0, "c": 300.0}},
+        "body.profile.n",
+        "greater than 0",
+    ),
+    ("cone theta = 0", {"body.profile": {"shape": "cone", "theta": 0}}, "body.profile.theta", "(0, pi/2)"),
+    ("cone theta = pi/2", {"body.profile": {"shape": "cone", "theta": 1.5708}}, "body.profile.theta", "(0, pi/2)"),
+    (
+        "tabulated r not increasing",
+        {"body.profile": {**TABULATED, "r": [0.0, 2e-6, 1e-6]}},
+        "body.profile.r",
+        "strictly increasing",
+    ),
+    (
+        "tabulated f not from 0",
+        {"body.profile": {**TABULATED, "f": [1e-9, 2e-9, 4e-9]}},
+        "body.profile.f",
+        "start at 0",
+    ),
+    ("mass and density", {"body.density": 2500}, "body", "exactly one of mass"),
+    ("springs < 1", {"contact.springs": 0}, "contact.springs", "springs must be 'continuum' or an integer >= 1"),
+    ("rtol = 0", {"solver.rtol": 0}, "solver.rtol", "greater than 0"),
+]
+
+
+def changed(data: dict, changes: dict) -> dict:
+    data = copy.deepcopy(data)
+    for path, value in changes.items():
+        *parents, key = path.split(".")
+        node = data
+        for parent in parents:
+            node = node[parent]
+        if value is DELETE:
+            del node[key]
+        else:
+            node[key] = value
+    return data
+
+
+def assert_refused(result, folder: Path, files: set, *phrases):
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    for phrase in phrases:
+        assert phrase in result.output
+    assert {entry.name for entry in folder.iterdir()} == files  # no run folder, no partial file
+
+
+@pytest.mark.parametrize("command", ["run", "validate"])
+@pytest.mark.parametrize("case, changes, path, phrase", BAD_SCENES, ids=[case[0] for case in BAD_SCENES])
+def test_bad_scene_is_refused(command, case, changes, path, phrase, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    scene_file = tmp_path / "scene.yaml"
+    scene_file.write_text(yaml.safe_dump(changed(yaml.safe_load(THORNTON_NING.read_text()), changes)))
+    assert_refused(invoke(command, scene_file), tmp_path, {"scene.yaml"}, path, phrase)
+
+
+@pytest.mark.parametrize(
+    "case, text, phrase",
+    [
+        ("missing file", None, "no such file"),
+        ("invalid YAML", "body: [unclosed\n", "invalid YAML"),
+        ("not a mapping", "- 1\n- 2\n", "must hold a mapping"),
+    ],
+)
+def test_unreadable_scene_file_is_refused(case, text, phrase, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    if text is not None:
+        (tmp_path / "scene.yaml").write_text(text)
+    files = set() if text is None else {"scene.yaml"}
+    assert_refused(invoke("run", tmp_path / "scene.yaml"), tmp_path, files, "scene.yaml", phrase)
+
+
+@pytest.mark.parametrize(
+    "assignment, phrases",
+    [
+        ("initial.speed=0.8", ["--set", "no field 'initial.speed' in the scene", "initial takes: gap, velocity"]),
+        ("initial.velocity.x=1", ["--set", "no field 'initial.velocity.x'", "is a value"]),
+        ("body.profile.theta=0.1", ["--set", "no field 'body.profile.theta'"]),  # a paraboloid has no theta
+        ("initial.velocity=fast", ["initial.velocity", "expected a number", "'fast'"]),
+        ("initial.velocity", ["--set", "expected dotted.path=value"]),
+        ("name=[unclosed", ["--set name", "not valid YAML"]),
+    ],
+)
+def test_bad_override_is_refused(assignment, phrases, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert_refused(invoke("run", THORNTON_NING, "--set", assignment), tmp_path, set(), *phrases)
+
+
+def test_show_refuses_what_is_not_a_run(tmp_path):
+    (tmp_path / "notes.h5").write_text("not HDF5")
+    assert_refused(invoke("show", tmp_path / "absent.h5"), tmp_path, {"notes.h5"}, "no such file")
+    assert_refused(invoke("show", tmp_path / "notes.h5"), tmp_path, {"notes.h5"}, "not an HDF5 file")

@@ -1,0 +1,130 @@
+"""Every example scene in configs/ runs, succeeds, and meets its closed form where one exists."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+import impact
+from impact import theory
+
+CONFIGS = Path(__file__).parents[2] / "configs"
+
+
+def thornton_ning(scene, velocity):
+    """Thornton–Ning restitution (3.50) of a paraboloid scene at a touch velocity (m/s)."""
+    return float(
+        theory.thornton_ning_restitution(
+            velocity,
+            scene.body.resolved_mass,
+            scene.body.profile.R,
+            scene.material.effective_modulus,
+            scene.effects.adhesion.work_of_adhesion,
+        )
+    )
+
+
+def power_law(scene, velocity):
+    """Power-law restitution (3.81) of a cone (n = 1, c = tan θ) or power-law scene."""
+    profile = scene.body.profile
+    n, c = (1.0, math.tan(profile.theta)) if profile.shape == "cone" else (profile.n, profile.c)
+    return float(
+        theory.power_law_restitution(
+            velocity,
+            scene.body.resolved_mass,
+            n,
+            c,
+            scene.material.effective_modulus,
+            scene.effects.adhesion.work_of_adhesion,
+        )
+    )
+
+
+def matches(closed_form, tolerance):
+    def check(result):
+        assert result.restitution == pytest.approx(closed_form(result.scene, result.touch_velocity), abs=tolerance)
+
+    return check
+
+
+def below_thornton_ning(result):
+    assert 0 < result.restitution < thornton_ning(result.scene, result.touch_velocity)
+
+
+def captured_after_bouncing(result):
+    assert result.stuck and result.status == "captured"
+    assert result.bounces >= 3  # at least two rebounds, then the capturing contact
+
+
+def force_controlled_pull_off(result):
+    """Force control: the paraboloid lets go at F_c = −(3/2)πΔγR (3.46)."""
+    scene = result.scene
+    a_c, d_c, F_c = (
+        float(x)
+        for x in theory.paraboloid_critical(
+            scene.body.profile.R, scene.material.effective_modulus, scene.effects.adhesion.work_of_adhesion, 3.0
+        )
+    )
+    assert result.pull_off.force == pytest.approx(F_c, rel=1e-10)
+    assert result.pull_off.contact_radius == pytest.approx(a_c, rel=1e-10)
+
+
+def displacement_controlled_wavy_pull_off(result):
+    """Displacement control: the last state lies on (3.138)'s d(a), at a turn of d(a) (a local minimum)."""
+    scene, pull_off = result.scene, result.pull_off
+    profile = scene.body.profile
+    args = (
+        profile.R,
+        profile.amplitude,
+        profile.wavelength,
+        scene.material.effective_modulus,
+        scene.effects.adhesion.work_of_adhesion,
+    )
+
+    def depth(a):
+        return float(theory.wavy_paraboloid_indentation(a, *args))
+
+    a = pull_off.contact_radius
+    assert pull_off.indentation == pytest.approx(depth(a), rel=1e-9)
+    step = 1e-4 * a
+    assert depth(a - step) > depth(a) and depth(a + step) > depth(a)
+    assert pull_off.indentation < 0.0
+
+
+def maugis_dugdale_pull_off(result):
+    """Λ = 1: e between Thornton–Ning and 1; the unloading passes the pull-off force of (3.171)."""
+    scene = result.scene
+    adhesion = scene.effects.adhesion
+    R, E_star = scene.body.profile.R, scene.material.effective_modulus
+    tabor = float(theory.tabor_parameter(R, adhesion.adhesive_stress, adhesion.adhesion_range, E_star))
+    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12)
+    assert thornton_ning(scene, result.touch_velocity) < result.restitution < 1.0
+    pull_off = float(theory.maugis_pull_off(tabor)) * 1.5 * math.pi * R * adhesion.work_of_adhesion
+    assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
+
+
+CHECKS = {
+    "thornton_ning": matches(thornton_ning, 1e-6),
+    "cone": matches(power_law, 1e-6),
+    "power_law": matches(power_law, 1e-6),
+    "attach_on_touch": below_thornton_ning,
+    "nanoparticle": matches(thornton_ning, 1e-6),
+    "rubber_ball": matches(thornton_ning, 1e-6),
+    "gravity_bounces": captured_after_bouncing,
+    "spring_array": matches(thornton_ning, 1e-4),
+    "indentation_paraboloid": force_controlled_pull_off,
+    "indentation_wavy": displacement_controlled_wavy_pull_off,
+    "maugis_dugdale": maugis_dugdale_pull_off,
+}
+
+
+def test_every_config_is_checked():
+    assert {path.stem for path in CONFIGS.glob("*.yaml")} == set(CHECKS)
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_config_runs_and_meets_its_reference(name):
+    result = impact.simulate(CONFIGS / f"{name}.yaml", trajectory=False)
+    assert result.success, result.status
+    assert result.scene.name == name
+    CHECKS[name](result)
