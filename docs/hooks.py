@@ -1,0 +1,180 @@
+"""MkDocs hook: the scene reference, generated from the pydantic models of the scene file.
+
+`scene_reference()` walks `impact.Scene` field by field: a field whose type is a section (a
+pydantic model) opens a table of its own, the body profile (a union of models tagged by
+`shape`) one table per shape; every other field is a row with its dotted path, type, default,
+bounds and the `description` of its `Field`. `on_page_markdown` puts the tables in place of
+`PLACEHOLDER` in scene-reference.md, so the page always matches the code.
+"""
+
+import sys
+import types
+import typing
+from pathlib import Path
+
+import annotated_types
+from pydantic import BaseModel
+from pydantic.fields import FieldInfo
+
+ROOT = Path(__file__).resolve().parents[1]
+PLACEHOLDER = "<!-- scene-reference:generated -->"
+PAGE = "scene-reference.md"
+
+_BOUNDS = (
+    (annotated_types.Gt, "gt", ">"),
+    (annotated_types.Ge, "ge", "≥"),
+    (annotated_types.Lt, "lt", "<"),
+    (annotated_types.Le, "le", "≤"),
+)
+
+
+def _scene_model() -> type[BaseModel]:
+    if str(ROOT) not in sys.path:
+        sys.path.insert(0, str(ROOT))
+    import impact
+
+    return impact.Scene
+
+
+def _unwrap(annotation) -> tuple[list, bool]:
+    """The alternatives of a type (Annotated and None stripped) and whether None is one of them."""
+    while typing.get_origin(annotation) is typing.Annotated:
+        annotation = typing.get_args(annotation)[0]
+    if typing.get_origin(annotation) in (typing.Union, types.UnionType):
+        options, optional = [], False
+        for argument in typing.get_args(annotation):
+            inner, none = _unwrap(argument)
+            options += inner
+            optional |= none
+        return options, optional
+    if annotation is type(None):
+        return [], True
+    return [annotation], False
+
+
+def _models(annotation) -> list[type[BaseModel]]:
+    """The pydantic models a field holds (a section, or the profile union), else []."""
+    options, _ = _unwrap(annotation)
+    if options and all(isinstance(option, type) and issubclass(option, BaseModel) for option in options):
+        return options
+    return []
+
+
+def _type_name(annotation) -> str:
+    options, optional = _unwrap(annotation)
+    names = []
+    for option in options:
+        if typing.get_origin(option) is typing.Literal:
+            names.append(" or ".join(f"`{value}`" for value in typing.get_args(option)))
+        elif typing.get_origin(option) is list:
+            (item,) = typing.get_args(option)
+            names.append(f"list of {_type_name(item)}s")
+        elif option is float:
+            names.append("number")
+        elif option is int:
+            names.append("integer")
+        elif option is str:
+            names.append("string")
+        elif option is bool:
+            names.append("boolean")
+        else:
+            names.append(getattr(option, "__name__", str(option)))
+    text = " or ".join(names)
+    return f"{text} (optional)" if optional else text
+
+
+def _default(field: FieldInfo) -> str:
+    if field.is_required():
+        return "**required**"
+    default = field.get_default(call_default_factory=True)
+    if default is None:
+        return "none"
+    if isinstance(default, BaseModel):
+        return "section defaults"
+    return f"`{default}`"
+
+
+def _bounds(field: FieldInfo) -> str:
+    marks = []
+    for item in field.metadata:
+        for kind, attribute, sign in _BOUNDS:
+            if isinstance(item, kind):
+                marks.append(f"{sign} {getattr(item, attribute)}")
+    return ", ".join(marks)
+
+
+def _cell(text: str) -> str:
+    return " ".join(text.split()).replace("|", "\\|")
+
+
+def _summary(model: type[BaseModel]) -> str:
+    doc = model.__doc__ or ""
+    return _cell(doc.strip().split("\n\n")[0]) if doc.strip() else ""
+
+
+def _shape(model: type[BaseModel]) -> str:
+    options, _ = _unwrap(model.model_fields["shape"].annotation)
+    return typing.get_args(options[0])[0]
+
+
+def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[str, type[BaseModel] | list]]]:
+    """The rows of one section, and the sections (or profile unions) nested in it."""
+    lines = ["| key | type | default | bounds | meaning (SI units) |", "|---|---|---|---|---|"]
+    nested = []
+    for name, field in model.model_fields.items():
+        path = f"{prefix}{name}"
+        models = _models(field.annotation)
+        if models:
+            nested.append((path, models))
+            kind = "one of the shapes below, by `shape`" if len(models) > 1 else "section, below"
+            _, optional = _unwrap(field.annotation)
+            kind += " (optional)" if optional else ""
+            summary = _summary(models[0]) if len(models) == 1 else "the body's shape"
+            description = field.description or summary
+            lines.append(f"| `{path}` | {kind} | {_default(field)} | | {_cell(description or '')} |")
+            continue
+        description = field.description or ("selects this profile" if name == "shape" else "")
+        lines.append(
+            f"| `{path}` | {_cell(_type_name(field.annotation))} | {_default(field)} | {_bounds(field)} "
+            f"| {_cell(description)} |"
+        )
+    return lines, nested
+
+
+def _section(path: str, models: list[type[BaseModel]], level: int) -> list[str]:
+    hashes = "#" * min(level, 6)
+    if len(models) > 1:  # a union tagged by `shape`: one table per shape
+        out = [f"{hashes} `{path}`", "", f"A mapping whose `shape` selects one of {len(models)} profiles.", ""]
+        for model in models:
+            out += [f"{hashes}# `shape: {_shape(model)}`", "", _summary(model), ""]
+            lines, nested = _table(model, f"{path}.")
+            out += [*lines, ""]
+            for inner_path, inner in nested:
+                out += _section(inner_path, inner, level + 2)
+        return out
+    (model,) = models
+    out = [f"{hashes} `{path}`", "", _summary(model), ""]
+    lines, nested = _table(model, f"{path}.")
+    out += [*lines, ""]
+    for inner_path, inner in nested:
+        out += _section(inner_path, inner, level + 1)
+    return out
+
+
+def scene_reference(scene: type[BaseModel] | None = None) -> str:
+    """Markdown tables of every key of the scene file, generated from the pydantic models."""
+    scene = scene or _scene_model()
+    lines, nested = _table(scene, "")
+    out = ["## Top level", "", _summary(scene), "", *lines, ""]
+    for path, models in nested:
+        out += _section(path, models, 2)
+    return "\n".join(out)
+
+
+def on_page_markdown(markdown: str, page, config, files) -> str:
+    """Replace the placeholder of the scene reference page by the generated tables."""
+    if page.file.src_uri != PAGE:
+        return markdown
+    if PLACEHOLDER not in markdown:
+        raise ValueError(f"{PAGE} lost its placeholder {PLACEHOLDER!r}")
+    return markdown.replace(PLACEHOLDER, scene_reference())
