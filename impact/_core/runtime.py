@@ -4,8 +4,11 @@
 changes process-wide settings); call it first in scripts that use the Python API.
 """
 
+import functools
 import os
+from collections.abc import Callable
 from importlib import metadata
+from typing import ParamSpec, TypeVar
 
 import jax
 
@@ -27,3 +30,20 @@ def configure() -> None:
     flags = os.environ.get("XLA_FLAGS", "")
     if "xla_backend_extra_options" not in flags and not _accelerator_plugins():
         os.environ["XLA_FLAGS"] = f"{flags} --xla_backend_extra_options={SMALL_LOOP_OPTION}".strip()
+
+
+Arguments = ParamSpec("Arguments")
+Returned = TypeVar("Returned")
+
+
+def float64(function: Callable[Arguments, Returned]) -> Callable[Arguments, Returned]:
+    """Run `function` with JAX's 64-bit mode on, whatever the process-wide flag says: the
+    physics is float64 (in float32 the scaled problem under- and overflows), and a caller who
+    never called `configure()` gets the same answer as one who did."""
+
+    @functools.wraps(function)
+    def in_float64(*args: Arguments.args, **kwargs: Arguments.kwargs) -> Returned:
+        with jax.enable_x64(True):
+            return function(*args, **kwargs)
+
+    return in_float64

@@ -2,15 +2,18 @@
 
 from pathlib import Path
 
+from .._core.runtime import float64
 from .._scene.scene import Scene, load_scene
 from .impacts import Result, simulate_impact
 from .indentation import IndentationResult, simulate_indentation
 
 
+@float64
 def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> "Result | IndentationResult":
     """Run one scene (a `Scene`, a mapping or a YAML file). An impact gives a `Result`
     (`trajectory=False` skips its time series: faster); an indentation test (kind
-    `indentation`) gives an `IndentationResult` (its curve is always kept)."""
+    `indentation`) gives an `IndentationResult` (its curve is always kept). Computes in
+    float64 whatever JAX's global flag."""
     scene = load_scene(scene)
     if scene.kind == "indentation":
         return simulate_indentation(scene)

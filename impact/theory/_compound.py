@@ -11,6 +11,7 @@ import functools
 import jax
 import jax.numpy as jnp
 
+from .._core.runtime import float64
 from .._core.search import golden_section, sign_change
 from ..profiles import Scalars
 from ..profiles._base import as_float
@@ -63,16 +64,19 @@ def _truncated_cone_psi(phi, _=None):
     return (phi + 1 / jnp.tan(phi)) / jnp.sqrt(jnp.cos(phi))
 
 
+@float64
 def truncated_cone_beta(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the truncated cone (3.88); b [m] flat-tip radius."""
     return xi / jnp.tan(theta) * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
 
 
+@float64
 def truncated_cone_threshold():
     """Smallest β for which (3.87) φ + cot φ = β √cos φ has roots: 2.1219 (printed 2.125)."""
     return _angle_roots(_truncated_cone_psi, 10.0)[2]
 
 
+@float64
 def truncated_cone_critical(
     b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
@@ -90,6 +94,7 @@ def truncated_cone_critical(
     return a, d, F
 
 
+@float64
 def truncated_cone_pull_off(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Where a truncated cone loaded past its critical radii loses contact: the deeper of the flat
     tip (3.90) and the flank's larger root (3.89) (see the misprints listed in ``impact.theory``).
@@ -103,16 +108,19 @@ def _truncated_paraboloid_psi(phi, _=None):
     return (1 + s**2) / (s * c) / jnp.sqrt(c)
 
 
+@float64
 def truncated_paraboloid_beta(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """β = (ξR/b) √(πΔγ/(2E* b)) of the truncated paraboloid (3.96)."""
     return xi * R / b * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
 
 
+@float64
 def truncated_paraboloid_threshold():
     """Smallest β for which (3.95) has roots: 3.0945 (printed 3.095)."""
     return _angle_roots(_truncated_paraboloid_psi, 10.0)[2]
 
 
+@float64
 def truncated_paraboloid_critical(
     b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
@@ -129,12 +137,14 @@ def truncated_paraboloid_critical(
     return a, d, F
 
 
+@float64
 def truncated_paraboloid_pull_off(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """The deeper of the flat tip (flat punch, §3.5.9) and the flank's larger root (3.97)."""
     flank = truncated_paraboloid_critical(b, R, E_star, work_of_adhesion, xi, 1)
     return _deeper(xi, _flat_tip(b, E_star, work_of_adhesion), flank)
 
 
+@float64
 def capped_flat_punch_thresholds(b: Scalars, R: Scalars, E_star: Scalars):
     """(Δγ1, Δγ2) of the flat punch with parabolic cap (3.101): the works of adhesion at which
     the JKR critical radius of the cap reaches the punch radius b under force control (ξ = 3)
@@ -143,6 +153,7 @@ def capped_flat_punch_thresholds(b: Scalars, R: Scalars, E_star: Scalars):
     return second / 9, second
 
 
+@float64
 def capped_flat_punch_critical(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Flat punch of radius b with a parabolic cap of radius R (§3.5.10, (3.98)–(3.101)):
     the JKR critical state (3.45) where its radius lies on the cap, else the punch edge a_c = b
@@ -154,6 +165,7 @@ def capped_flat_punch_critical(b: Scalars, R: Scalars, E_star: Scalars, work_of_
     return jnp.where(on_cap, a_jkr, b), jnp.where(on_cap, d_jkr, d_edge), jnp.where(on_cap, F_jkr, F_edge)
 
 
+@float64
 def capped_flat_punch_normalized_force(d_hat: Scalars, b_hat: Scalars):
     """F̂ = (d̂ b̂ − b̂³)/2 at the punch edge â = b̂ (3.104), normalized as in (3.102)."""
     return 0.5 * (d_hat * b_hat - b_hat**3)
@@ -164,17 +176,20 @@ def _capped_cone_psi(phi, _=None):
     return (2 * (1 - s) / c + phi) / jnp.sqrt(c)
 
 
+@float64
 def capped_cone_beta(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the cone with parabolic cap (3.111)."""
     return truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi)
 
 
+@float64
 def capped_cone_threshold():
     """Smallest β for which (3.110) has roots: 1.7967 (printed 1.795); the smaller root exists
     up to β = 2, where the cap's own JKR critical radius reaches b."""
     return _angle_roots(_capped_cone_psi, 10.0)[2]
 
 
+@float64
 def capped_cone_critical(
     b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
@@ -200,6 +215,7 @@ def _on_cap(R, b, E_star, work_of_adhesion, xi):
     return tuple(jnp.where(inside, v, jnp.nan) for v in (a, d, F))
 
 
+@float64
 def capped_cone_pull_off(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Where a cone with parabolic cap loaded past b loses contact: the deeper of the cap's JKR
     state (R = b/tanθ, for β < 2) and the flank's larger root (β ≥ 1.7967)."""
@@ -212,11 +228,13 @@ def _capped_paraboloid_psi(phi, ratio):
     return (2 + ratio * (1 + s**2) / s) / c / jnp.sqrt(c)
 
 
+@float64
 def capped_paraboloid_beta(b: Scalars, R1: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """β = (ξR1/b) √(πΔγ/(2E* b)) of the paraboloid with parabolic cap (3.121)."""
     return truncated_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi)
 
 
+@float64
 def capped_paraboloid_threshold(R1: Scalars, R2: Scalars):
     """β0(R1/R*), the smallest β with roots of (3.120), R* = R1R2/(R1 − R2) (3.115); the chapter's
     fit (3.123) is 2.2 + 3.2 R1/R* (exact: 2 at R1/R* = 0, 3.0945 R1/R* for R1/R* → ∞)."""
@@ -224,6 +242,7 @@ def capped_paraboloid_threshold(R1: Scalars, R2: Scalars):
     return _angle_roots(_capped_paraboloid_psi, 1e300 * jnp.ones_like(as_float(ratio)), ratio)[2]
 
 
+@float64
 def capped_paraboloid_critical(
     b: Scalars, R1: Scalars, R2: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
@@ -241,6 +260,7 @@ def capped_paraboloid_critical(
     return a, d, F
 
 
+@float64
 def capped_paraboloid_pull_off(
     b: Scalars, R1: Scalars, R2: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars
 ):
@@ -268,11 +288,13 @@ def _rounded_angle(beta):
     return sign_change(lambda p: (2 * jnp.tan(p) - p) / jnp.sqrt(jnp.cos(p)) - beta, lo, hi, _ANGLE_STEPS)
 
 
+@float64
 def rounded_flat_punch_beta(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """β = (ξR/b) √(πΔγ/(2E* b)) of the flat punch with rounded edge (3.130)."""
     return truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi)
 
 
+@float64
 def rounded_flat_punch_critical(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Flat punch with base radius b and edges rounded with radius R, (3.129)–(3.131): the one
     root of 2 tan φ − φ = β √cos φ, a_c = b/cos φ,

@@ -4,6 +4,7 @@
 import jax
 import jax.numpy as jnp
 
+from .._core.runtime import float64
 from ..profiles import Scalars, kappa
 from ..profiles._base import as_float
 from ._jkr import detach_length
@@ -11,6 +12,7 @@ from ._jkr import detach_length
 _SPHERE_ITERATIONS = 64
 
 
+@float64
 def flat_punch_critical(radius: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Flat punch of radius ``radius`` [m] (3.37), same for both criteria:
     a_c = radius, d_c = −√(2π a Δγ/E*), F_c = −√(8π a³ E* Δγ)."""
@@ -19,6 +21,7 @@ def flat_punch_critical(radius: Scalars, E_star: Scalars, work_of_adhesion: Scal
     return a_c, d_c, 2 * E_star * a_c * d_c
 
 
+@float64
 def power_law_critical(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Critical values for f = c rⁿ, n > 1/2 (3.74)–(3.76). With s = √(πΔγ/(2E*)) and
     K = κ(n) c: a_c = (ξ s/(nK))^(2/(2n−1)), d_c = s √a_c (ξ/n − 2),
@@ -30,6 +33,7 @@ def power_law_critical(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion
     return a_c, d_c, F_c
 
 
+@float64
 def cone_critical(theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Cone of slope angle θ [rad] (3.40)–(3.41): a_c = 2ξ²Δγ/(πE* tan²θ),
     d_c = (ξ² − 2ξ)Δγ/(E* tanθ), F_c = 2Δγ²(ξ⁴ − 4ξ³)/(πE* tan³θ)."""
@@ -40,6 +44,7 @@ def cone_critical(theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi
     return a_c, d_c, F_c
 
 
+@float64
 def paraboloid_critical(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Paraboloid f = r²/(2R) (3.45): a_c = (πξ²R²Δγ/(8E*))^(1/3),
     d_c = (π²ξΔγ²R/E*²)^(1/3) (ξ/4 − 1), F_c = πξΔγR (ξ/6 − 1).
@@ -91,6 +96,7 @@ def _hertz_sphere_shape(alpha):
     return jnp.where(alpha < 0.3, series, (1 + alpha**2) * jnp.arctanh(alpha) - alpha)
 
 
+@float64
 def ellipsoid_critical(R: Scalars, k: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Ellipsoid f = R(1 − √(1 − k²r²)), g = kR x artanh(kx) (§3.5.5; R [m], k [1/m]).
 
@@ -108,6 +114,7 @@ def ellipsoid_critical(R: Scalars, k: Scalars, E_star: Scalars, work_of_adhesion
     return alpha / k, d_c, F_c
 
 
+@float64
 def sphere_critical(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Sphere of radius R [m], g = x artanh(x/R) (3.54)–(3.56): α = a_c/R solves
     artanh α + α/(1 − α²) = β/√α with β = ξ√(πΔγ/(2E*R)); d_c, F_c from (3.56).
@@ -115,6 +122,7 @@ def sphere_critical(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: 
     return ellipsoid_critical(R, 1 / R, E_star, work_of_adhesion, xi)
 
 
+@float64
 def power_law_jump_in(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Contact radius and force when a power-law body first touches (d = 0) under the
     reversible JKR law: g(a₀) = Δl(a₀), i.e. a₀ = (2πΔγ/(E* κ² c²))^(1/(2n−1)), and
@@ -124,6 +132,7 @@ def power_law_jump_in(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion:
     return a0, -2 * E_star * K * a0 ** (n + 1) / (n + 1)
 
 
+@float64
 def paraboloid_jump_in(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Jump-in of a paraboloid at first touch: a₀³ = 2πΔγR²/E*, F₀ = −(4/3)πΔγR, which is
     −(8/9)|F_c| with the force-control F_c. Returns (a₀ [m], F₀ [N])."""
@@ -131,6 +140,7 @@ def paraboloid_jump_in(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     return a0, -2 * E_star * a0**3 / (3 * R)
 
 
+@float64
 def power_law_half_threshold(E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars = 1):
     """c at which f = c√r turns over (3.80): g = κ(½)c√x against Δl = √(2πΔγ/E*)√x, so the
     displacement-controlled contact (ξ = 1) shrinks to nothing on unloading for

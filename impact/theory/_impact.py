@@ -5,6 +5,7 @@ non-adhesive (Hertz-type) impact of a power-law body."""
 import jax.numpy as jnp
 from jax.scipy.special import gammaln
 
+from .._core.runtime import float64
 from ..profiles import Scalars, kappa
 from ..profiles._base import as_float
 
@@ -15,6 +16,7 @@ def _restitution(beta):
     return jnp.where(below, jnp.sqrt(jnp.where(below, 1 - beta, 1.0)), 0.0)
 
 
+@float64
 def power_law_energy_loss(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Kinetic energy [J] lost in one adhesive impact of f = c rⁿ, n > 1/2 (from (3.82)):
     W = ½ [(πΔγ/2)^(2n+1) (E* n² c² κ²)^(−2)]^(1/(2n−1)) (8n − 4)/(2n² + 3n + 1)
@@ -28,6 +30,7 @@ def power_law_energy_loss(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhes
     return scale * shape / 2
 
 
+@float64
 def power_law_beta(
     velocity: Scalars, mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -35,6 +38,7 @@ def power_law_beta(
     return 2 * power_law_energy_loss(n, c, E_star, work_of_adhesion) / (mass * velocity**2)
 
 
+@float64
 def power_law_restitution(
     velocity: Scalars, mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -42,32 +46,38 @@ def power_law_restitution(
     return _restitution(power_law_beta(velocity, mass, n, c, E_star, work_of_adhesion))
 
 
+@float64
 def power_law_sticking_velocity(mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Impact velocity [m/s] with β = 1: v_s = √(2W/m); slower bodies stick."""
     return jnp.sqrt(2 * power_law_energy_loss(n, c, E_star, work_of_adhesion) / mass)
 
 
+@float64
 def thornton_ning_energy_loss(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Kinetic energy [J] lost in the JKR impact of a paraboloid of radius R (from (3.51)):
     W = (1/10) [R⁴ (πΔγ)⁵ / E*²]^(1/3) (1 + 864^(1/3))."""
     return jnp.cbrt(R**4 * (jnp.pi * work_of_adhesion) ** 5 / E_star**2) * (1 + jnp.cbrt(864.0)) / 10
 
 
+@float64
 def thornton_ning_beta(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Thornton–Ning β (3.51) = W / (½ m v₀²)."""
     return 2 * thornton_ning_energy_loss(R, E_star, work_of_adhesion) / (mass * velocity**2)
 
 
+@float64
 def thornton_ning_restitution(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Thornton–Ning restitution (3.50): e = √(1 − β) for β ≤ 1, 0 otherwise."""
     return _restitution(thornton_ning_beta(velocity, mass, R, E_star, work_of_adhesion))
 
 
+@float64
 def thornton_ning_sticking_velocity(mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Impact velocity [m/s] with β = 1 for the paraboloid."""
     return jnp.sqrt(2 * thornton_ning_energy_loss(R, E_star, work_of_adhesion) / mass)
 
 
+@float64
 def attach_on_touch_energy_loss(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -97,6 +107,7 @@ def attach_on_touch_energy_loss(
     return (loading - hold - unloading) * energy_unit
 
 
+@float64
 def attach_on_touch_restitution(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -110,6 +121,7 @@ def _power_law_stiffness(n, c, E_star):
     return 2 * E_star * n / (n + 1) * (kappa(n) * c) ** (-1 / n)
 
 
+@float64
 def power_law_hertz_max_indentation(velocity: Scalars, mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars):
     """Maximum indentation [m] of a non-adhesive impact of f = c rⁿ:
     ½ m v₀² = k n/(2n+1) d_max^((2n+1)/n)."""
@@ -117,12 +129,14 @@ def power_law_hertz_max_indentation(velocity: Scalars, mass: Scalars, n: Scalars
     return (mass * velocity**2 * (2 * n + 1) / (2 * n * k)) ** (n / (2 * n + 1))
 
 
+@float64
 def power_law_hertz_max_force(velocity: Scalars, mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars):
     """Maximum force [N] of a non-adhesive impact of f = c rⁿ: k d_max^((n+1)/n)."""
     d_max = power_law_hertz_max_indentation(velocity, mass, n, c, E_star)
     return _power_law_stiffness(n, c, E_star) * d_max ** ((n + 1) / n)
 
 
+@float64
 def power_law_hertz_contact_time(velocity: Scalars, mass: Scalars, n: Scalars, c: Scalars, E_star: Scalars):
     """Contact time [s] of a non-adhesive impact of f = c rⁿ, exact:
     t_c = 2 d_max/v₀ ∫₀¹ dx/√(1 − x^p), p = (2n+1)/n, with
@@ -132,16 +146,19 @@ def power_law_hertz_contact_time(velocity: Scalars, mass: Scalars, n: Scalars, c
     return 2 * power_law_hertz_max_indentation(velocity, mass, n, c, E_star) / velocity * integral
 
 
+@float64
 def hertz_max_indentation(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
     """Hertz impact of a paraboloid: d_max = (15 m v₀² / (16 E* √R))^(2/5) [m]."""
     return power_law_hertz_max_indentation(velocity, mass, 2, 1 / (2 * R), E_star)
 
 
+@float64
 def hertz_max_force(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
     """Hertz impact of a paraboloid: F_max = (4/3) E* √R d_max^(3/2) [N]."""
     return power_law_hertz_max_force(velocity, mass, 2, 1 / (2 * R), E_star)
 
 
+@float64
 def hertz_contact_time(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
     """Hertz impact of a paraboloid, exact constant:
     t_c = 2 (15/16)^(2/5) √π Γ(7/5)/Γ(9/10) (m²/(R E*² v₀))^(1/5) ≈ 2.8682 (…)^(1/5) [s]."""

@@ -11,12 +11,14 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 from scipy.special import hyp2f1
 
+from .._core.runtime import float64
 from ..profiles import Scalars, kappa
 
 _PULL_OFF_GRID = np.linspace(-50.0, 50.0, 4001)  # ln(κ − 1) scanned by ``maugis_pull_off``
 _ARCTAN_SERIES = np.arange(1, 11)
 
 
+@float64
 def tabor_parameter(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Tabor parameter Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172); R, h [m], σ0, E* [Pa]. Equivalently
     Λ = 3Rσ0/(2E* a_c) with the JKR a_c (3.170), and Λ = (3/8)^(1/3) λ with Maugis's
@@ -24,35 +26,41 @@ def tabor_parameter(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalar
     return np.cbrt(3 * R * adhesive_stress**2 / (np.pi * adhesion_range * E_star**2))
 
 
+@float64
 def maugis_adhesive_stress(tabor: Scalars, R: Scalars, work_of_adhesion: Scalars, E_star: Scalars):
     """σ0 [Pa] giving the Tabor parameter Λ at fixed Δγ = σ0 h, (3.172) with (3.4):
     σ0 = Λ (πE*²Δγ/(3R))^(1/3)."""
     return tabor * np.cbrt(np.pi * E_star**2 * work_of_adhesion / (3 * R))
 
 
+@float64
 def maugis_range(tabor: Scalars, R: Scalars, work_of_adhesion: Scalars, E_star: Scalars):
     """Range h = Δγ/σ0 [m] (3.4) with σ0 of ``maugis_adhesive_stress``."""
     return work_of_adhesion / maugis_adhesive_stress(tabor, R, work_of_adhesion, E_star)
 
 
+@float64
 def tabor_criterion(R: Scalars, work_of_adhesion: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Left side of (3.181), 2RΔγ²(1 − 2/π)²/(E*²h³) = (2π/3)(1 − 2/π)² Λ³: Tabor's μ (3.3) with
     z0 = h, times 2(1 − 2/π)². The DMT limit holds where it is ≪ 1."""
     return 2 * R * work_of_adhesion**2 * (1 - 2 / np.pi) ** 2 / (E_star**2 * adhesion_range**3)
 
 
+@float64
 def bradley_pull_off(R: Scalars, work_of_adhesion: Scalars):
     """Pull-off force [N] of a rigid paraboloid of radius R from a rigid plane under any law σ(s)
     with ∫σ ds = Δγ (3.141): F_A = 2πRΔγ."""
     return 2 * np.pi * R * work_of_adhesion
 
 
+@float64
 def dmt_pull_off(R: Scalars, work_of_adhesion: Scalars):
     """DMT pull-off force [N] of a paraboloid (3.142), (3.180): Bradley's 2πRΔγ, i.e. F̃_A = 4/3 in
     the units (3.170), the Λ → 0 limit of ``maugis_pull_off``."""
     return bradley_pull_off(R, work_of_adhesion)
 
 
+@float64
 def dmt_zone_radius(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Adhesive zone radius b [m] of the paraboloid where contact begins (a = 0, the centre gap just
     closed): the positive root (3.178) of b²/(2R) + (2σ0b/E*)(1 − 2/π) = h (3.177);
@@ -61,6 +69,7 @@ def dmt_zone_radius(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalar
     return 2 * R * adhesion_range / (q + np.sqrt(q**2 + 2 * R * adhesion_range))
 
 
+@float64
 def power_law_dmt_pull_off(n: Scalars, c: Scalars, work_of_adhesion: Scalars, adhesion_range: Scalars):
     """DMT pull-off force [N] of f = c rⁿ (3.195): πσ0b² with f(b) = h, F_A = πΔγ h^((2−n)/n)/c^(2/n)
     (c [m^(1−n)]); the paraboloid n = 2, c = 1/(2R) gives 2πRΔγ."""
@@ -73,6 +82,7 @@ def _zone_terms(a, b):
     return root, np.arctan2(root, a)
 
 
+@float64
 def maugis_paraboloid_state(
     a: Scalars, b: Scalars, R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars
 ):
@@ -89,6 +99,7 @@ def maugis_paraboloid_state(
     return residual, d, F
 
 
+@float64
 def maugis_power_law_state(
     a: Scalars, b: Scalars, n: Scalars, c: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars
 ):
@@ -138,6 +149,7 @@ def _maugis_curve(excess, tabor):
     return a, d, F
 
 
+@float64
 def maugis_paraboloid(kappa_ratio: Scalars, tabor: Scalars):
     """Normalized Maugis–Dugdale state of the paraboloid (3.171) at κ = b/a > 1 and Tabor parameter
     Λ (3.172): (ã, d̃, F̃) with ã the positive root of
@@ -147,6 +159,7 @@ def maugis_paraboloid(kappa_ratio: Scalars, tabor: Scalars):
     return _maugis_curve(np.asarray(kappa_ratio, dtype=float) - 1, tabor)
 
 
+@float64
 def maugis_junction_zone_radius(tabor: Scalars):
     """b̃ = b/a_c where the paraboloid's contact begins (a = 0), (3.177) in the units (3.170):
     (3/2)b̃² + 4Λ(1 − 2/π)b̃ = 4/(πΛ), so b̃ = (8/(πΛ)) / (q + √(q² + 24/(πΛ))), q = 4Λ(1 − 2/π);
@@ -155,6 +168,7 @@ def maugis_junction_zone_radius(tabor: Scalars):
     return 8 / (np.pi * tabor) / (q + np.sqrt(q**2 + 24 / (np.pi * tabor)))
 
 
+@float64
 def maugis_paraboloid_noncontact(zone_radius: Scalars, tabor: Scalars):
     """(d̃, F̃) of the paraboloid before contact (a = 0, centre gap open) at zone radius b̃ = b/a_c,
     (3.176) with d free: d = b²/(2R) − 4σ0b/(πE*) − h and F = −πσ0b² become
@@ -181,6 +195,7 @@ def _pull_off(tabor):
     return max(-float(best.fun), -float(values[i]), junction)
 
 
+@float64
 def maugis_pull_off(tabor: Scalars):
     """Normalized Maugis–Dugdale pull-off of the paraboloid, F̃_A = F_A/((3/2)πRΔγ) = −min F̃ over
     the whole equilibrium curve (3.171) (force control), including its junction a = 0 with the
@@ -192,18 +207,21 @@ def maugis_pull_off(tabor: Scalars):
     return np.vectorize(_pull_off, otypes=[float])(tabor)[()]
 
 
+@float64
 def maugis_pull_off_force(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Maugis–Dugdale pull-off force [N] of a paraboloid: F̃_A(Λ) (3/2)πRσ0h."""
     tabor = tabor_parameter(R, adhesive_stress, adhesion_range, E_star)
     return maugis_pull_off(tabor) * 1.5 * np.pi * R * adhesive_stress * adhesion_range
 
 
+@float64
 def maugis_pull_off_large_tabor(tabor: Scalars):
     """Pull-off for Λ ≫ 1, (3.189) corrected: F̃_A = 1 + 1/(12Λ²) + O(Λ⁻⁴) (printed 11/(12Λ²);
     see the misprints listed in ``impact.theory``)."""
     return 1 + 1 / (12 * np.asarray(tabor, dtype=float) ** 2)
 
 
+@float64
 def maugis_pull_off_force_large_tabor(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Dimensional (3.190) corrected [N]: F_A = (3/2)πRσ0h + (1/24)(3π⁵E*⁴Rh⁵/σ0)^(1/3)
     (printed 11/24), = (3/2)πRΔγ ``maugis_pull_off_large_tabor``(Λ)."""

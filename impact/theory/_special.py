@@ -3,12 +3,14 @@
 
 import jax.numpy as jnp
 
+from .._core.runtime import float64
 from ..profiles import Scalars, ellipe
 from ..profiles._base import as_float
 from ..profiles._functions import struve_h0_h1
 from ._jkr import detach_length
 
 
+@float64
 def wavy_paraboloid_indentation(
     a: Scalars, R: Scalars, amplitude: Scalars, wavelength: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -18,6 +20,7 @@ def wavy_paraboloid_indentation(
     return a**2 / R + jnp.pi**2 * amplitude * a / wavelength * h0 - detach_length(a, E_star, work_of_adhesion)
 
 
+@float64
 def wavy_paraboloid_force(
     a: Scalars, R: Scalars, amplitude: Scalars, wavelength: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
@@ -32,6 +35,7 @@ def wavy_paraboloid_force(
     )
 
 
+@float64
 def wavy_paraboloid_normalized(a_hat: Scalars, h_hat: Scalars, gamma_bar: Scalars):
     """The wavy paraboloid's curves in the units of (3.137), â = a/λ, d̂ = dR/λ², ĥ = hR/λ²,
     F̂ = 2F/(3πRΔγ), Δγ̄ = 2πΔγR²/(E*λ³), (3.138):
@@ -49,18 +53,21 @@ def wavy_paraboloid_normalized(a_hat: Scalars, h_hat: Scalars, gamma_bar: Scalar
     return d_hat, F_hat
 
 
+@float64
 def constant_stress_profile(r: Scalars, radius: Scalars, stress: Scalars, E_star: Scalars):
     """The profile that carries a uniform tensile stress σ0 over the whole contact of radius a
     (3.61): f = (σ0 a/E*)[(4/π) E(r/a) − 2] for r ≤ a, E the complete elliptic integral (3.62)."""
     return stress * radius / E_star * (4 / jnp.pi * ellipe(r / radius) - 2)
 
 
+@float64
 def constant_stress_uniform_state(radius: Scalars, stress: Scalars, E_star: Scalars):
     """(d [m], F [N]) where the profile (3.61) in full contact carries σ0 everywhere:
     d = −2σ0 a/E* (3.60 at r = 0) and F = −πσ0a² (3.63; tensile, hence negative here)."""
     return -2 * stress * radius / E_star, -jnp.pi * stress * radius**2
 
 
+@float64
 def constant_stress_pull_off(radius: Scalars, stress: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Pull-off of the profile (3.61) under the rule of Heß (ours, not in the chapter): its MDR
     transform g = (2σ0/E*)(√(a² − x²) − a) leaves only the wall as a critical radius, so under
@@ -73,6 +80,7 @@ def constant_stress_pull_off(radius: Scalars, stress: Scalars, E_star: Scalars, 
     return radius, d_c, F_c
 
 
+@float64
 def kendall_to_optimal_ratio(radius: Scalars, stress: Scalars, E_star: Scalars, range_: Scalars):
     """F_Kendall/F_opt = √(8E*h/(πσ0 a)) (3.69) with Δγ = σ0 h (3.68): Kendall's flat punch (3.66)
     against the optimal profile (3.67) of the same radius a; `range_` is h [m]."""

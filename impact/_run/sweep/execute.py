@@ -11,6 +11,7 @@ from pathlib import Path
 import jax
 import numpy as np
 
+from ..._core.runtime import float64
 from ..._scene.errors import SweepError
 from ..._scene.scene import Scene
 from ..._scene.sweep import make_spec
@@ -179,6 +180,7 @@ def _read_back(outputs) -> dict | None:
         return None
 
 
+@float64
 def run_spec(
     spec: SweepSpec,
     *,
@@ -198,6 +200,7 @@ def run_spec(
     return SweepResult.from_flat(spec, plan.params, results, stats)
 
 
+@float64
 def sweep(
     scene: "Scene | Mapping | str | Path",
     axes: Mapping[str, object],

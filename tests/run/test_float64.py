@@ -1,0 +1,52 @@
+"""Every public entry point computes in float64 with JAX's 64-bit flag off (the default of a
+fresh interpreter that never called `impact.configure()`), and leaves the flag as it found it."""
+
+import math
+from pathlib import Path
+
+import jax
+import numpy as np
+import pytest
+
+import impact
+from impact import theory
+
+SCENE = Path(__file__).parents[2] / "configs" / "thornton_ning.yaml"
+MASS, RADIUS, E_STAR, WORK = 1.0472e-14, 1e-6, 1e9, 0.05
+
+
+@pytest.fixture(autouse=True)
+def float32_process():
+    """JAX's global flag off for each test of this module (the suite's conftest turns it on)."""
+    jax.config.update("jax_enable_x64", False)
+    yield
+    assert jax.config.read("jax_enable_x64") is False, "an entry point changed the global flag"
+    jax.config.update("jax_enable_x64", True)
+
+
+def thornton_ning(velocity: float) -> float:
+    """(3.50–51) in Python floats: W = (1 + ∛864)/10 · ∛(R⁴(πΔγ)⁵/E*²), e = √(1 − W/(½mv²))."""
+    loss = math.cbrt(RADIUS**4 * (math.pi * WORK) ** 5 / E_STAR**2) * (1 + math.cbrt(864.0)) / 10
+    return math.sqrt(1 - loss / (0.5 * MASS * velocity**2))
+
+
+def test_closed_forms_answer_in_float64():
+    e = theory.thornton_ning_restitution(0.6, MASS, RADIUS, E_STAR, WORK)
+    assert e.dtype == np.float64
+    assert float(e) == pytest.approx(thornton_ning(0.6), rel=1e-13)
+
+
+def test_simulate_answers_in_float64():
+    scene = impact.load_scene(SCENE)
+    result = impact.simulate(scene, trajectory=False)
+    assert result.status == "separated"
+    assert result.restitution == pytest.approx(thornton_ning(scene.start.velocity), rel=1e-8)
+
+
+def test_sweep_answers_in_float64():
+    velocities = [0.5, 0.6]
+    result = impact.sweep(SCENE, {"initial.velocity": velocities}, chunk=2)
+    assert result.restitution.dtype == np.float64
+    for velocity, e, e_theory in zip(velocities, result.restitution, result.theory_restitution, strict=True):
+        assert e == pytest.approx(thornton_ning(velocity), rel=1e-8)
+        assert e_theory == pytest.approx(thornton_ning(velocity), rel=1e-13)
