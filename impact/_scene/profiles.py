@@ -36,14 +36,16 @@ __all__ = [
 
 
 def _number(value):
-    """Coerce numeric strings ('1e-3') to float; refuse booleans and other strings."""
+    """Coerce numeric strings ('1e-3') to float; refuse booleans, other strings, NaN and ±inf."""
     if isinstance(value, bool):
         raise ValueError(f"expected a number, got the boolean {value}")
     if isinstance(value, str):
         try:
-            return float(value)
+            value = float(value)
         except ValueError:
             raise ValueError(f"expected a number such as 1e-3, got the string {value!r}") from None
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"expected a finite number, got {value}")
     return value
 
 

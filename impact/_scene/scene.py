@@ -147,13 +147,30 @@ class Scene(Section):
         return self.program
 
 
+def read_text(path: Path) -> str:
+    """The text of a file the user named, or SceneError saying why it cannot be read (missing,
+    a directory or other non-file, unreadable, not UTF-8 text)."""
+    if not path.exists():
+        raise SceneError([("", f"no such file: {path}")])
+    if path.is_dir():
+        raise SceneError([("", f"{path} is a directory, not a file")])
+    if not path.is_file():
+        raise SceneError([("", f"{path} is not a regular file")])
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as error:
+        raise SceneError(
+            [("", f"{path} is not UTF-8 text (byte {error.object[error.start]:#04x} at {error.start})")]
+        ) from None
+    except OSError as error:
+        raise SceneError([("", f"cannot read {path}: {error.strerror}")]) from None
+
+
 def read_yaml(path: str | Path) -> dict:
     """A YAML mapping from a file, or SceneError (missing file, invalid YAML, not a mapping)."""
     path = Path(path)
-    if not path.is_file():
-        raise SceneError([("", f"no such file: {path}")])
     try:
-        data = yaml.safe_load(path.read_text())
+        data = yaml.safe_load(read_text(path))
     except yaml.YAMLError as error:
         raise SceneError([("", f"invalid YAML in {path}: {error}")]) from None
     if not isinstance(data, dict):

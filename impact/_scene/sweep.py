@@ -24,7 +24,7 @@ import yaml
 
 from .errors import SceneError, SweepError
 from .paths import NotASection, assign
-from .scene import Scene, load_scene, read_yaml
+from .scene import Scene, load_scene, read_text, read_yaml
 from .sweep_axes import build_axis
 from .sweep_points import check_points
 from .sweep_spec import MODES, ORDERS, SweepSpec
@@ -39,9 +39,10 @@ def load_sweep(source: "str | Path | Mapping") -> SweepSpec:
         data = dict(source)
     else:
         path = Path(source)
-        if not path.is_file():
-            raise SweepError([("", f"no such file: {path}")])
-        text, folder = path.read_text(), path.parent
+        try:
+            text, folder = read_text(path), path.parent
+        except SceneError as error:
+            raise SweepError(error.problems) from None
         try:
             data = yaml.safe_load(text)
         except yaml.YAMLError as error:

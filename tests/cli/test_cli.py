@@ -3,6 +3,7 @@ refusals of bad input through typer's runner (exit code 2, dotted path, no trace
 
 import copy
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -142,6 +143,8 @@ BAD_SCENES = [
     ("unknown shape", {"body.profile.shape": "banana"}, "body.profile.shape", "unknown shape 'banana'"),
     ("missing shape parameter", {"body.profile.R": DELETE}, "body.profile.R", "missing"),
     ("string for a number", {"material.E_star": "stiff"}, "material.E_star", "expected a number"),
+    ("not a number", {"initial.velocity": float("nan")}, "initial.velocity", "expected a finite number, got nan"),
+    ("infinite", {"material.E_star": float("inf")}, "material.E_star", "expected a finite number, got inf"),
     ("zero mass", {"body.mass": 0}, "body.mass", "greater than 0"),
     ("negative mass", {"body.mass": -1e-14}, "body.mass", "greater than 0"),
     ("negative density", {"body.mass": DELETE, "body.density": -2500}, "body.density", "greater than 0"),
@@ -234,6 +237,27 @@ def test_unreadable_scene_file_is_refused(case, text, phrase, tmp_path, monkeypa
         (tmp_path / "scene.yaml").write_text(text)
     files = set() if text is None else {"scene.yaml"}
     assert_refused(invoke("run", tmp_path / "scene.yaml"), tmp_path, files, "scene.yaml", phrase)
+
+
+@pytest.mark.parametrize("kind", ["binary", "directory", "fifo"])
+def test_scene_that_is_no_text_file_is_refused(kind, tmp_path, monkeypatch):
+    """Binary junk, a directory or a FIFO as the scene: exit 2 with the reason, nothing read
+    from the FIFO (it would block), nothing written."""
+    monkeypatch.chdir(tmp_path)
+    target = tmp_path / "scene.yaml"
+    if kind == "binary":
+        target.write_bytes(b"\x89PNG\r\n\x1a\n\x00\xff")
+    elif kind == "directory":
+        target.mkdir()
+    else:
+        os.mkfifo(target)
+    phrase = {
+        "binary": "is not UTF-8 text (byte 0x89 at 0)",
+        "directory": "is a directory, not a file",
+        "fifo": "is not a regular file",
+    }[kind]
+    for command in ("run", "validate"):
+        assert_refused(invoke(command, target), tmp_path, {"scene.yaml"}, phrase)
 
 
 @pytest.mark.parametrize(
