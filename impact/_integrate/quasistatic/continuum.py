@@ -6,6 +6,7 @@ import jax.numpy as jnp
 
 from ..._core.pytree import replace_where
 from ..codes import RESULT_CODE
+from .events import EventLog
 from .loading import CASCADE, EVENT, FREE, HOLD, RIDE, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built, bracketed_root, edge_path, edge_value
 
@@ -28,45 +29,6 @@ class Carry(eqx.Module):
     count: jax.Array
     events: jax.Array
     event_count: jax.Array
-
-
-class EventLog:
-    """Points and events of one step, written to the carry's buffers in one scatter each (every
-    scatter is a separate kernel for XLA to compile)."""
-
-    def __init__(self):
-        self.points, self.events, self.size = [], [], 0
-
-    def emit(self, a, d, F, keep, leg):
-        """Points (a, d, F) of program leg `leg`, kept where `keep`."""
-        a, d, F = (jnp.atleast_1d(v) for v in (a, d, F))
-        leg = jnp.broadcast_to(jnp.asarray(leg, a.dtype), a.shape)
-        self.points.append((a, d, F, jnp.broadcast_to(keep, a.shape), leg))
-        self.size += a.shape[0]
-
-    def event(self, kind, keep):
-        """An event at the last point emitted so far."""
-        self.events.append((self.size - 1, kind, keep))
-
-    def write(self, c):
-        a, d, F, keep, leg = (jnp.concatenate(parts) for parts in zip(*self.points, strict=True))
-        position = c.count + jnp.cumsum(keep) - 1
-        size = c.rows.shape[0]
-        index = jnp.where(keep & (position < size), position, size)
-        row = jnp.stack([a, d, F, leg], axis=-1)
-        rows = c.rows.at[index].set(row, mode="drop")
-        at = jnp.stack([position[i] if i >= 0 else c.count - 1 for i, _, _ in self.events])
-        kinds = jnp.stack([jnp.asarray(kind) for _, kind, _ in self.events])
-        logged = jnp.stack([jnp.asarray(k) for _, _, k in self.events])
-        slot = c.event_count + jnp.cumsum(logged) - 1
-        slots = c.events.shape[0]
-        slot = jnp.where(logged & (slot < slots), slot, slots)
-        events = c.events.at[slot].set(jnp.stack([at, kinds], axis=-1), mode="drop")
-        return eqx.tree_at(
-            lambda s: (s.rows, s.count, s.events, s.event_count),
-            c,
-            (rows, c.count + jnp.sum(keep), events, c.event_count + jnp.sum(logged)),
-        )
 
 
 def march_continuum(built: Built, numerics: QuasiStaticNumerics) -> QuasiStaticOutcome:

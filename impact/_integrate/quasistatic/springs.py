@@ -7,7 +7,7 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.springs import TabulatedSpringArray
 from ..codes import RESULT_CODE
-from .continuum import EventLog
+from .events import EventLog
 from .loading import EVENT, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built
 
