@@ -1,5 +1,7 @@
 """The quasi-static march of the spring array, event by event, with the same rules."""
 
+import functools
+
 import equinox as eqx
 import jax
 import jax.numpy as jnp
@@ -51,135 +53,61 @@ def spring_array(built: Built, capacity: int, count, length) -> TabulatedSpringA
     )
 
 
+class SpringMarch(eqx.Module):
+    """What every step reads: the program (`Built`), the spring array and how many of its slots
+    are springs."""
+
+    built: Built
+    array: TabulatedSpringArray
+    count: jax.Array  # springs of the array (N ≤ its capacity)
+
+    @property
+    def force_control(self) -> jax.Array:
+        return self.built.force_control
+
+    def force(self, k, d):
+        """F with k springs attached at the indentation d (scaled)."""
+        return self.array.force(k, d)
+
+    def emit(self, log: EventLog, k, d, keep, leg):
+        """Points (radius of k springs, d, F) of program leg `leg`, kept where `keep`."""
+        k, d = jnp.atleast_1d(k), jnp.atleast_1d(d)
+        log.emit(k * self.array.spacing, d, self.force(k, d), keep, leg)
+
+    def equilibrium(self, k, F):
+        """d with k springs attached under the force F (k > 0)."""
+        return (0.5 * F / self.array.spacing + self.array.prefix[k]) / jnp.maximum(k, 1)
+
+
+class Threshold(eqx.Module):
+    """In contact: the next threshold in the direction of motion, and where the hold ends."""
+
+    reached: jax.Array  # the target comes before the threshold
+    end: jax.Array  # d where the hold stops (inf: none up, from no spring past the wall)
+    beyond: jax.Array  # every spring of the array is attached: the next is the one past it
+
+
 def march_springs(built: Built, numerics: QuasiStaticNumerics, length, count) -> QuasiStaticOutcome:
     """March the program on the spring array (`numerics.springs` its capacity), event by event."""
     assert numerics.springs is not None, "a spring-array march needs the array's capacity"
-    array = spring_array(built, numerics.springs, count, length)
-    N = count
-    capacity = array.count
-    force_control = built.force_control
-    legs = built.legs
+    march = SpringMarch(built=built, array=spring_array(built, numerics.springs, count, length), count=count)
     steps = numerics.steps(built.targets.shape[0])
-
-    def force(k, d):
-        return array.force(k, d)
-
-    def radius(k):
-        return k * array.spacing
-
-    def emit(log, k, d, keep, leg):
-        k, d = jnp.atleast_1d(k), jnp.atleast_1d(d)
-        log.emit(radius(k), d, force(k, d), keep, leg)
-
-    def complete(c, log, keep):
-        landed = keep & c.landing
-        c = replace_where(c, landed, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg])
-        finished = keep & ~landed
-        leg = c.leg + 1
-        more = leg < legs
-        following = jnp.minimum(leg, legs - 1)
-        log.event(EVENT["reversal"], finished & more & c.touching)
-        return replace_where(
-            c,
-            finished,
-            leg=following,
-            done=~more,
-            direction=built.directions[following],
-            target=built.targets[following],
-        )
-
-    def equilibrium(k, F):
-        """d with k springs attached under the force F (k > 0)."""
-        return (0.5 * F / array.spacing + array.prefix[k]) / jnp.maximum(k, 1)
-
-    def step(c: SpringCarry) -> SpringCarry:
-        c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
-        log = EventLog()
-        up = c.direction > 0
-        k, d = c.k, c.d
-        # Not touching: the approach to d = 0, then the touch with its jump-in.
-        approach = ~c.touching
-        touches = approach & up & (c.target >= 0.0)
-        end = jnp.where(up, 0.0, jnp.where(jnp.isfinite(c.target), jnp.minimum(c.target, d), d))
-        emit(log, jnp.zeros(2, int), jnp.stack([d, end]), approach & ~force_control & (touches | ~up), c.leg)
-        jump_in = array.attach_cascade(jnp.zeros((), int), 0.0)
-        emit(log, jnp.zeros((), int), 0.0, touches, c.leg)
-        log.event(EVENT["touch"], touches)
-        emit(log, jump_in, 0.0, touches, c.leg)
-        log.event(EVENT["snap_in"], touches & (jump_in > 0))
-        F_touch = force(jump_in, 0.0)
-        lands = touches & force_control & (F_touch != 0.0) & (jump_in > 0)
-        c = replace_where(c, touches, touching=True, k=jump_in, d=0.0)
-        c = replace_where(
-            c,
-            lands,
-            landing=True,
-            target=0.0,
-            pre=jnp.stack([jump_in, 0]).astype(float),
-            direction=jnp.where(F_touch > 0.0, -1, 1),
-        )
-        c = complete(c, log, approach & ~touches)
-        c = replace_where(c, approach & ~touches, d=end)
-
-        # Touching: the next threshold in the direction of motion.
-        contact = ~approach
-        beyond = k >= N
-        attach_next = jnp.where(beyond, array.beyond_level, array.attach_level[jnp.minimum(k, capacity - 1)])
-        detach_edge = jnp.where(k > 0, array.detach_level[jnp.maximum(k - 1, 0)], d)  # no spring: gone at once
-        level = jnp.where(up, attach_next, detach_edge)
-        F_level = jnp.where(
-            jnp.isfinite(level), force(k, jnp.where(jnp.isfinite(level), level, 0.0)), jnp.where(up, jnp.inf, -jnp.inf)
-        )
-        F_level = jnp.where(k > 0, F_level, jnp.where(up, 0.0, jnp.inf))  # no spring: F = 0
-        value = jnp.where(force_control, F_level, level)
-        reached = contact & jnp.where(up, c.target <= value, c.target >= value)
-        aimed = jnp.where(force_control, jnp.where(k > 0, equilibrium(k, c.target), d), c.target)
-        aimed = jnp.where(up, jnp.maximum(aimed, d), jnp.minimum(aimed, d))
-        new_d = jnp.where(reached, aimed, level)
-        # (each piece starts where the last one, or the last jump, ended: only its end is new)
-        emit(log, k, new_d, contact & ~c.landing & jnp.isfinite(new_d), c.leg)
-        c = replace_where(c, contact & jnp.isfinite(new_d), d=new_d)
-        landed = reached & c.landing
-        emit(log, k, c.d, landed, c.leg)
-        log.event(jnp.where(k >= c.pre[0], EVENT["snap_in"], EVENT["snap_out"]), landed & (jnp.abs(k - c.pre[0]) > 1))
-        c = complete(c, log, reached)
-
-        # The threshold is passed: attach or detach, with the cascade at constant d.
-        passes = contact & ~reached
-        overflow = passes & up & beyond & jnp.isfinite(array.beyond_level)
-        moves = passes & ~overflow
-        d_now = c.d
-        k_new = jnp.where(
-            up, array.attach_cascade(jnp.minimum(k + 1, N), d_now), array.detach_cascade(jnp.maximum(k - 1, 0), d_now)
-        )
-        start = moves & force_control & ~c.landing
-        c = replace_where(c, start, landing=True, target=force(k, d_now), pre=jnp.stack([k.astype(float), d_now]))
-        gone = moves & ~up & (k_new == 0)
-        before_k = jnp.where(c.landing, c.pre[0], k).astype(int)
-        before_d = jnp.where(c.landing, c.pre[1], d_now)
-        c = replace_where(c, gone, pull_off=jnp.stack([radius(before_k), before_d, force(before_k, before_d)]))
-        emit(log, before_k, before_d, gone, c.leg)
-        log.event(EVENT["pull_off"], gone)
-        emit(log, jnp.zeros((), int), d_now, gone & ~force_control, c.leg)
-        c = replace_where(
-            c, gone, touching=False, k=0, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg]
-        )
-        c = complete(c, log, gone & ~jnp.isfinite(built.targets[c.leg]))
-        jumped = moves & ~gone
-        emit(log, k_new, d_now, jumped & ~c.landing, c.leg)
-        log.event(jnp.where(up, EVENT["snap_in"], EVENT["snap_out"]), jumped & ~c.landing & (jnp.abs(k_new - k) > 1))
-        c = replace_where(c, jumped, k=k_new)
-        F = force(k_new, d_now)
-        overshoot = jumped & c.landing & jnp.where(up, F > c.target, F < c.target)
-        c = replace_where(c, overshoot, direction=-c.direction)
-        code = jnp.where(built.bounded, RESULT_CODE["radius_overflow"], RESULT_CODE["unbounded_contact"])
-        return log.write(replace_where(c, overflow, status=code, done=True))
 
     def running(c):
         return ~c.done & (c.steps < steps)
 
+    end = jax.lax.while_loop(running, functools.partial(step, march), initial(built, steps))
+    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
+    return QuasiStaticOutcome(
+        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=built.top
+    )
+
+
+def initial(built: Built, steps: int) -> SpringCarry:
+    """The state before the first step: apart, no spring attached, on the first leg, with empty
+    buffers for the curve and its events."""
     nan = jnp.full((), jnp.nan)
-    start = SpringCarry(
+    return SpringCarry(
         leg=jnp.zeros((), int),
         direction=jnp.asarray(built.directions[0], int),
         target=built.targets[0],
@@ -197,8 +125,151 @@ def march_springs(built: Built, numerics: QuasiStaticNumerics, length, count) ->
         events=jnp.full((steps // 2 + 64, 2), -1),
         event_count=jnp.zeros((), int),
     )
-    end = jax.lax.while_loop(running, step, start)
-    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
-    return QuasiStaticOutcome(
-        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=built.top
+
+
+def step(march: SpringMarch, c: SpringCarry) -> SpringCarry:
+    """One event: apart, the approach (and the touch); in contact, the hold to the next
+    threshold or the target, and past the threshold the attach or detach cascade."""
+    c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
+    log = EventLog()
+    up = c.direction > 0
+    k, d = c.k, c.d
+    approaching = ~c.touching
+    contact = ~approaching
+    c = approach(march, c, log, up, approaching)
+    at = threshold(march, c, up, contact, k, d)
+    c = hold(march, c, log, contact, k, at)
+    c = cross(march, c, log, up, contact & ~at.reached, k, at.beyond)
+    return log.write(c)
+
+
+def complete_leg(march: SpringMarch, c: SpringCarry, log: EventLog, keep) -> SpringCarry:
+    """The current target is met: a landing ends, or the leg ends (a reversal in contact)."""
+    built = march.built
+    landed = keep & c.landing
+    c = replace_where(c, landed, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg])
+    finished = keep & ~landed
+    leg = c.leg + 1
+    more = leg < built.legs
+    following = jnp.minimum(leg, built.legs - 1)
+    log.event(EVENT["reversal"], finished & more & c.touching)
+    return replace_where(
+        c,
+        finished,
+        leg=following,
+        done=~more,
+        direction=built.directions[following],
+        target=built.targets[following],
     )
+
+
+def approach(march: SpringMarch, c: SpringCarry, log: EventLog, up, approaching) -> SpringCarry:
+    """Not touching: the approach to d = 0 and the touch, or away to the leg's target."""
+    touches = approaching & up & (c.target >= 0.0)
+    end = jnp.where(up, 0.0, jnp.where(jnp.isfinite(c.target), jnp.minimum(c.target, c.d), c.d))
+    shown = approaching & ~march.force_control & (touches | ~up)
+    march.emit(log, jnp.zeros(2, int), jnp.stack([c.d, end]), shown, c.leg)
+    c = touch(march, c, log, touches)
+    c = complete_leg(march, c, log, approaching & ~touches)
+    return replace_where(c, approaching & ~touches, d=end)
+
+
+def touch(march: SpringMarch, c: SpringCarry, log: EventLog, touches) -> SpringCarry:
+    """The touch at d = 0 with its jump-in; under force control a nonzero force there starts a
+    landing back at F = 0."""
+    jump_in = march.array.attach_cascade(jnp.zeros((), int), 0.0)
+    march.emit(log, jnp.zeros((), int), 0.0, touches, c.leg)
+    log.event(EVENT["touch"], touches)
+    march.emit(log, jump_in, 0.0, touches, c.leg)
+    log.event(EVENT["snap_in"], touches & (jump_in > 0))
+    F_touch = march.force(jump_in, 0.0)
+    lands = touches & march.force_control & (F_touch != 0.0) & (jump_in > 0)
+    c = replace_where(c, touches, touching=True, k=jump_in, d=0.0)
+    return replace_where(
+        c,
+        lands,
+        landing=True,
+        target=0.0,
+        pre=jnp.stack([jump_in, 0]).astype(float),
+        direction=jnp.where(F_touch > 0.0, -1, 1),
+    )
+
+
+def threshold(march: SpringMarch, c: SpringCarry, up, contact, k, d) -> Threshold:
+    """With k springs at d: the next attach threshold up (past the array: the spring beyond it),
+    the edge spring's detach threshold down (no spring: gone at once), or the target first."""
+    array, force_control = march.array, march.force_control
+    capacity = array.count
+    beyond = k >= march.count
+    attach_next = jnp.where(beyond, array.beyond_level, array.attach_level[jnp.minimum(k, capacity - 1)])
+    detach_edge = jnp.where(k > 0, array.detach_level[jnp.maximum(k - 1, 0)], d)
+    level = jnp.where(up, attach_next, detach_edge)
+    F_level = jnp.where(
+        jnp.isfinite(level),
+        march.force(k, jnp.where(jnp.isfinite(level), level, 0.0)),
+        jnp.where(up, jnp.inf, -jnp.inf),
+    )
+    F_level = jnp.where(k > 0, F_level, jnp.where(up, 0.0, jnp.inf))  # no spring: F = 0
+    value = jnp.where(force_control, F_level, level)
+    reached = contact & jnp.where(up, c.target <= value, c.target >= value)
+    aimed = jnp.where(force_control, jnp.where(k > 0, march.equilibrium(k, c.target), d), c.target)
+    aimed = jnp.where(up, jnp.maximum(aimed, d), jnp.minimum(aimed, d))
+    return Threshold(reached=reached, end=jnp.where(reached, aimed, level), beyond=beyond)
+
+
+def hold(march: SpringMarch, c: SpringCarry, log: EventLog, contact, k, at: Threshold) -> SpringCarry:
+    """In contact: to the threshold or the target at k fixed (each piece starts where the last
+    one, or the last jump, ended: only its end is new); a landing that meets its force ends."""
+    march.emit(log, k, at.end, contact & ~c.landing & jnp.isfinite(at.end), c.leg)
+    c = replace_where(c, contact & jnp.isfinite(at.end), d=at.end)
+    landed = at.reached & c.landing
+    march.emit(log, k, c.d, landed, c.leg)
+    log.event(jnp.where(k >= c.pre[0], EVENT["snap_in"], EVENT["snap_out"]), landed & (jnp.abs(k - c.pre[0]) > 1))
+    return complete_leg(march, c, log, at.reached)
+
+
+def cross(march: SpringMarch, c: SpringCarry, log: EventLog, up, passes, k, beyond) -> SpringCarry:
+    """The threshold is passed: attach or detach, with the cascade at constant d; past the
+    array's last spring (not at a wall) the march stops."""
+    array, d_now = march.array, c.d
+    overflow = passes & up & beyond & jnp.isfinite(array.beyond_level)
+    moves = passes & ~overflow
+    k_new = jnp.where(
+        up,
+        array.attach_cascade(jnp.minimum(k + 1, march.count), d_now),
+        array.detach_cascade(jnp.maximum(k - 1, 0), d_now),
+    )
+    start = moves & march.force_control & ~c.landing
+    c = replace_where(c, start, landing=True, target=march.force(k, d_now), pre=jnp.stack([k.astype(float), d_now]))
+    gone = moves & ~up & (k_new == 0)
+    c = separate(march, c, log, gone, k, d_now)
+    c = snap(march, c, log, moves & ~gone, up, k, k_new, d_now)
+    code = jnp.where(march.built.bounded, RESULT_CODE["radius_overflow"], RESULT_CODE["unbounded_contact"])
+    return replace_where(c, overflow, status=code, done=True)
+
+
+def separate(march: SpringMarch, c: SpringCarry, log: EventLog, gone, k, d_now) -> SpringCarry:
+    """The last spring let go: the pull-off is where the instability began (force) or here."""
+    built = march.built
+    before_k = jnp.where(c.landing, c.pre[0], k).astype(int)
+    before_d = jnp.where(c.landing, c.pre[1], d_now)
+    pull_off = jnp.stack([before_k * march.array.spacing, before_d, march.force(before_k, before_d)])
+    c = replace_where(c, gone, pull_off=pull_off)
+    march.emit(log, before_k, before_d, gone, c.leg)
+    log.event(EVENT["pull_off"], gone)
+    march.emit(log, jnp.zeros((), int), d_now, gone & ~march.force_control, c.leg)
+    c = replace_where(
+        c, gone, touching=False, k=0, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg]
+    )
+    return complete_leg(march, c, log, gone & ~jnp.isfinite(built.targets[c.leg]))
+
+
+def snap(march: SpringMarch, c: SpringCarry, log: EventLog, jumped, up, k, k_new, d_now) -> SpringCarry:
+    """k → k_new springs at constant d (logged outside a landing); in a landing, a jump past the
+    applied force turns the march back."""
+    march.emit(log, k_new, d_now, jumped & ~c.landing, c.leg)
+    log.event(jnp.where(up, EVENT["snap_in"], EVENT["snap_out"]), jumped & ~c.landing & (jnp.abs(k_new - k) > 1))
+    c = replace_where(c, jumped, k=k_new)
+    F = march.force(k_new, d_now)
+    overshoot = jumped & c.landing & jnp.where(up, F > c.target, F < c.target)
+    return replace_where(c, overshoot, direction=-c.direction)
