@@ -94,13 +94,31 @@ def _default(field: FieldInfo) -> str:
     return f"`{default}`"
 
 
+def _domains(annotation) -> list[str]:
+    """The allowed ranges (`impact._scene.domains.Domain`) an annotation's validators check."""
+    found = []
+    for argument in (annotation, *typing.get_args(annotation)):
+        if typing.get_origin(argument) is typing.Annotated:
+            found += _domains(typing.get_args(argument)[0])
+            for item in argument.__metadata__:
+                domain = getattr(getattr(item, "func", None), "__self__", None)
+                if hasattr(domain, "unit") and str(domain) not in found:
+                    found.append(str(domain))
+        elif argument is not annotation:
+            found += [text for text in _domains(argument) if text not in found]
+    return found
+
+
 def _bounds(field: FieldInfo) -> str:
     marks = []
     for item in field.metadata:
         for kind, attribute, sign in _BOUNDS:
             if isinstance(item, kind):
                 marks.append(f"{sign} {getattr(item, attribute)}")
-    return ", ".join(marks)
+        domain = getattr(getattr(item, "func", None), "__self__", None)
+        if hasattr(domain, "unit"):
+            marks.append(str(domain))
+    return ", ".join([*marks, *(text for text in _domains(field.annotation) if text not in marks)])
 
 
 def _cell(text: str) -> str:
@@ -119,7 +137,7 @@ def _shape(model: type[BaseModel]) -> str:
 
 def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[str, type[BaseModel] | list]]]:
     """The rows of one section, and the sections (or profile unions) nested in it."""
-    lines = ["| key | type | default | bounds | meaning (SI units) |", "|---|---|---|---|---|"]
+    lines = ["| key | type | default | allowed range | meaning (SI units) |", "|---|---|---|---|---|"]
     nested = []
     for name, field in model.model_fields.items():
         path = f"{prefix}{name}"

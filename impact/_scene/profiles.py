@@ -11,9 +11,11 @@ from itertools import pairwise
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 from .. import profiles
+from . import domains as d
+from .domains import within
 
 __all__ = [
     "ProfileSpec",
@@ -49,22 +51,19 @@ def _number(value):
     return value
 
 
-def _cone_angle(theta: float) -> float:
-    if not 0 < theta < math.pi / 2:
-        raise ValueError("cone angle theta must lie in (0, pi/2) rad")
-    return theta
-
-
 Number = Annotated[float, BeforeValidator(_number), Field(allow_inf_nan=False)]
-Angle = Annotated[Number, AfterValidator(_cone_angle)]
+Angle = Annotated[Number, within(d.ANGLE)]
+Length = Annotated[Number, within(d.LENGTH)]
+Modulus = Annotated[Number, within(d.MODULUS)]
+Coordinate = Annotated[Number, within(d.LENGTH_OR_ZERO)]
 
 
 def _length(meaning: str) -> Any:
-    return Field(gt=0, description=f"{meaning} (m), > 0")
+    return Field(description=f"{meaning} (m)")
 
 
 def _angle() -> Any:
-    return Field(description="slope angle of the cone flank against the contact plane (rad), in (0, pi/2)")
+    return Field(description="slope angle of the cone flank against the contact plane (rad)")
 
 
 class _Spec(BaseModel):
@@ -79,7 +78,7 @@ class ParaboloidSpec(_Spec):
     """Paraboloid f = r²/(2R)."""
 
     shape: Literal["paraboloid"] = "paraboloid"
-    R: Number = _length("radius of curvature at the tip")
+    R: Length = _length("radius of curvature at the tip")
 
     def build(self) -> profiles.Paraboloid:
         return profiles.Paraboloid(R=self.R)
@@ -89,7 +88,7 @@ class SphereSpec(_Spec):
     """Exact sphere f = R - sqrt(R² - r²); contact radius up to R."""
 
     shape: Literal["sphere"] = "sphere"
-    R: Number = _length("sphere radius")
+    R: Length = _length("sphere radius")
 
     def build(self) -> profiles.Sphere:
         return profiles.Sphere(R=self.R)
@@ -99,8 +98,10 @@ class EllipsoidSpec(_Spec):
     """Ellipsoid of revolution f = R(1 - sqrt(1 - k²r²)); tip curvature radius 1/(R k²)."""
 
     shape: Literal["ellipsoid"] = "ellipsoid"
-    R: Number = _length("height scale R of f = R(1 - sqrt(1 - k²r²)), the semi-axis along the symmetry axis")
-    k: Number = Field(gt=0, description="inverse equatorial semi-axis k (1/m), > 0; contact radius up to 1/k")
+    R: Length = _length("height scale R of f = R(1 - sqrt(1 - k²r²)), the semi-axis along the symmetry axis")
+    k: Annotated[Number, within(d.INVERSE_LENGTH)] = Field(
+        description="inverse equatorial semi-axis k (1/m); contact radius up to 1/k"
+    )
 
     def build(self) -> profiles.Ellipsoid:
         return profiles.Ellipsoid(R=self.R, k=self.k)
@@ -120,8 +121,8 @@ class PowerLawSpec(_Spec):
     """Power-law profile f = c rⁿ."""
 
     shape: Literal["power_law"] = "power_law"
-    n: Number = Field(gt=0, description="exponent n (dimensionless), > 0")
-    c: Number = Field(gt=0, description="prefactor c (m^(1-n)), > 0")
+    n: Annotated[Number, within(d.EXPONENT)] = Field(description="exponent n (dimensionless)")
+    c: Annotated[Number, within(d.PREFACTOR)] = Field(description="prefactor c (m^(1-n))")
 
     def build(self) -> profiles.PowerLaw:
         return profiles.PowerLaw(n=self.n, c=self.c)
@@ -131,7 +132,7 @@ class FlatPunchSpec(_Spec):
     """Cylindrical flat punch."""
 
     shape: Literal["flat_punch"] = "flat_punch"
-    radius: Number = _length("punch radius")
+    radius: Length = _length("punch radius")
 
     def build(self) -> profiles.FlatPunch:
         return profiles.FlatPunch(radius=self.radius)
@@ -141,7 +142,7 @@ class TruncatedConeSpec(_Spec):
     """Cone with a flat tip of radius b."""
 
     shape: Literal["truncated_cone"] = "truncated_cone"
-    b: Number = _length("radius of the flat tip")
+    b: Length = _length("radius of the flat tip")
     theta: Angle = _angle()
 
     def build(self) -> profiles.TruncatedCone:
@@ -152,8 +153,8 @@ class TruncatedParaboloidSpec(_Spec):
     """Paraboloid of radius R cut flat at radius b: f = (r² - b²)/(2R) beyond b."""
 
     shape: Literal["truncated_paraboloid"] = "truncated_paraboloid"
-    b: Number = _length("radius of the flat tip")
-    R: Number = _length("radius of curvature of the paraboloid")
+    b: Length = _length("radius of the flat tip")
+    R: Length = _length("radius of curvature of the paraboloid")
 
     def build(self) -> profiles.TruncatedParaboloid:
         return profiles.TruncatedParaboloid(b=self.b, R=self.R)
@@ -163,8 +164,8 @@ class CappedFlatPunchSpec(_Spec):
     """Flat punch of radius b whose face is a paraboloid of radius R; contact radius up to b."""
 
     shape: Literal["capped_flat_punch"] = "capped_flat_punch"
-    b: Number = _length("punch radius")
-    R: Number = _length("radius of curvature of the parabolic cap")
+    b: Length = _length("punch radius")
+    R: Length = _length("radius of curvature of the parabolic cap")
 
     def build(self) -> profiles.CappedFlatPunch:
         return profiles.CappedFlatPunch(b=self.b, R=self.R)
@@ -174,7 +175,7 @@ class CappedConeSpec(_Spec):
     """Cone with a tangent parabolic tip (cap radius b / tan(theta)) up to radius b."""
 
     shape: Literal["capped_cone"] = "capped_cone"
-    b: Number = _length("radius where the parabolic cap meets the cone")
+    b: Length = _length("radius where the parabolic cap meets the cone")
     theta: Angle = _angle()
 
     def build(self) -> profiles.CappedCone:
@@ -185,9 +186,9 @@ class CappedParaboloidSpec(_Spec):
     """Paraboloid of radius R2 with a flatter parabolic cap of radius R1 >= R2 up to radius b."""
 
     shape: Literal["capped_paraboloid"] = "capped_paraboloid"
-    b: Number = _length("radius where the cap meets the base paraboloid")
-    R1: Number = _length("radius of curvature of the cap")
-    R2: Number = _length("radius of curvature of the base paraboloid, <= R1")
+    b: Length = _length("radius where the cap meets the base paraboloid")
+    R1: Length = _length("radius of curvature of the cap")
+    R2: Length = _length("radius of curvature of the base paraboloid, <= R1")
 
     @model_validator(mode="after")
     def _cap_flatter(self):
@@ -206,8 +207,8 @@ class RoundedFlatPunchSpec(_Spec):
     """Flat punch with a flat base of radius b and edges rounded with radius R."""
 
     shape: Literal["rounded_flat_punch"] = "rounded_flat_punch"
-    b: Number = _length("radius of the flat base")
-    R: Number = _length("radius of the rounded edge")
+    b: Length = _length("radius of the flat base")
+    R: Length = _length("radius of the rounded edge")
 
     def build(self) -> profiles.RoundedFlatPunch:
         return profiles.RoundedFlatPunch(b=self.b, R=self.R)
@@ -220,9 +221,9 @@ class WavyParaboloidSpec(_Spec):
     """
 
     shape: Literal["wavy_paraboloid"] = "wavy_paraboloid"
-    R: Number = _length("radius of curvature of the paraboloid")
-    amplitude: Number = Field(ge=0, description="roughness amplitude h (m), >= 0")
-    wavelength: Number = _length("roughness wavelength λ")
+    R: Length = _length("radius of curvature of the paraboloid")
+    amplitude: Annotated[Number, within(d.LENGTH_OR_ZERO)] = Field(description="roughness amplitude h (m)")
+    wavelength: Length = _length("roughness wavelength λ")
 
     def build(self) -> profiles.WavyParaboloid:
         return profiles.WavyParaboloid(R=self.R, amplitude=self.amplitude, wavelength=self.wavelength)
@@ -233,11 +234,11 @@ class ConstantStressSpec(_Spec):
     uniform tensile stress σ0 against a half-space of modulus E_star (Gao and Yao's optimal tip)."""
 
     shape: Literal["constant_stress"] = "constant_stress"
-    radius: Number = _length("punch radius a")
-    stress: Number = Field(gt=0, description="uniform tensile stress σ0 the face is designed for (Pa), > 0")
-    E_star: Number = Field(
-        gt=0, description="effective modulus E* the face is designed against (Pa), > 0; use the material's E*"
+    radius: Length = _length("punch radius a")
+    stress: Annotated[Number, within(d.STRESS)] = Field(
+        description="uniform tensile stress σ0 the face is designed for (Pa)"
     )
+    E_star: Modulus = Field(description="effective modulus E* the face is designed against (Pa); use the material's E*")
 
     def build(self) -> profiles.ConstantStress:
         return profiles.ConstantStress(radius=self.radius, stress=self.stress, E_star=self.E_star)
@@ -247,8 +248,8 @@ class TabulatedSpec(_Spec):
     """Piecewise-linear profile through the points (r, f); continued with its last slope."""
 
     shape: Literal["tabulated"] = "tabulated"
-    r: list[Number] = Field(description="radii (m), strictly increasing from r[0] = 0, at least 2 points")
-    f: list[Number] = Field(description="heights f(r) above the tip (m), f[0] = 0, same length as r")
+    r: list[Coordinate] = Field(description="radii (m), strictly increasing from r[0] = 0, at least 2 points")
+    f: list[Coordinate] = Field(description="heights f(r) above the tip (m), f[0] = 0, same length as r")
 
     @field_validator("r")
     @classmethod

@@ -12,6 +12,7 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .errors import FieldProblem, SceneError, problems_of
+from .representable import check_representable
 from .sections import (
     DUGDALE_SHAPES,
     MASS_OR_DENSITY,
@@ -119,6 +120,12 @@ class Scene(Section):
             )
         if self.contact.springs != "continuum":
             raise FieldProblem("contact.springs", "maugis_dugdale runs on the continuum law only ('continuum')")
+        return self
+
+    @model_validator(mode="after")
+    def _representable(self):
+        if self.kind == "impact":
+            check_representable(self)
         return self
 
     @property

@@ -5,11 +5,13 @@ Cross-field checks raise `FieldProblem` to name the field at fault.
 """
 
 import math
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from .._integrate.base import SOLVERS
+from . import domains as d
+from .domains import within
 from .errors import FieldProblem
 from .profiles import Number, ProfileSpec
 
@@ -28,16 +30,22 @@ class Section(BaseModel):
 
 
 def _poisson(meaning: str):
-    return Field(None, gt=-1.0, lt=0.5, description=f"Poisson's ratio of {meaning}, in (-1, 0.5)")
+    return Field(None, description=f"Poisson's ratio of {meaning}")
+
+
+Poisson = Annotated[Number, within(d.POISSON)]
+Modulus = Annotated[Number, within(d.MODULUS)]
+Length = Annotated[Number, within(d.LENGTH)]
+WorkOfAdhesion = Annotated[Number, within(d.WORK_OF_ADHESION)]
 
 
 class Body(Section):
     """The rigid falling body: its profile and its mass (or density)."""
 
     profile: ProfileSpec
-    mass: Number | None = Field(None, gt=0, description="mass (kg), > 0")
-    density: Number | None = Field(
-        None, gt=0, description="density (kg/m³); mass = density × volume of the closed body"
+    mass: Annotated[Number, within(d.MASS)] | None = Field(None, description="mass (kg)")
+    density: Annotated[Number, within(d.DENSITY)] | None = Field(
+        None, description="density (kg/m³); mass = density × volume of the closed body"
     )
 
     @model_validator(mode="after")
@@ -74,13 +82,11 @@ def body_volume(profile) -> float | None:
 class Material(Section):
     """The elastic half-space (and body): E* directly, or Young's moduli and Poisson's ratios."""
 
-    E_star: Number | None = Field(None, gt=0, description="effective modulus E* (Pa), > 0")
-    E: Number | None = Field(None, gt=0, description="Young's modulus of the half-space (Pa), > 0")
-    nu: Number | None = _poisson("the half-space")
-    E_body: Number | None = Field(
-        None, gt=0, description="Young's modulus of the body (Pa), > 0; omit for a rigid body"
-    )
-    nu_body: Number | None = _poisson("the body")
+    E_star: Modulus | None = Field(None, description="effective modulus E* (Pa)")
+    E: Modulus | None = Field(None, description="Young's modulus of the half-space (Pa)")
+    nu: Poisson | None = _poisson("the half-space")
+    E_body: Modulus | None = Field(None, description="Young's modulus of the body (Pa); omit for a rigid body")
+    nu_body: Poisson | None = _poisson("the body")
 
     @model_validator(mode="after")
     def _one_description(self):
@@ -111,16 +117,12 @@ class Material(Section):
 class Initial(Section):
     """Where the body starts: its approach speed and its distance from the surface."""
 
-    velocity: Number = Field(
-        ge=0,
-        description="approach speed towards the surface (m/s), > 0 (0 allowed when gravity drops the body from a gap)",
+    velocity: Annotated[Number, within(d.VELOCITY)] = Field(
+        description="approach speed towards the surface (m/s); 0 only when gravity drops the body from a gap",
     )
-    gap: Number = Field(
+    gap: Annotated[Number, within(d.GAP)] = Field(
         0.0,
-        ge=0,
-        description=(
-            "initial distance between tip and surface (m), >= 0; with maugis_dugdale adhesion, beyond the range h"
-        ),
+        description="initial distance between tip and surface (m); with maugis_dugdale adhesion, beyond the range h",
     )
 
 
@@ -136,22 +138,21 @@ class Adhesion(Section):
     model: Literal["jkr", "maugis_dugdale"] = Field(
         "jkr", description="'jkr' (zero range, rule of Heß) or 'maugis_dugdale' (stress σ0 up to the range h)"
     )
-    work_of_adhesion: Number = Field(
-        ge=0, description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
+    work_of_adhesion: WorkOfAdhesion = Field(
+        description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
     )
-    approach_work_of_adhesion: Number | None = Field(
+    approach_work_of_adhesion: WorkOfAdhesion | None = Field(
         None,
-        ge=0,
         description=(
             "jkr only: work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; "
             "default Δγ (JKR jump-in); 0 attaches on touch"
         ),
     )
-    stress: Number | None = Field(
-        None, gt=0, description="maugis_dugdale only: adhesive stress σ0 (Pa), > 0; or give range"
+    stress: Annotated[Number, within(d.STRESS)] | None = Field(
+        None, description="maugis_dugdale only: adhesive stress σ0 (Pa); or give range"
     )
-    range: Number | None = Field(
-        None, gt=0, description="maugis_dugdale only: range h (m) of the adhesive stress, > 0; or give stress"
+    range: Length | None = Field(
+        None, description="maugis_dugdale only: range h (m) of the adhesive stress; or give stress"
     )
 
     @model_validator(mode="after")
@@ -205,7 +206,9 @@ class Adhesion(Section):
 class Gravity(Section):
     """A constant acceleration towards the surface."""
 
-    g: Number = Field(9.81, gt=0, description="gravitational acceleration towards the surface (m/s²)")
+    g: Annotated[Number, within(d.GRAVITY)] = Field(
+        9.81, description="gravitational acceleration towards the surface (m/s²)"
+    )
 
 
 class Effects(Section):
@@ -218,21 +221,13 @@ class Effects(Section):
 class Contact(Section):
     """How the MDR spring foundation is discretised."""
 
-    springs: Literal["continuum"] | int = Field(
-        "continuum", description="'continuum' (N → ∞) or the number N >= 1 of springs of the array"
+    springs: Literal["continuum"] | Annotated[int, within(d.SPRINGS)] = Field(
+        "continuum", description="'continuum' (N → ∞) or the number N of springs of the array"
     )
-    length: Number | None = Field(
+    length: Length | None = Field(
         None,
-        gt=0,
         description="radius covered by the spring array (m); default: the body's extent or twice the energy radius",
     )
-
-    @field_validator("springs")
-    @classmethod
-    def _springs_positive(cls, springs):
-        if isinstance(springs, int) and springs < 1:
-            raise ValueError("springs must be 'continuum' or an integer >= 1")
-        return springs
 
 
 class Solver(Section):
@@ -240,10 +235,12 @@ class Solver(Section):
     'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
 
     method: str = Field("tsit5", description="integrator: " + ", ".join(METHODS))
-    rtol: Number = Field(1e-10, gt=0, lt=1, description="relative tolerance, in (0, 1)")
-    atol: Number = Field(1e-12, gt=0, description="absolute tolerance in scaled units, > 0")
-    max_steps: int = Field(4096, ge=16, description="solver steps allowed per phase")
-    dt: Number | None = Field(None, gt=0, description="time step (s) of method 'verlet', > 0; only for it")
+    rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")
+    atol: Annotated[Number, within(d.ATOL)] = Field(1e-12, description="absolute tolerance in scaled units")
+    max_steps: Annotated[int, within(d.MAX_STEPS)] = Field(4096, description="solver steps allowed per phase")
+    dt: Annotated[Number, within(d.TIME_STEP)] | None = Field(
+        None, description="time step (s) of method 'verlet'; only for it"
+    )
 
     @field_validator("method")
     @classmethod
@@ -264,22 +261,24 @@ class Solver(Section):
 class Limits(Section):
     """Bounds that end a run which would otherwise not end (e.g. elastic bouncing)."""
 
-    max_bounces: int = Field(64, ge=1, description="contacts simulated at most")
-    duration: Number | None = Field(None, gt=0, description="simulated time at most (s); default: no bound")
+    max_bounces: Annotated[int, within(d.BOUNCES)] = Field(64, description="contacts simulated at most")
+    duration: Annotated[Number, within(d.DURATION)] | None = Field(
+        None, description="simulated time at most (s); default: no bound"
+    )
 
 
 class Program(Section):
     """The loading program of a quasi-static indentation: load to the peak, unload; repeated."""
 
-    peak: Number = Field(
-        ge=0,
+    peak: Annotated[Number, within(d.PEAK)] = Field(
         description=(
-            "largest load of every cycle: force (N) under force control, "
-            "indentation (m) under displacement control; >= 0"
+            "largest load of every cycle: force (N) under force control, indentation (m) under displacement control"
         ),
     )
-    cycles: int = Field(1, ge=1, description="load–unload cycles; the last one retracts to pull-off")
-    unload_to: Number | None = Field(
+    cycles: Annotated[int, within(d.CYCLES)] = Field(
+        1, description="load–unload cycles; the last one retracts to pull-off"
+    )
+    unload_to: Annotated[Number, within(d.UNLOAD_TO)] | None = Field(
         None,
         description=(
             "where the cycles before the last stop unloading (N or m, below peak); default: each retracts to pull-off"

@@ -7,14 +7,14 @@ import typer
 from .._core import runtime
 from .._core.package import __version__
 from . import bench, run, sweep
-from .console import say
-from .run import FLAG
+from .console import FlagHelpGroup, say
 
 app = typer.Typer(
     help="Simulate adhesive impacts (MDR contact law on JAX + diffrax).",
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_show_locals=False,
+    cls=FlagHelpGroup,
 )
 
 
@@ -35,9 +35,7 @@ def _print_version(value: bool) -> None:
 def _options(
     version: Annotated[
         bool,
-        typer.Option(
-            "--version", metavar=FLAG, callback=_print_version, is_eager=True, help="print the version and exit"
-        ),
+        typer.Option("--version", callback=_print_version, is_eager=True, help="print the version and exit"),
     ] = False,
 ) -> None:
     """Simulate adhesive impacts (MDR contact law on JAX + diffrax)."""

@@ -14,13 +14,13 @@ import typer
 
 from .._bench.plans import OUTPUTS
 from .._bench.work_precision import run as run_benchmark
-from .console import refuse, say
+from .console import FlagHelpCommand, refuse, say
 
 
 def register(app: typer.Typer) -> None:
     """Add the `bench` command to `app`."""
 
-    @app.command("bench")
+    @app.command("bench", cls=FlagHelpCommand)
     def bench(
         quick: Annotated[
             bool,

@@ -5,16 +5,36 @@ dotted path or option name, then the message) and exits with code 2, without a t
 """
 
 from collections.abc import Iterable
-from typing import NoReturn
+from typing import Any, NoReturn
 
 import typer
 from rich.console import Console
 from rich.text import Text
+from typer.core import TyperCommand, TyperGroup
 
 out = Console(highlight=False)
 err = Console(stderr=True, highlight=False)
 
 REFUSED = 2  # exit code of refused input
+
+
+class _FlagsShowNoValue:
+    """`--help` shows no `<bool>` beside a flag (`--overwrite`, `--help`): it takes no value."""
+
+    def get_params(self, ctx: Any) -> Any:  # typer's own copy of click's types
+        params = super().get_params(ctx)  # type: ignore[misc]
+        for param in params:
+            if getattr(param, "is_flag", False):
+                param.metavar = ""
+        return params
+
+
+class FlagHelpCommand(_FlagsShowNoValue, TyperCommand):
+    """A command of the app (flags without `<bool>` in `--help`)."""
+
+
+class FlagHelpGroup(_FlagsShowNoValue, TyperGroup):
+    """The app's group (flags without `<bool>` in `--help`)."""
 
 
 def refuse(headline: str, problems: Iterable[tuple[str, str]]) -> NoReturn:

@@ -7,6 +7,7 @@ without a physical outcome (status other than separated or captured) is still wr
 """
 
 import copy
+import os
 import shutil
 import time
 from datetime import datetime
@@ -29,10 +30,8 @@ from .._run.simulate import simulate
 from .._scene.errors import SceneError
 from .._scene.paths import NoField, NotASection, assign, check_path
 from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
-from .console import out, refuse, say, warn
+from .console import FlagHelpCommand, out, refuse, say, warn
 from .tables import facts_table, result_table
-
-FLAG = ""  # metavar of a boolean flag: it takes no value, so `--help` shows none
 
 SceneArgument = Annotated[Path, typer.Argument(metavar="SCENE.yaml", help="scene YAML file", show_default=False)]
 SetOption = Annotated[
@@ -49,16 +48,16 @@ OutputFolder = Annotated[
     typer.Option("-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False),
 ]
 Overwrite = Annotated[
-    bool, typer.Option("--overwrite", metavar=FLAG, help="write into an existing output folder", show_default=False)
+    bool, typer.Option("--overwrite", help="write into an existing output folder", show_default=False)
 ]
 RunFile = Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]
 
 
 def register(app: typer.Typer) -> None:
     """Add the `run`, `validate` and `show` commands to the app."""
-    app.command("run")(run_command)
-    app.command("validate")(validate_command)
-    app.command("show")(show_command)
+    app.command("run", cls=FlagHelpCommand)(run_command)
+    app.command("validate", cls=FlagHelpCommand)(validate_command)
+    app.command("show", cls=FlagHelpCommand)(show_command)
 
 
 def run_command(
@@ -139,11 +138,17 @@ def apply_overrides(data: dict, assignments: list[str]) -> dict:
 
 
 def check_output(folder: Path, overwrite: bool) -> None:
-    """Refuse an output folder that is a file, or that exists without --overwrite."""
+    """Refuse, before any work, an output folder that cannot take the run: a file in its place or
+    in place of a parent, an unwritable place, or an existing folder without --overwrite."""
     if folder.exists() and not folder.is_dir():
         refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
     if folder.exists() and not overwrite:
         refuse("output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the run in it")])
+    nearest = next(place for place in (folder.absolute(), *folder.absolute().parents) if place.exists())
+    if not nearest.is_dir():
+        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is a file, not a folder")])
+    if not os.access(nearest, os.W_OK | os.X_OK):
+        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is not writable")])
 
 
 def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time: float, overwrite: bool) -> None:

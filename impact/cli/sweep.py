@@ -42,8 +42,7 @@ from .._run.sweep import Progress as SweepProgress
 from .._scene.errors import SceneError, SweepError
 from .._scene.sweep import load_sweep
 from .._scene.sweep_spec import SweepSpec
-from .console import err, out, refuse, refuse_value, say, warn
-from .run import FLAG
+from .console import FlagHelpCommand, err, out, refuse, refuse_value, say, warn
 from .tables import OUTCOMES, outcome_counts, sticking_table, sweep_table
 
 FIGURE = "restitution.png"
@@ -51,8 +50,8 @@ FIGURE = "restitution.png"
 
 def register(app: typer.Typer) -> None:
     """Add the `sweep` and `merge` commands to the app."""
-    app.command("sweep")(sweep_command)
-    app.command("merge")(merge_command)
+    app.command("sweep", cls=FlagHelpCommand)(sweep_command)
+    app.command("merge", cls=FlagHelpCommand)(merge_command)
 
 
 class _PointsPerSecond(ProgressColumn):
@@ -102,7 +101,6 @@ Overwrite = Annotated[
     bool,
     typer.Option(
         "--overwrite",
-        metavar=FLAG,
         help="discard a finished (or different) sweep in the folder and run anew",
         show_default=False,
     ),
@@ -123,7 +121,6 @@ Distributed = Annotated[
     bool,
     typer.Option(
         "--distributed",
-        metavar=FLAG,
         help="multi-host: jax.distributed.initialize() from the cluster's environment (SLURM, Open MPI, ...)",
         show_default=False,
     ),
@@ -304,7 +301,7 @@ def merge_command(
         Path, typer.Option("-o", "--output", help="merged sweep file, e.g. sweep.h5", show_default=False)
     ],
     overwrite: Annotated[
-        bool, typer.Option("--overwrite", metavar=FLAG, help="replace an existing output file", show_default=False)
+        bool, typer.Option("--overwrite", help="replace an existing output file", show_default=False)
     ] = False,
 ) -> None:
     """Join the shards of a multi-process sweep into one sweep.h5 (and restitution.png beside it)."""

@@ -24,6 +24,11 @@ def quantity(value: float, unit: str) -> str:
     return f"{value * factor:.4g} {prefix}{unit}"
 
 
+def compressive(max_force: float) -> str:
+    """The largest force (N), or "no compressive force" where every contact force was adhesive."""
+    return "no compressive force" if max_force <= 0 else quantity(max_force, "N")
+
+
 def key_value_table(title: str, rows: list[tuple[str, str]]) -> Table:
     """A headerless two-column table: names in bold, values as plain text."""
     table = Table(title=Text(title), show_header=False)
@@ -59,7 +64,7 @@ def indentation_table(result: IndentationResult, wall_time: float | None) -> Tab
         ("pull-off force", value(pull_off.force, "N")),
         ("pull-off indentation", value(pull_off.indentation, "m")),
         ("pull-off contact radius", value(pull_off.contact_radius, "m")),
-        ("max force", quantity(result.max_force, "N")),
+        ("max force", compressive(result.max_force)),
         ("max indentation", quantity(result.max_indentation, "m")),
         ("max contact radius", quantity(result.max_contact_radius, "m")),
         ("jumps (snaps, jump-in)", str(snaps)),
@@ -80,7 +85,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("status", result.status),
         ("contact time", quantity(contact_time, "s") if math.isfinite(contact_time) else "∞ (never let go)"),
         ("max indentation", quantity(result.max_indentation, "m")),
-        ("max force", quantity(result.max_force, "N")),
+        ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
         ("bounces (contacts)", str(result.bounces)),

@@ -242,7 +242,7 @@ def test_dmt_side_impact_events_show_the_zone_closing_and_opening():
             "only for model 'jkr'",
         ),
         ({"stress": 1e7}, {"contact": {"springs": 100}}, "contact.springs", "continuum law only"),
-        ({"stress": -1.0}, {}, "effects.adhesion.stress", "greater than 0"),
+        ({"stress": -1.0}, {}, "effects.adhesion.stress", "-1 Pa is outside the allowed range [1, 1e13] Pa"),
     ],
 )
 def test_bad_dugdale_scenes_name_the_field(adhesion, extra, field, phrase):

@@ -139,7 +139,11 @@ def test_below_the_sticking_velocity_verlet_captures():
         ({"solver": {"method": "verlet", "dt": 1e-11}}, "contact.springs", "number of springs"),
         ({"solver": {"method": "verlet"}, "contact": {"springs": 100}}, "solver.dt", "time step"),
         ({"solver": {"method": "tsit5", "dt": 1e-11}}, "solver.dt", "only for method 'verlet'"),
-        ({"solver": {"method": "verlet", "dt": -1.0}, "contact": {"springs": 100}}, "solver.dt", "greater than 0"),
+        (
+            {"solver": {"method": "verlet", "dt": -1.0}, "contact": {"springs": 100}},
+            "solver.dt",
+            "-1 s is outside the allowed range [1e-30, 1] s",
+        ),
     ],
     ids=["continuum", "no step", "adaptive with a step", "negative step"],
 )

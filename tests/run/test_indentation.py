@@ -640,9 +640,9 @@ def test_schema_kind_control_program():
         ({"control": None}, "control", "missing (required for kind 'indentation')"),
         ({"program": None}, "program", "missing (required for kind 'indentation')"),
         ({"control": "velocity"}, "control", "Input should be 'force' or 'displacement'"),
-        ({"program": {"peak": -1e-7}}, "program.peak", "greater than or equal to 0"),
+        ({"program": {"peak": -1e-7}}, "program.peak", "-1e-07 N or m is outside the allowed range [0, 1e6] N or m"),
         ({"program": {"peak": 1e-7, "unload_to": 2e-7}}, "program.unload_to", "below peak"),
-        ({"program": {"peak": 1e-7, "cycles": 0}}, "program.cycles", "greater than or equal to 1"),
+        ({"program": {"peak": 1e-7, "cycles": 0}}, "program.cycles", "0 is outside the allowed range [1, 100]"),
         ({"kind": "drop"}, "kind", "Input should be 'impact' or 'indentation'"),
     ],
 )

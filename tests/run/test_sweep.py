@@ -521,7 +521,7 @@ BAD_SWEEPS = [
         "negative velocity",
         {"axes": {"initial.velocity": [0.5, -0.6]}},
         "axes.initial.velocity",
-        "value -0.6 (#1): Input should be greater than or equal to 0",
+        "value -0.6 (#1): -0.6 m/s is outside the allowed range 0 or [1e-20, 1e4] m/s",
     ),
     ("zero velocity", {"axes": {"initial.velocity": [0.0, 0.5]}}, "axes.initial.velocity", "must be > 0"),
     (
@@ -553,7 +553,12 @@ BAD_SWEEPS = [
     ("no axes", {"axes": None}, "axes", "missing"),
     ("no axis", {"axes": {}}, "axes", "at least one field"),
     ("missing scene file", {"scene": "absent.yaml"}, "scene", "no such file"),
-    ("set to a bad value", {"set": {"solver.rtol": 0}}, "scene.solver.rtol", "greater than 0"),
+    (
+        "set to a bad value",
+        {"set": {"solver.rtol": 0}},
+        "scene.solver.rtol",
+        "0 is outside the allowed range [1e-16, 0.5]",
+    ),
     ("set below a value", {"set": {"initial.velocity.x": 1}}, "set.initial.velocity.x", "is a value, not a section"),
     ("bad base scene", {"scene": {"name": "x"}}, "scene.body", "missing"),
 ]

@@ -1,0 +1,109 @@
+"""The allowed range (domain) of every number of a scene, in SI units.
+
+Each domain is a closed interval [low, high], or (low, high] where zero is no meaningful value,
+optionally with 0 allowed besides (0 or [low, high]). They are physical and generous: from below
+atomic sizes to a kilometre, from soft gels to above diamond. What the scaled problem can
+represent depends on several fields at once and is checked across fields (`representable`).
+`within(domain)` is the pydantic metadata that checks a field; the scene reference shows the
+domain from the field's description.
+"""
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import AfterValidator
+
+
+@dataclass(frozen=True)
+class Domain:
+    """An interval from `low` to `high` in `unit`, closed unless `open_low`/`open_high`, with 0
+    allowed besides if `zero`."""
+
+    low: float
+    high: float
+    unit: str
+    open_low: bool = False
+    open_high: bool = False
+    zero: bool = False
+    reason: str = ""  # why these bounds, said with a refusal
+
+    def __contains__(self, value: float) -> bool:
+        if self.zero and value == 0:
+            return True
+        above = value > self.low if self.open_low else value >= self.low
+        below = value < self.high if self.open_high else value <= self.high
+        return above and below
+
+    def __str__(self) -> str:
+        interval = (
+            f"{'(' if self.open_low else '['}{short(self.low)}, {short(self.high)}{')' if self.open_high else ']'}"
+        )
+        unit = f" {self.unit}" if self.unit else ""
+        return f"0 or {interval}{unit}" if self.zero else f"{interval}{unit}"
+
+    def check(self, value: float) -> float:
+        """The value, or ValueError naming it and the allowed range."""
+        if value not in self:
+            raise ValueError(outside(value, self, self.reason))
+        return value
+
+
+def short(value: float) -> str:
+    """A bound as the docs write it: 1e4, 1e-12, 2.5e-7, 0.5, 1.5698."""
+    if value == 0 or 1e-3 <= abs(value) < 1e4:
+        return f"{value:.6g}"
+    exponent = math.floor(math.log10(abs(value)))
+    mantissa = f"{value / 10.0**exponent:.4g}"
+    return f"1e{exponent}" if mantissa == "1" else f"{mantissa}e{exponent}"
+
+
+def outside(value: float, domain: Domain, why: str = "") -> str:
+    """'<value> <unit> is outside the allowed range <domain>[: why]'."""
+    unit = f" {domain.unit}" if domain.unit else ""
+    return f"{value:g}{unit} is outside the allowed range {domain}" + (f": {why}" if why else "")
+
+
+def within(domain: Domain) -> Any:
+    """Pydantic metadata that refuses a value outside `domain` (after numeric coercion)."""
+    return AfterValidator(domain.check)
+
+
+# --- the domains ------------------------------------------------------------------------------
+
+LENGTH = Domain(1e-12, 1e3, "m", reason="from below atomic size to a kilometre")
+LENGTH_OR_ZERO = Domain(0.0, 1e3, "m", reason="up to a kilometre")
+GAP = Domain(1e-15, 1e3, "m", zero=True, reason="touching, or a drop of at most a kilometre")
+INVERSE_LENGTH = Domain(1e-3, 1e12, "1/m", reason="semi-axes from 1 pm to 1 km")
+# Flank angle of a cone: below 1e-6 rad the contact grows beyond any body; above π/2 − 1e-3
+# (slope 1000) the solver fails (measured: π/2 − 1e-8 ends in solver_failure, π/2 − 1e-4 runs).
+ANGLE = Domain(1e-6, math.pi / 2 - 1e-3, "rad", reason="slopes from 1e-6 to 1000")
+# Power-law exponent: κ(n) holds Γ(n/2 + 1), which overflows float64 for n > 341 (measured:
+# n = 400 gives e = 8e6); n = 100 keeps a factor 3.
+EXPONENT = Domain(1e-3, 100.0, "", reason="κ(n) overflows float64 beyond n = 341")
+PREFACTOR = Domain(1e-300, 1e300, "m^(1-n)", reason="float64's range")
+MASS = Domain(1e-30, 1e6, "kg", reason="from below an electron to a thousand tonnes")
+DENSITY = Domain(1e-3, 1e5, "kg/m³", reason="from below aerogels to above osmium")
+MODULUS = Domain(1.0, 1e13, "Pa", reason="from the softest gels to ten times diamond")
+STRESS = Domain(1.0, 1e13, "Pa", reason="up to ten times the modulus of diamond")
+VELOCITY = Domain(
+    1e-20,
+    1e4,
+    "m/s",
+    zero=True,
+    reason="0 for a body dropped by gravity; above 10 km/s an impact is no elastic contact",
+)
+WORK_OF_ADHESION = Domain(0.0, 1e4, "J/m²", reason="measured works of adhesion lie below 10 J/m²")
+GRAVITY = Domain(1e-6, 1e4, "m/s²", reason="up to a thousand g")
+SPRINGS = Domain(1, 1e9, "", reason="a spring count float64 holds exactly, with room")
+RTOL = Domain(1e-16, 0.5, "", reason="from float64's resolution to a loose 50 %")
+ATOL = Domain(1e-300, 1.0, "", reason="the scaled state is of order 1")
+MAX_STEPS = Domain(16, 1e6, "", reason="a million steps per phase at most")
+TIME_STEP = Domain(1e-30, 1.0, "s", reason="float64's range of contact times")
+DURATION = Domain(1e-30, 1e9, "s", reason="up to thirty years")
+# Each bounce allocates four phases of 64 trajectory samples: 1000 bounces hold about 10 MB.
+BOUNCES = Domain(1, 1000, "", reason="each bounce allocates its trajectory samples")
+POISSON = Domain(-1.0, 0.5, "", open_low=True, open_high=True, reason="a stable isotropic solid")
+CYCLES = Domain(1, 100, "", reason="each cycle adds legs to the compiled march")
+PEAK = Domain(0.0, 1e6, "N or m", reason="a load of at most a meganewton or a kilometre")
+UNLOAD_TO = Domain(-1e6, 1e6, "N or m", reason="as program.peak")
