@@ -25,6 +25,8 @@ from jax.experimental.compilation_cache import compilation_cache
 CACHE_VARIABLE = "IMPACT_CACHE_DIR"
 OFF = "off"  # IMPACT_CACHE_DIR=off switches the cache off
 
+_in_use: Path | None = None  # set by `use_cache`
+
 
 def cache_directory(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = True) -> Path | None:
     """The directory the cache would use, or None where it is switched off: `cache_dir`, else
@@ -58,6 +60,8 @@ def use_cache(directory: Path | None) -> Path | None:
                 stacklevel=3,
             )
             directory = None
+    global _in_use
+    _in_use = directory
     if directory is None:
         jax.config.update("jax_enable_compilation_cache", False)
         return None
@@ -69,3 +73,8 @@ def use_cache(directory: Path | None) -> Path | None:
     jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.0)
     jax.config.update("jax_persistent_cache_min_entry_size_bytes", -1)
     return directory
+
+
+def directory_in_use() -> Path | None:
+    """The cache directory `configure` switched on in this process (None: no cache)."""
+    return _in_use

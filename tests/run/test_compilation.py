@@ -1,6 +1,7 @@
 """Compilation: once per scene structure and machine. New values of traced parameters reuse the
 compiled program; the persistent cache (in the directory that `configure` picks) lets a second
-process load it instead of compiling; a cache directory that cannot be written only warns."""
+process load the traced program and its executable instead of tracing and compiling, with the
+same results to the bit; a cache directory that cannot be written only warns."""
 
 import copy
 import os
@@ -9,11 +10,14 @@ import sys
 from pathlib import Path
 
 import jax
+import numpy as np
 import platformdirs
 import pytest
 
 import impact
-from impact._core.cache import cache_directory, use_cache
+from impact._core.cache import cache_directory, directory_in_use, use_cache
+from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.programs import EXPORTED, solve, solve_by_field
 from impact._scene.scene import read_yaml
 
 ROOT = Path(__file__).parents[2]
@@ -140,6 +144,23 @@ def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_pat
 
     compiled, loaded, restitution = run()
     assert int(compiled) >= 1 and loaded == "0"
-    assert any((tmp_path / "cache").iterdir())
-    again = run()
-    assert again == ["0", compiled, restitution]
+    [program] = (tmp_path / "cache" / EXPORTED).iterdir()  # the traced solve, exported
+    stored = program.read_bytes()
+    compiled_again, loaded_again, same = run()  # no tracing: fewer programs than the first run
+    assert compiled_again == "0" and int(loaded_again) >= 1 and same == restitution
+    assert list((tmp_path / "cache" / EXPORTED).iterdir()) == [program] and program.read_bytes() == stored
+    program.write_bytes(b"not a program")
+    assert run() == ["0", compiled, restitution]  # traced and exported anew; its executables loaded
+    assert program.read_bytes() == stored
+
+
+def test_stored_program_gives_the_traced_results_bit_for_bit():
+    scene = impact.load_scene(THORNTON_NING)
+    arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)
+    with jax.enable_x64(True):
+        stored = solve_by_field(*arguments)
+        traced = solve(*arguments)
+    assert directory_in_use() is not None  # the stored program ran
+    for mine, reference in zip(stored, traced, strict=True):
+        for name, value in mine.items():
+            assert np.array_equal(value, getattr(reference, name), equal_nan=True), name
