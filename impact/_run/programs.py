@@ -48,7 +48,7 @@ def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Op
     """`solve`, with the scales and the outcome as {field name: array}; traced only where the
     cache holds no program of its key."""
     directory = directory_in_use()
-    if directory is None or importlib.util.find_spec("flatbuffers") is None:
+    if directory is None or not _can_serialize():
         scales, outcome = solve(integrator, physics, options)
         return _fields(scales), _fields(outcome)
     dynamic, static = eqx.partition((integrator, physics), eqx.is_array)
@@ -63,6 +63,12 @@ def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Op
     if key not in _loaded:
         _loaded[key] = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", by_field, leaves)
     return _loaded[key](*leaves)
+
+
+@functools.cache
+def _can_serialize() -> bool:
+    """Whether `jax.export` can serialize here (it needs the flatbuffers package)."""
+    return importlib.util.find_spec("flatbuffers") is not None
 
 
 def _fields(module: eqx.Module) -> Fields:
