@@ -10,12 +10,12 @@ parameters; a program whose key differs is traced anew. Without a cache director
 `flatbuffers`, which `jax.export` serializes with) the solve is traced in every process.
 """
 
+import contextlib
 import dataclasses
 import functools
 import hashlib
 import importlib.util
 import os
-import tempfile
 from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
@@ -83,20 +83,21 @@ def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> 
     except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
         pass
     exported = export.export(jax.jit(function))(*leaves)
+    partial = path.with_name(f"{path.name}.{os.getpid()}.partial")  # written whole, then renamed
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".partial", delete=False) as file:
-            file.write(exported.serialize())
-        os.replace(file.name, path)
+        partial.write_bytes(exported.serialize())
+        os.replace(partial, path)
     except OSError:
-        pass
+        with contextlib.suppress(OSError):
+            partial.unlink(missing_ok=True)
     return exported.call
 
 
 def _key(static: tuple[str, ...], leaves: list[jax.Array]) -> str:
     """SHA-256 of the source, the libraries, the platform, the static parts of one program and
     its traced parameters' shapes and dtypes."""
-    avals = [(leaf.shape, str(leaf.dtype), leaf.weak_type) for leaf in leaves]
+    avals = [(leaf.shape, str(leaf.dtype), getattr(leaf, "weak_type", False)) for leaf in leaves]
     text = repr((_environment(), jax.default_backend(), static, avals))
     return hashlib.sha256(text.encode()).hexdigest()
 
