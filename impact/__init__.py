@@ -1,22 +1,45 @@
 """impact: time-stepping simulator of adhesive impacts (MDR contact law on JAX and diffrax).
 
 The public API is what this module exports; everything in a module whose name starts with an
-underscore is private. Call `impact.configure()` first in scripts (the CLI does): float64, and
-XLA:CPU compiling the spring arrays' loops whole (10× faster).
+underscore is private. Call `impact.configure()` first in scripts (the CLI does): float64,
+XLA:CPU compiling the spring arrays' loops whole (10× faster), and the compilation cache.
+
+The names are imported on first use (PEP 562), so that `import impact` (and `impact --help`)
+does not load JAX until something needs it.
 """
 
-from . import profiles as profiles
-from . import theory as theory
+import importlib
+from typing import TYPE_CHECKING
+
 from ._core.package import __version__ as __version__
-from ._core.runtime import configure as configure
-from ._run.impacts import Result as Result
-from ._run.indentation import IndentationResult as IndentationResult
-from ._run.simulate import simulate as simulate
-from ._run.sweep import SweepResult as SweepResult
-from ._run.sweep import sweep as sweep
-from ._scene.scene import Scene as Scene
-from ._scene.scene import SceneError as SceneError
-from ._scene.scene import load_scene as load_scene
+
+if TYPE_CHECKING:
+    from . import profiles as profiles
+    from . import theory as theory
+    from ._core.runtime import configure as configure
+    from ._run.impacts import Result as Result
+    from ._run.indentation import IndentationResult as IndentationResult
+    from ._run.simulate import simulate as simulate
+    from ._run.sweep import SweepResult as SweepResult
+    from ._run.sweep import sweep as sweep
+    from ._scene.scene import Scene as Scene
+    from ._scene.scene import SceneError as SceneError
+    from ._scene.scene import load_scene as load_scene
+
+# Each public name → the module that defines it (the subpackages are their own modules).
+_SOURCES = {
+    "IndentationResult": "._run.indentation",
+    "Result": "._run.impacts",
+    "Scene": "._scene.scene",
+    "SceneError": "._scene.scene",
+    "SweepResult": "._run.sweep",
+    "configure": "._core.runtime",
+    "load_scene": "._scene.scene",
+    "profiles": ".profiles",
+    "simulate": "._run.simulate",
+    "sweep": "._run.sweep",
+    "theory": ".theory",
+}
 
 __all__ = [
     "IndentationResult",
@@ -32,3 +55,17 @@ __all__ = [
     "sweep",
     "theory",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """Import a public name on first use and keep it in the module."""
+    if name not in _SOURCES:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    module = importlib.import_module(_SOURCES[name], __name__)
+    value = module if name in ("profiles", "theory") else getattr(module, name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

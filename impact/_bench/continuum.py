@@ -15,8 +15,8 @@ import numpy as np
 from .. import theory
 from .._integrate.codes import RESULT_CODE
 from .._integrate.continuum import Continuum
-from .._run.impacts import solve
 from .._run.parameters import options_for, physics_for
+from .._run.programs import solve
 from .._scene.scene import Scene, load_scene
 from .cases import Case, case_scene, restitution, sticking_velocity
 from .plans import BATCH_RANGE, E_STAR, MASS, RADIUS, WORK_OF_ADHESION, Plan

@@ -1,4 +1,5 @@
-"""How a process runs impact's JAX code: float64, and XLA:CPU compiling small loops whole.
+"""How a process runs impact's JAX code: float64, XLA:CPU compiling small loops whole, and the
+persistent compilation cache (`impact._core.cache`).
 
 `configure()` is called by the CLI entry point and the tests' conftest, not at import (it
 changes process-wide settings); call it first in scripts that use the Python API.
@@ -8,9 +9,12 @@ import functools
 import os
 from collections.abc import Callable
 from importlib import metadata
+from pathlib import Path
 from typing import ParamSpec, TypeVar
 
 import jax
+
+from .cache import cache_directory, use_cache
 
 # XLA:CPU runs a while-loop whose body exceeds 1 kB op by op; the spring arrays' event and
 # Verlet loops (the law evaluated inside) are a few kB: compiled whole they run 10× faster.
@@ -23,13 +27,20 @@ def _accelerator_plugins() -> bool:
     return any(name.lower().replace("_", "-").startswith(("jax-cuda", "jax-rocm", "libtpu")) for name in names)
 
 
-def configure() -> None:
+def configure(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = True) -> Path | None:
     """Enable float64; on a CPU-only install, before the backend starts and unless XLA_FLAGS
-    already sets backend options, let XLA:CPU compile loops of up to 64 kB into one kernel."""
+    already sets backend options, let XLA:CPU compile loops of up to 64 kB into one kernel; and
+    store compiled programs on disk, so that a later process loads them instead of compiling.
+
+    The cache lives in `cache_dir`, else in $IMPACT_CACHE_DIR, else in the per-user cache
+    directory (`platformdirs.user_cache_dir("impact")/jax`); `cache=False` or
+    IMPACT_CACHE_DIR=off switches it off. A directory that cannot be written is skipped with a
+    RuntimeWarning. Returns the cache directory in use (None: no cache)."""
     jax.config.update("jax_enable_x64", True)
     flags = os.environ.get("XLA_FLAGS", "")
     if "xla_backend_extra_options" not in flags and not _accelerator_plugins():
         os.environ["XLA_FLAGS"] = f"{flags} --xla_backend_extra_options={SMALL_LOOP_OPTION}".strip()
+    return use_cache(cache_directory(cache_dir, cache=cache))
 
 
 Arguments = ParamSpec("Arguments")

@@ -1,19 +1,17 @@
 """Impacts: a scene of kind `impact` → its integrator, parameters and options → one solve →
 the result in SI units."""
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
-import equinox as eqx
 import numpy as np
 
 from .. import theory
-from .._integrate.base import AbstractIntegrator
-from .._integrate.carry import Outcome
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
-from .._integrate.problem import Options, Physics
-from .._law.scales import Scales
 from .._scene.scene import Scene
 from .parameters import integrator_for, options_for, physics_for
+from .programs import solve_by_field
 
 
 @dataclass(frozen=True)
@@ -51,15 +49,9 @@ class Result:
         return self.status in ("separated", "captured")
 
 
-@eqx.filter_jit
-def solve(integrator: AbstractIntegrator, physics: Physics, options: Options) -> tuple[Scales, Outcome]:
-    """Scale, tabulate and integrate one impact; returns (scales, scaled outcome)."""
-    return integrator.solve(physics, options)
-
-
 def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
     """Run one scene of kind `impact`; `trajectory=False` skips the time series (faster)."""
-    scales, outcome = solve(integrator_for(scene), physics_for(scene), options_for(scene, trajectory))
+    scales, outcome = solve_by_field(integrator_for(scene), physics_for(scene), options_for(scene, trajectory))
     return to_result(scene, scales, outcome)
 
 
@@ -75,10 +67,10 @@ def tabor_parameter(scene: Scene) -> float:
     )
 
 
-def to_result(scene: Scene, scales, outcome) -> Result:
-    """Scaled outcome → SI result."""
-    o = {name: np.asarray(value) for name, value in vars(outcome).items()}
-    s = {name: float(value) for name, value in vars(scales).items()}
+def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any]) -> Result:
+    """Scaled outcome → SI result (the fields of `Scales` and `Outcome` by name)."""
+    o = {name: np.asarray(value) for name, value in outcome.items()}
+    s = {name: float(value) for name, value in scales.items()}
     time, length, force = s["time"], s["normal"], s["force"]
     speed = length / time
     status = RESULT_CODES[int(o["status"])]

@@ -10,6 +10,7 @@ names one field, its value and the range it may take with the other fields as th
 import math
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 
 from .._core.runtime import float64
@@ -36,6 +37,12 @@ SIZE_FIELD = {
     "capped_paraboloid": "R2",
 }
 _BISECTION_STEPS = 100
+
+
+def _traced(tree):
+    """Every number of `tree` as a float64 array: `eqx.filter_jit` keeps Python floats static, so a
+    new value would compile anew (a sweep validates every point: thousands of programs)."""
+    return jax.tree.map(lambda leaf: jnp.asarray(leaf, float) if isinstance(leaf, float) else leaf, tree)
 
 
 @eqx.filter_jit
@@ -67,7 +74,7 @@ def check_representable(scene) -> None:
     approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         approach = adhesion.work_of_adhesion
-    units, energetic = _units(profile, E_star, approach, mass, speed, adhesion is not None)
+    units, energetic = _units(*_traced((profile, E_star, approach, mass, speed)), adhesion is not None)
     values = {name: float(getattr(units, name)) for name in ("radial", "normal", "force", "time")}
     _check_units(values, float(units.velocity), float(units.energy))
     if adhesion is not None and adhesion.model == "jkr":
@@ -115,7 +122,7 @@ def _check_depth(scene, profile, energetic_depth: float, fall: float) -> None:
     )
     E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
     # the impact energy: E*·x·g(x)² at g(x) = size is the most it may be
-    most_energy = E_star * float(_radius_at_height(profile, size)) * size**2
+    most_energy = E_star * float(_radius_at_height(*_traced((profile, size)))) * size**2
     if scene.start.velocity > 0 or fall == 0:
         most = math.sqrt(max(2.0 * most_energy / mass - fall, 0.0))
         raise FieldProblem("initial.velocity", outside(scene.start.velocity, Domain(0.0, most, "m/s"), why))

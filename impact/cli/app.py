@@ -1,27 +1,31 @@
 """The `impact` typer app and its console entry point `main`."""
 
+from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from .._core import runtime
 from .._core.package import __version__
-from . import bench, run, sweep
+from . import commands
 from .console import FlagHelpGroup, say
+from .settings import CacheChoice
+
+HELP = (
+    "Simulate adhesive impacts (MDR contact law on JAX + diffrax).\n\n"
+    "Compiled programs are kept in a cache on disk, so that only the first run of a scene compiles: "
+    "in --cache-dir DIR, else in $IMPACT_CACHE_DIR, else in the per-user cache directory "
+    "(~/.cache/impact/jax on Linux). --no-cache or IMPACT_CACHE_DIR=off compiles without it; "
+    "delete the directory to clear it."
+)
 
 app = typer.Typer(
-    help="Simulate adhesive impacts (MDR contact law on JAX + diffrax).",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_show_locals=False,
-    cls=FlagHelpGroup,
+    help=HELP, no_args_is_help=True, add_completion=False, pretty_exceptions_show_locals=False, cls=FlagHelpGroup
 )
 
 
 def main() -> None:
-    """Console entry point: float64 physics and whole-loop compilation (`runtime.configure`),
-    then the command line."""
-    runtime.configure()
+    """Console entry point: the command line (each command configures float64, whole-loop
+    compilation and the compilation cache itself, as the global options ask)."""
     app()
 
 
@@ -31,16 +35,28 @@ def _print_version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
+@app.callback(help=HELP)
 def _options(
+    ctx: typer.Context,
     version: Annotated[
         bool,
         typer.Option("--version", callback=_print_version, is_eager=True, help="print the version and exit"),
     ] = False,
+    cache_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--cache-dir",
+            metavar="DIR",
+            help="keep compiled programs in DIR (default: $IMPACT_CACHE_DIR, else the per-user cache directory)",
+            show_default=False,
+        ),
+    ] = None,
+    no_cache: Annotated[
+        bool,
+        typer.Option("--no-cache", help="compile in this process without the cache", show_default=False),
+    ] = False,
 ) -> None:
-    """Simulate adhesive impacts (MDR contact law on JAX + diffrax)."""
+    ctx.obj = CacheChoice(directory=cache_dir, enabled=not no_cache)
 
 
-run.register(app)
-sweep.register(app)
-bench.register(app)
+commands.register(app)

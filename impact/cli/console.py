@@ -58,5 +58,5 @@ def say(line: str) -> None:
 
 
 def warn(line: str) -> None:
-    """Print one warning line to stderr, in yellow."""
-    err.print(Text(line, "yellow"))
+    """Print one warning line to stderr, in yellow (not wrapped)."""
+    err.print(Text(line, "yellow"), soft_wrap=True)

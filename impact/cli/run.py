@@ -1,4 +1,5 @@
-"""`impact run`, `impact validate` and `impact show`: one scene on the command line.
+"""`impact run`, `impact validate` and `impact show`: one scene on the command line (declared in
+`commands`).
 
 A refusal of bad input (scene file, `--set`, output folder) exits with code 2, names the field
 by its dotted path, prints no traceback and leaves nothing on disk. A simulation that ends
@@ -12,7 +13,6 @@ import shutil
 import time
 from datetime import datetime
 from pathlib import Path
-from typing import Annotated
 
 import typer
 import yaml
@@ -30,40 +30,12 @@ from .._run.simulate import simulate
 from .._scene.errors import SceneError
 from .._scene.paths import NoField, NotASection, assign, check_path
 from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
-from .console import FlagHelpCommand, out, refuse, say, warn
+from .console import out, refuse, say, warn
 from .tables import facts_table, result_table
 
-SceneArgument = Annotated[Path, typer.Argument(metavar="SCENE.yaml", help="scene YAML file", show_default=False)]
-SetOption = Annotated[
-    list[str] | None,
-    typer.Option(
-        "--set",
-        metavar="PATH=VALUE",
-        help="override a scene field by its dotted path, e.g. --set initial.velocity=0.8 (repeatable)",
-        show_default=False,
-    ),
-]
-OutputFolder = Annotated[
-    Path | None,
-    typer.Option("-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False),
-]
-Overwrite = Annotated[
-    bool, typer.Option("--overwrite", help="write into an existing output folder", show_default=False)
-]
-RunFile = Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]
 
-
-def register(app: typer.Typer) -> None:
-    """Add the `run`, `validate` and `show` commands to the app."""
-    app.command("run", cls=FlagHelpCommand)(run_command)
-    app.command("validate", cls=FlagHelpCommand)(validate_command)
-    app.command("show", cls=FlagHelpCommand)(show_command)
-
-
-def run_command(
-    scene_file: SceneArgument, output: OutputFolder = None, assignments: SetOption = None, overwrite: Overwrite = False
-) -> None:
-    """Run one scene; write run.h5, config.yaml and plots to an output folder."""
+def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | None, overwrite: bool) -> None:
+    """`impact run`: run one scene; write run.h5, config.yaml and plots to an output folder."""
     scene = scene_of(scene_file, assignments)
     folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
     check_output(folder, overwrite)
@@ -78,15 +50,15 @@ def run_command(
         raise typer.Exit(1)
 
 
-def validate_command(scene_file: SceneArgument, assignments: SetOption = None) -> None:
-    """Check a scene without running it; print its resolved key facts."""
+def validate_scene(scene_file: Path, assignments: list[str] | None) -> None:
+    """`impact validate`: check a scene without running it; print its resolved key facts."""
     scene = scene_of(scene_file, assignments)
     out.print(Text(f"OK: {scene_file} is a valid scene", "green"), soft_wrap=True)
     out.print(facts_table(scene))
 
 
-def show_command(run_file: RunFile) -> None:
-    """Print the summary of a stored run (run.h5)."""
+def show_run(run_file: Path) -> None:
+    """`impact show`: print the summary of a stored run (run.h5)."""
     indentation = is_indentation_run(run_file)
     try:
         result = read_indentation(run_file) if indentation else read_run(run_file)

@@ -1,7 +1,7 @@
 """`impact sweep` and `impact merge`: parameter sweeps on the command line.
 
-`register(app)` adds both commands to the `impact` typer app. Bad input (sweep file, options,
-output folder) exits with code 2, names the field, prints no traceback and writes nothing.
+Declared in `commands`. Bad input (sweep file, options, output folder) exits with code 2,
+names the field, prints no traceback and writes nothing.
 
     impact sweep SWEEP.yaml [-o DIR] [--chunk N] [--devices N] [--overwrite]
                  [--num-processes N --process-id I [--coordinator HOST:PORT] | --distributed]
@@ -19,7 +19,6 @@ import contextlib
 import shutil
 import time
 from pathlib import Path
-from typing import Annotated
 
 import jax
 import typer
@@ -34,24 +33,19 @@ from rich.progress import (
 )
 from rich.text import Text
 
+from .._core.defaults import DEFAULT_CHUNK
 from .._io import sweep as sweep_store
 from .._io.sweep_journal import SweepWriter, journal_state
 from .._plots.sweep import save_restitution_figure
-from .._run.sweep import DEFAULT_CHUNK, Plan, SweepResult, execute, local_devices, plan_sweep, sticking_estimates
+from .._run.sweep import Plan, SweepResult, execute, local_devices, plan_sweep, sticking_estimates
 from .._run.sweep import Progress as SweepProgress
 from .._scene.errors import SceneError, SweepError
 from .._scene.sweep import load_sweep
 from .._scene.sweep_spec import SweepSpec
-from .console import FlagHelpCommand, err, out, refuse, refuse_value, say, warn
+from .console import err, out, refuse, refuse_value, say, warn
 from .tables import OUTCOMES, outcome_counts, sticking_table, sweep_table
 
 FIGURE = "restitution.png"
-
-
-def register(app: typer.Typer) -> None:
-    """Add the `sweep` and `merge` commands to the app."""
-    app.command("sweep", cls=FlagHelpCommand)(sweep_command)
-    app.command("merge", cls=FlagHelpCommand)(merge_command)
 
 
 class _PointsPerSecond(ProgressColumn):
@@ -84,61 +78,19 @@ class _Bar(SweepProgress):
         self.progress.update(self.task, advance=points, rate=rate)
 
 
-SweepFile = Annotated[Path, typer.Argument(metavar="SWEEP.yaml", help="sweep YAML file", show_default=False)]
-OutputFolder = Annotated[
-    Path | None,
-    typer.Option("-o", "--output", help="output folder (default: runs/sweeps/<file stem>)", show_default=False),
-]
-Chunk = Annotated[
-    int | None,
-    typer.Option("--chunk", help=f"points per compiled call (default: {DEFAULT_CHUNK})", show_default=False),
-]
-Devices = Annotated[
-    int | None,
-    typer.Option("--devices", help="devices to shard each chunk over (default: all local devices)", show_default=False),
-]
-Overwrite = Annotated[
-    bool,
-    typer.Option(
-        "--overwrite",
-        help="discard a finished (or different) sweep in the folder and run anew",
-        show_default=False,
-    ),
-]
-Coordinator = Annotated[
-    str | None,
-    typer.Option(
-        "--coordinator", help="multi-host: HOST:PORT of process 0 (jax.distributed.initialize)", show_default=False
-    ),
-]
-NumProcesses = Annotated[
-    int | None, typer.Option("--num-processes", help="multi-host: number of processes", show_default=False)
-]
-ProcessId = Annotated[
-    int | None, typer.Option("--process-id", help="multi-host: this process, 0 ≤ id < N", show_default=False)
-]
-Distributed = Annotated[
-    bool,
-    typer.Option(
-        "--distributed",
-        help="multi-host: jax.distributed.initialize() from the cluster's environment (SLURM, Open MPI, ...)",
-        show_default=False,
-    ),
-]
-
-
-def sweep_command(
-    sweep_file: SweepFile,
-    output: OutputFolder = None,
-    chunk: Chunk = None,
-    devices: Devices = None,
-    overwrite: Overwrite = False,
-    coordinator: Coordinator = None,
-    num_processes: NumProcesses = None,
-    process_id: ProcessId = None,
-    distributed: Distributed = False,
+def run_sweep(
+    sweep_file: Path,
+    output: Path | None,
+    chunk: int | None,
+    devices: int | None,
+    overwrite: bool,
+    coordinator: str | None,
+    num_processes: int | None,
+    process_id: int | None,
+    distributed: bool,
 ) -> None:
-    """Run a sweep of a scene over numeric fields; write sweep.h5, restitution.png and a summary."""
+    """`impact sweep`: run a sweep of a scene over numeric fields; write sweep.h5, restitution.png
+    and a summary."""
     share = _share(coordinator, num_processes, process_id, distributed)
     if devices is not None:
         _ask_devices(devices)
@@ -293,18 +245,9 @@ def _solve(plan: Plan, writer: SweepWriter, expected: int, **options) -> dict:
             raise typer.Exit(130) from None
 
 
-def merge_command(
-    shards: Annotated[
-        list[Path], typer.Argument(metavar="SHARD.h5 ...", help="shard files of one sweep", show_default=False)
-    ],
-    output: Annotated[
-        Path, typer.Option("-o", "--output", help="merged sweep file, e.g. sweep.h5", show_default=False)
-    ],
-    overwrite: Annotated[
-        bool, typer.Option("--overwrite", help="replace an existing output file", show_default=False)
-    ] = False,
-) -> None:
-    """Join the shards of a multi-process sweep into one sweep.h5 (and restitution.png beside it)."""
+def merge_shards(shards: list[Path], output: Path, overwrite: bool) -> None:
+    """`impact merge`: join the shards of a multi-process sweep into one sweep.h5 (and
+    restitution.png beside it)."""
     if output.exists() and not overwrite:
         refuse("output file", [("--output", f"{output} exists; pass --overwrite to replace it")])
     if not output.parent.is_dir():

@@ -1,5 +1,5 @@
-"""`impact bench --quick` through the command that `register` adds to a typer app: its outputs,
-errors that fall as the tolerance tightens, the spring array's order in N, and the baseline."""
+"""`impact bench --quick` through the `impact` typer app: its outputs, errors that fall as the
+tolerance tightens, the spring array's order in N, and the baseline."""
 
 import subprocess
 import sys
@@ -7,30 +7,18 @@ import sys
 import h5py
 import numpy as np
 import pytest
-import typer
 from typer.testing import CliRunner
 
 from impact._bench.comparison import cheapest
 from impact._bench.plans import OUTPUTS
 from impact._bench.springs import fitted_order
-from impact.cli.bench import register
-
-
-def make_app() -> typer.Typer:
-    app = typer.Typer()
-
-    @app.callback()
-    def _main() -> None:
-        """Test application."""
-
-    register(app)
-    return app
+from impact.cli import app
 
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):
     folder = tmp_path_factory.mktemp("bench") / "quick"
-    result = CliRunner().invoke(make_app(), ["bench", "--quick", "-o", str(folder)])
+    result = CliRunner().invoke(app, ["bench", "--quick", "-o", str(folder)])
     return folder, result
 
 
@@ -105,14 +93,14 @@ def test_baseline_is_measured_beside(quick):
 def test_bench_refuses_an_existing_folder(tmp_path):
     folder = tmp_path / "taken"
     folder.mkdir()
-    result = CliRunner().invoke(make_app(), ["bench", "--quick", "-o", str(folder)])
+    result = CliRunner().invoke(app, ["bench", "--quick", "-o", str(folder)])
     assert result.exit_code == 2
     assert "--overwrite" in result.output
     assert list(folder.iterdir()) == []
 
 
 def test_bench_has_one_line_help():
-    result = CliRunner().invoke(make_app(), ["--help"])
+    result = CliRunner().invoke(app, ["--help"])
     assert result.exit_code == 0 and "bench" in result.output and "accuracy costs" in result.output
 
 

@@ -17,8 +17,8 @@ from impact._integrate import springs
 from impact._integrate.problem import build_problem
 from impact._integrate.springs import SpringArrayProblem
 from impact._law.springs import Attached
-from impact._run.impacts import solve
 from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.programs import solve
 
 HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
 COUNTS = (10, 1_000_000)

@@ -14,8 +14,8 @@ from impact._integrate.problem import build_problem
 from impact._integrate.springs import SpringArray, build_array
 from impact._integrate.verlet import Verlet
 from impact._law.springs import Attached
-from impact._run.impacts import solve
 from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.programs import solve
 from impact._scene.scene import SceneError, load_scene, scene_yaml
 from impact.cli import app
 

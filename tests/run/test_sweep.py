@@ -20,7 +20,6 @@ import h5py
 import jax
 import numpy as np
 import pytest
-import typer
 import yaml
 from typer.testing import CliRunner
 
@@ -35,7 +34,7 @@ from impact._scene.errors import SweepError
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import load_sweep, make_spec
-from impact.cli.sweep import register
+from impact.cli import app
 
 ROOT = Path(__file__).parents[2]
 CONFIGS = ROOT / "configs"
@@ -60,31 +59,18 @@ EXACT = (
 # Partitioned over devices, XLA orders a few sums differently: the force extremes move by an ulp
 # and the loop work ∮F dd (a small difference of large works) by a few 1e-12.
 CLOSE = ("max_force", "min_force", "max_indentation", "dissipated_energy")
-PRELUDE = (
-    "import jax; jax.config.update('jax_enable_x64', True); import typer; "
-    "from impact.cli.sweep import register; app = typer.Typer(); register(app); app()"
-)
-
-
-def cli_app() -> typer.Typer:
-    app = typer.Typer(add_completion=False)
-    register(app)
-    return app
+PRELUDE = "from impact.cli import main; main()"
 
 
 def invoke(*args):
-    return CliRunner().invoke(cli_app(), [str(arg) for arg in args])
+    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
 def cache_env(tmp_path_factory):
     """Environment of the subprocesses: a shared persistent compilation cache."""
     env = dict(os.environ)
-    env.update(
-        JAX_COMPILATION_CACHE_DIR=str(tmp_path_factory.mktemp("jax_cache")),
-        JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS="0",
-        JAX_PERSISTENT_CACHE_MIN_ENTRY_SIZE_BYTES="0",
-    )
+    env.update(IMPACT_CACHE_DIR=str(tmp_path_factory.mktemp("jax_cache")))
     env.pop("JAX_NUM_CPU_DEVICES", None)
     return env
 

@@ -13,7 +13,7 @@ from jax.sharding import AxisType, NamedSharding, PartitionSpec
 from ..._integrate.codes import RESULT_CODE
 from ..._integrate.problem import Physics
 from ..._scene.errors import SweepError
-from ..impacts import solve
+from ..programs import solve
 from .closed_forms import closed_form_restitution
 from .plan import Plan, StaticChoices
 from .result import RESULTS, empty_results

@@ -11,6 +11,7 @@ from pathlib import Path
 import jax
 import numpy as np
 
+from ..._core.defaults import DEFAULT_CHUNK
 from ..._core.runtime import float64
 from ..._scene.errors import SweepError
 from ..._scene.scene import Scene
@@ -19,8 +20,6 @@ from ..._scene.sweep_spec import SweepSpec
 from .batch import COMPILE_SECONDS, batch_sharding, compiled_batch, local_devices, sequential
 from .plan import Plan, plan_sweep
 from .result import RESULTS, SweepResult, empty_results
-
-DEFAULT_CHUNK = 1000
 
 
 class Progress:

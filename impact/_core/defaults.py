@@ -1,0 +1,4 @@
+"""Defaults that the command line's help text shows, here so that `impact --help` need not import
+the modules (and JAX) that use them."""
+
+DEFAULT_CHUNK = 1000  # sweep points per compiled call

@@ -1,0 +1,183 @@
+"""The `impact` commands as typer declares them: their arguments, options and help text.
+
+Each body imports its implementation (`run`, `sweep`, `bench`: JAX, h5py, matplotlib) only when
+the command runs. These lazy imports are deliberate: `impact --help`, `impact run --help` and a
+mistyped option answer at once, without loading JAX.
+"""
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from .._core.defaults import DEFAULT_CHUNK
+from .console import FlagHelpCommand
+from .settings import configured
+
+
+def register(app: typer.Typer) -> None:
+    """Add every command to the app."""
+    for name, command in (
+        ("run", run_command),
+        ("validate", validate_command),
+        ("show", show_command),
+        ("sweep", sweep_command),
+        ("merge", merge_command),
+        ("bench", bench_command),
+    ):
+        app.command(name, cls=FlagHelpCommand)(command)
+
+
+# --- one scene ------------------------------------------------------------------------------
+
+SceneArgument = Annotated[Path, typer.Argument(metavar="SCENE.yaml", help="scene YAML file", show_default=False)]
+SetOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--set",
+        metavar="PATH=VALUE",
+        help="override a scene field by its dotted path, e.g. --set initial.velocity=0.8 (repeatable)",
+        show_default=False,
+    ),
+]
+RunFolder = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="output folder (default: runs/<name>/<YYYYmmdd-HHMMSS>)", show_default=False),
+]
+Overwrite = Annotated[
+    bool, typer.Option("--overwrite", help="write into an existing output folder", show_default=False)
+]
+RunFile = Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]
+
+
+def run_command(
+    ctx: typer.Context,
+    scene_file: SceneArgument,
+    output: RunFolder = None,
+    assignments: SetOption = None,
+    overwrite: Overwrite = False,
+) -> None:
+    """Run one scene; write run.h5, config.yaml and plots to an output folder."""
+    configured(ctx)
+    from .run import run_scene
+
+    run_scene(scene_file, output, assignments, overwrite)
+
+
+def validate_command(ctx: typer.Context, scene_file: SceneArgument, assignments: SetOption = None) -> None:
+    """Check a scene without running it; print its resolved key facts."""
+    configured(ctx)
+    from .run import validate_scene
+
+    validate_scene(scene_file, assignments)
+
+
+def show_command(ctx: typer.Context, run_file: RunFile) -> None:
+    """Print the summary of a stored run (run.h5)."""
+    configured(ctx)
+    from .run import show_run
+
+    show_run(run_file)
+
+
+# --- sweeps ---------------------------------------------------------------------------------
+
+SweepFile = Annotated[Path, typer.Argument(metavar="SWEEP.yaml", help="sweep YAML file", show_default=False)]
+SweepFolder = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="output folder (default: runs/sweeps/<file stem>)", show_default=False),
+]
+Chunk = Annotated[
+    int | None,
+    typer.Option("--chunk", help=f"points per compiled call (default: {DEFAULT_CHUNK})", show_default=False),
+]
+Devices = Annotated[
+    int | None,
+    typer.Option("--devices", help="devices to shard each chunk over (default: all local devices)", show_default=False),
+]
+SweepOverwrite = Annotated[
+    bool,
+    typer.Option(
+        "--overwrite",
+        help="discard a finished (or different) sweep in the folder and run anew",
+        show_default=False,
+    ),
+]
+Coordinator = Annotated[
+    str | None,
+    typer.Option(
+        "--coordinator", help="multi-host: HOST:PORT of process 0 (jax.distributed.initialize)", show_default=False
+    ),
+]
+NumProcesses = Annotated[
+    int | None, typer.Option("--num-processes", help="multi-host: number of processes", show_default=False)
+]
+ProcessId = Annotated[
+    int | None, typer.Option("--process-id", help="multi-host: this process, 0 ≤ id < N", show_default=False)
+]
+Distributed = Annotated[
+    bool,
+    typer.Option(
+        "--distributed",
+        help="multi-host: jax.distributed.initialize() from the cluster's environment (SLURM, Open MPI, ...)",
+        show_default=False,
+    ),
+]
+Shards = Annotated[
+    list[Path], typer.Argument(metavar="SHARD.h5 ...", help="shard files of one sweep", show_default=False)
+]
+MergedFile = Annotated[
+    Path, typer.Option("-o", "--output", help="merged sweep file, e.g. sweep.h5", show_default=False)
+]
+MergeOverwrite = Annotated[
+    bool, typer.Option("--overwrite", help="replace an existing output file", show_default=False)
+]
+
+
+def sweep_command(
+    ctx: typer.Context,
+    sweep_file: SweepFile,
+    output: SweepFolder = None,
+    chunk: Chunk = None,
+    devices: Devices = None,
+    overwrite: SweepOverwrite = False,
+    coordinator: Coordinator = None,
+    num_processes: NumProcesses = None,
+    process_id: ProcessId = None,
+    distributed: Distributed = False,
+) -> None:
+    """Run a sweep of a scene over numeric fields; write sweep.h5, restitution.png and a summary."""
+    configured(ctx)
+    from .sweep import run_sweep
+
+    run_sweep(sweep_file, output, chunk, devices, overwrite, coordinator, num_processes, process_id, distributed)
+
+
+def merge_command(ctx: typer.Context, shards: Shards, output: MergedFile, overwrite: MergeOverwrite = False) -> None:
+    """Join the shards of a multi-process sweep into one sweep.h5 (and restitution.png beside it)."""
+    configured(ctx)
+    from .sweep import merge_shards
+
+    merge_shards(shards, output, overwrite)
+
+
+# --- benchmark ------------------------------------------------------------------------------
+
+Quick = Annotated[
+    bool, typer.Option("--quick", help="a reduced plan that finishes in about a minute (one solver, fewer points)")
+]
+BenchFolder = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="output folder (default: runs/bench/<YYYYmmdd-HHMMSS>)", show_default=False),
+]
+BenchOverwrite = Annotated[bool, typer.Option("--overwrite", help="write into an existing output folder")]
+
+
+def bench_command(
+    ctx: typer.Context, quick: Quick = False, output: BenchFolder = None, overwrite: BenchOverwrite = False
+) -> None:
+    """Measure what accuracy costs: error against time per impact for every integrator (work-precision)."""
+    configured(ctx)
+    from .bench import run_bench
+
+    run_bench(quick, output, overwrite)

@@ -1,0 +1,177 @@
+"""Compilation: once per scene structure and machine. New values of traced parameters reuse the
+compiled program; the persistent cache (in the directory that `configure` picks) lets a second
+process load the traced program and its executable instead of tracing and compiling, with the
+same results to the bit; a cache directory that cannot be written only warns."""
+
+import copy
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import jax
+import numpy as np
+import platformdirs
+import pytest
+
+import impact
+from impact._core.cache import cache_directory, directory_in_use, use_cache
+from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.programs import EXPORTED, solve, solve_by_field
+from impact._scene.scene import read_yaml
+from impact._scene.sweep import load_sweep
+
+ROOT = Path(__file__).parents[2]
+THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
+COMPILE = "/jax/core/compile/backend_compile_duration"
+CACHE_HIT = "/jax/compilation_cache/cache_hits"
+
+
+class Compiles:
+    """Counts XLA backend compilations while in its `with` block."""
+
+    def __enter__(self) -> "Compiles":
+        self.count = 0
+        jax.monitoring.register_event_duration_secs_listener(self._listen)
+        return self
+
+    def _listen(self, event: str, duration: float, **kwargs) -> None:
+        self.count += event == COMPILE
+
+    def __exit__(self, *exc) -> None:
+        jax.monitoring.unregister_event_duration_listener(self._listen)
+
+
+def changed(path: tuple[str, ...], value: float) -> dict:
+    scene = copy.deepcopy(read_yaml(THORNTON_NING))
+    section = scene
+    for key in path[:-1]:
+        section = section[key]
+    section[path[-1]] = value
+    return scene
+
+
+TRACED = {
+    "initial.velocity": (("initial", "velocity"), 0.8),
+    "work of adhesion": (("effects", "adhesion", "work_of_adhesion"), 0.07),
+    "E*": (("material", "E_star"), 2.0e9),
+    "mass": (("body", "mass"), 2.0e-14),
+    "paraboloid R": (("body", "profile", "R"), 2.0e-6),
+}
+
+
+def test_new_traced_values_do_not_recompile():
+    reference = impact.simulate(THORNTON_NING, trajectory=True)  # compiles here unless done before
+    for name, (path, value) in TRACED.items():
+        with Compiles() as compiles:
+            result = impact.simulate(changed(path, value))
+        assert compiles.count == 0, f"a new {name} recompiled ({compiles.count} compilations)"
+        assert result.success and result.restitution != reference.restitution, name
+
+
+@pytest.mark.parametrize(
+    ("variable", "arguments", "expected"),
+    [
+        (None, {}, Path(platformdirs.user_cache_dir("impact")) / "jax"),
+        ("", {}, Path(platformdirs.user_cache_dir("impact")) / "jax"),
+        ("/some/where", {}, Path("/some/where")),
+        ("off", {}, None),
+        ("OFF", {"cache_dir": "/else/where"}, Path("/else/where")),
+        ("/some/where", {"cache_dir": "/else/where"}, Path("/else/where")),
+        ("/some/where", {"cache": False}, None),
+        (None, {"cache_dir": "~/cache"}, Path.home() / "cache"),
+    ],
+    ids=["default", "empty", "variable", "off", "argument-over-off", "argument-over-variable", "no-cache", "home"],
+)
+def test_cache_directory_follows_argument_then_variable_then_platform(variable, arguments, expected, monkeypatch):
+    if variable is None:
+        monkeypatch.delenv("IMPACT_CACHE_DIR", raising=False)
+    else:
+        monkeypatch.setenv("IMPACT_CACHE_DIR", variable)
+    assert cache_directory(**arguments) == expected
+
+
+@pytest.fixture
+def restore_cache():
+    """Put the suite's cache back (conftest's IMPACT_CACHE_DIR) after a test that changed it."""
+    yield
+    assert impact.configure() == Path(os.environ["IMPACT_CACHE_DIR"])
+
+
+def test_unusable_cache_directory_warns_and_compiles_without_a_cache(tmp_path, restore_cache):
+    blocker = tmp_path / "a file"
+    blocker.write_text("not a folder")
+    unusable = blocker / "jax"
+    message = f"compilation cache {unusable} is not usable (Not a directory); compiling without a cache"
+    with pytest.warns(RuntimeWarning) as caught:
+        assert impact.configure(unusable) is None
+    assert [str(warning.message) for warning in caught] == [message]
+    assert jax.config.jax_enable_compilation_cache is False
+    result = impact.simulate(changed(("initial", "velocity"), 0.7))
+    assert result.success
+
+
+def test_usable_directory_is_switched_on(tmp_path, restore_cache):
+    assert use_cache(tmp_path / "new" / "jax") == tmp_path / "new" / "jax"
+    assert (tmp_path / "new" / "jax").is_dir()
+    assert jax.config.jax_enable_compilation_cache is True
+    assert jax.config.jax_compilation_cache_dir == str(tmp_path / "new" / "jax")
+    assert jax.config.jax_persistent_cache_min_compile_time_secs == 0.0
+
+
+# A fresh process that runs the scene and says how many programs it compiled and how many it
+# loaded from the cache (JAX reports a load as a backend compilation and a cache hit).
+PROCESS = f"""
+import sys, jax, impact
+events = []
+jax.monitoring.register_event_duration_secs_listener(lambda event, duration, **kw: events.append(event))
+jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
+impact.configure()
+result = impact.simulate(sys.argv[1])
+hits = events.count({CACHE_HIT!r})
+print(events.count({COMPILE!r}) - hits, hits, repr(result.restitution))
+"""
+
+
+def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
+    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
+
+    def run() -> list[str]:
+        process = subprocess.run(
+            [sys.executable, "-c", PROCESS, str(THORNTON_NING)], capture_output=True, text=True, env=env, cwd=ROOT
+        )
+        assert process.returncode == 0, process.stderr
+        return process.stdout.split()
+
+    compiled, loaded, restitution = run()
+    assert int(compiled) >= 1 and loaded == "0"
+    [program] = (tmp_path / "cache" / EXPORTED).iterdir()  # the traced solve, exported
+    stored = program.read_bytes()
+    compiled_again, loaded_again, same = run()  # no tracing: fewer programs than the first run
+    assert compiled_again == "0" and int(loaded_again) >= 1 and same == restitution
+    assert list((tmp_path / "cache" / EXPORTED).iterdir()) == [program] and program.read_bytes() == stored
+    program.write_bytes(b"not a program")
+    assert run() == ["0", compiled, restitution]  # traced and exported anew; its executables loaded
+    assert program.read_bytes() == stored
+
+
+def test_stored_program_gives_the_traced_results_bit_for_bit():
+    scene = impact.load_scene(THORNTON_NING)
+    arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)
+    with jax.enable_x64(True):
+        stored = solve_by_field(*arguments)
+        traced = solve(*arguments)
+    assert directory_in_use() is not None  # the stored program ran
+    for mine, reference in zip(stored, traced, strict=True):
+        for name, value in mine.items():
+            assert np.array_equal(value, getattr(reference, name), equal_nan=True), name
+
+
+def test_validating_a_sweep_compiles_per_structure_not_per_point():
+    """Every point of a sweep is checked for what the scaled problem can represent; its numbers are
+    traced, so 1200 points (and then a second sweep of the same structure) compile no new program."""
+    load_sweep(ROOT / "configs" / "sweeps" / "thornton_ning.yaml")  # compiles the checks once
+    with Compiles() as compiles:
+        spec = load_sweep(ROOT / "configs" / "sweeps" / "thornton_ning_fast.yaml")
+    assert spec.size >= 10_000
+    assert compiles.count == 0
