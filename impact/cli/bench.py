@@ -1,59 +1,141 @@
-"""The `impact bench` command: `register(app)` adds it to a typer app (`impact.cli` calls it).
+"""The `impact bench` commands: `register(app)` adds them to a typer app (`impact.cli` calls it).
 
-The benchmark itself lives in `impact._bench`. Float64 is the entry point's business (the
-`impact` command enables it); without it the command refuses to run.
+`impact bench` alone measures work-precision; `impact bench speed` what a point of a sweep
+costs. The benchmarks themselves live in `impact._bench`. Float64 is the entry point's business
+(the `impact` command enables it); without it the commands refuse to run.
 """
 
 import shutil
+from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, TypeVar
 
 import jax
 import typer
+from rich.table import Table
 
 from .._bench.plans import OUTPUTS
+from .._bench.speed import run as run_speed
 from .._bench.work_precision import run as run_benchmark
-from .console import refuse, say
+from .._bench.workloads import REPEATS, SPEED_OUTPUTS, speed_plan, workloads
+from .console import out, refuse, refuse_value, say
+
+QUICK_HELP = "a reduced plan that finishes in about a minute (one solver, fewer points)"
+OUTPUT_HELP = "output folder (default: runs/bench/<YYYYmmdd-HHMMSS>)"
+OVERWRITE_HELP = "write into an existing output folder"
+Measured = TypeVar("Measured")
 
 
 def register(app: typer.Typer) -> None:
-    """Add the `bench` command to `app`."""
+    """Add the `bench` group (work-precision when called alone) and its `speed` command to `app`."""
+    bench = typer.Typer(invoke_without_command=True)
+    app.add_typer(bench, name="bench")
 
-    @app.command("bench")
-    def bench(
+    @bench.callback()
+    def work_precision(
+        context: typer.Context,
+        quick: Annotated[bool, typer.Option("--quick", help=QUICK_HELP)] = False,
+        output: Annotated[Path | None, typer.Option("-o", "--output", help=OUTPUT_HELP, show_default=False)] = None,
+        overwrite: Annotated[bool, typer.Option("--overwrite", help=OVERWRITE_HELP)] = False,
+    ) -> None:
+        """Measure what accuracy costs: error against time per impact for every integrator (work-precision).
+
+        `impact bench speed` measures what a point of a sweep costs."""
+        if context.invoked_subcommand is not None:
+            return
+        _into_folder(output, overwrite, lambda folder: run_benchmark(folder, quick=quick, log=say), OUTPUTS)
+
+    @bench.command("speed")
+    def speed(
         quick: Annotated[
-            bool,
-            typer.Option("--quick", help="a reduced plan that finishes in about a minute (one solver, fewer points)"),
+            bool, typer.Option("--quick", help="the light workloads at 100 points (a few minutes)")
         ] = False,
-        output: Annotated[
-            Path | None,
+        points: Annotated[
+            list[int] | None,
             typer.Option(
-                "-o", "--output", help="output folder (default: runs/bench/<YYYYmmdd-HHMMSS>)", show_default=False
+                "--points",
+                help="points of every sweep, repeatable (default: 10², 10³, 10⁴ by workload)",
+                show_default=False,
             ),
         ] = None,
-        overwrite: Annotated[bool, typer.Option("--overwrite", help="write into an existing output folder")] = False,
+        only: Annotated[
+            list[str] | None,
+            typer.Option("--only", help="run only this workload (its key), repeatable", show_default=False),
+        ] = None,
+        repeats: Annotated[int, typer.Option("--repeats", help="timed runs per row (the median is shown)")] = REPEATS,
+        output: Annotated[Path | None, typer.Option("-o", "--output", help=OUTPUT_HELP, show_default=False)] = None,
+        overwrite: Annotated[bool, typer.Option("--overwrite", help=OVERWRITE_HELP)] = False,
     ) -> None:
-        """Measure what accuracy costs: error against time per impact for every integrator (work-precision)."""
-        folder = output or Path("runs") / "bench" / datetime.now().strftime("%Y%m%d-%H%M%S")
-        if folder.exists() and not folder.is_dir():
-            refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
-        if folder.exists() and not overwrite:
-            refuse(
-                "output folder",
-                [("--output", f"folder {folder} exists; pass --overwrite to replace the benchmark in it")],
-            )
-        if not jax.config.read("jax_enable_x64"):
-            refuse(
-                "float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")]
-            )
+        """Measure what a point costs: µs per impact after compile, accuracy, compile time and the
+        split build / integrate / post-process of every workload; writes speed.csv and speed.png."""
+        for value in points or ():
+            if value < 1:
+                refuse_value("--points", value, "be >= 1")
+        if repeats < 1:
+            refuse_value("--repeats", repeats, "be >= 1")
+        keys = [workload.key for workload in workloads(quick=False)]
+        for key in only or ():
+            if key not in keys:
+                refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
+        plan = speed_plan(quick=quick, points=tuple(points or ()), only=tuple(only or ()), repeats=repeats)
+        rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
+        out.print(speed_table(rows))
 
-        created = not folder.exists()
-        try:
-            run_benchmark(folder, quick=quick, log=say)
-        except BaseException:
-            if created:
-                shutil.rmtree(folder, ignore_errors=True)
-            raise
-        for name in OUTPUTS:
-            say(f"  {folder / name}")
+
+def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:
+    """Check the output folder, run `measure(folder)`, list its outputs; a folder this call made
+    is removed again if the run fails or is interrupted."""
+    folder = output or Path("runs") / "bench" / datetime.now().strftime("%Y%m%d-%H%M%S")
+    if folder.exists() and not folder.is_dir():
+        refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
+    if folder.exists() and not overwrite:
+        refuse(
+            "output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the benchmark in it")]
+        )
+    if not jax.config.read("jax_enable_x64"):
+        refuse("float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")])
+    created = not folder.exists()
+    try:
+        result = measure(folder)
+    except BaseException:
+        if created:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise
+    for name in outputs:
+        say(f"  {folder / name}")
+    return result
+
+
+def speed_table(rows: list[dict]) -> Table:
+    """The rows of `impact bench speed` as a rich table."""
+    table = Table(title="What a point costs (µs per impact after compile, median)")
+    for heading in (
+        "workload",
+        "points",
+        "µs/impact",
+        "min–max",
+        "max error",
+        "vs",
+        "compile s",
+        "build",
+        "integrate",
+        "post",
+        "steps",
+    ):
+        table.add_column(heading, justify="left" if heading in ("workload", "vs") else "right")
+    for row in rows:
+        table.add_row(
+            row["workload"],
+            str(row["points"]),
+            f"{row['us_per_impact_median']:.1f}",
+            f"{row['us_min']:.0f}–{row['us_max']:.0f}",
+            f"{row['max_error']:.1e}",
+            row["error_reference"],
+            f"{row['compile_s']:.1f}",
+            f"{row['build_us']:.1f}",
+            f"{row['integrate_us']:.1f}",
+            f"{row['post_us']:.1f}",
+            f"{row['steps_mean']:.0f}",
+        )
+    return table
