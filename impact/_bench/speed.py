@@ -13,7 +13,8 @@ For each workload × points count:
 - **compile**: the sweep's compile time (a later row with the same call size reuses the
   compiled batch: 0).
 - **split**: one call of the sweep's size (its points spread over the sweep) through
-  `jit(vmap(build))`, `jit(vmap(build + integrate))` (`AbstractIntegrator.solve`) and the
+  `jit(vmap(build))`, `jit(vmap(build + integrate))` (`solve`, the outcome's fields that the
+  point function reads), each reduced to one number per point (`checksum`), and the
   sweep's compiled point function, each the median of SPLIT_REPEATS interleaved runs, per
   impact: build, integrate = the second − the first, post-process = the third − the second (the
   SI results and the closed form). Noise can make a difference slightly negative: it is
@@ -35,10 +36,12 @@ from copy import deepcopy
 from pathlib import Path
 
 import jax
+import jax.numpy as jnp
 import numpy as np
 
 from .._io.files import write_text
 from .._plots.bench import save_speed_figure
+from .._run.impacts import solve
 from .._run.sweep import execute, plan_sweep
 from .._run.sweep.batch import batch_sharding, compiled_batch, local_devices
 from .._run.sweep.plan import Plan as SweepPlan
@@ -171,8 +174,8 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
     if choices not in _STAGES:
         integrator, options = choices
         _STAGES[choices] = (
-            jax.jit(jax.vmap(lambda physics: integrator.build(physics, options))),
-            jax.jit(jax.vmap(lambda physics: integrator.solve(physics, options))),
+            jax.jit(jax.vmap(lambda physics: checksum(integrator.build(physics, options)))),
+            jax.jit(jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options))))),
         )
     devices = local_devices()
     sample = plan.order[np.linspace(0, plan.size - 1, size).round().astype(int)]
@@ -188,6 +191,28 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
             times[run, s] = time.perf_counter() - t0
     build, solved, full = np.median(times, axis=0) / size * 1e6
     return float(build), float(solved - build), float(full - solved)
+
+
+# The fields of the outcome that the sweep's point function reads (`impact._run.sweep.batch`):
+# the rest (the event log) is dropped from its compiled program, and writing it costs up to 7×.
+POINT_READS = (
+    "status", "stuck", "touch_velocity", "separation_velocity", "touch_time", "separation_time",
+    "max_indentation", "max_force", "min_force", "contacts", "first_contact_work", "steps",
+    "accepted_steps", "rejected_steps",
+)  # fmt: skip
+
+
+def read_by_point(solved) -> tuple:
+    """(scales, the outcome's fields the point function reads) of `solve`'s result."""
+    scales, outcome = solved
+    return scales, [getattr(outcome, name) for name in POINT_READS]
+
+
+def checksum(tree) -> jax.Array:
+    """The sum of every number in `tree`: a stage's whole work is done (nothing is left out as
+    unused) but only one number per point is written back, like the point function's scalars
+    (returning the tables or the outcome itself costs more than the full point function)."""
+    return sum((jnp.sum(jnp.asarray(leaf, float)) for leaf in jax.tree.leaves(tree)), jnp.zeros(()))
 
 
 def peak_rss_mb() -> float:
