@@ -80,7 +80,7 @@ def register(app: typer.Typer) -> None:
                 refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
         plan = speed_plan(quick=quick, points=tuple(points or ()), only=tuple(only or ()), repeats=repeats)
         rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
-        out.print(speed_table(rows))
+        out.print(speed_table(rows), width=max(out.width, 160))
 
 
 def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:

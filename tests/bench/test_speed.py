@@ -16,9 +16,10 @@ from impact.cli.bench import register
 
 POINTS = (32, 64)
 ONLY = ("springs256", "springs64")  # in the plan's order
-# |build + integrate + post − total| ≤ 50 % of the total: the split is timed on one compiled call,
-# the total through the sweep (transfers, reading back) on a noisy shared machine.
-SPLIT_TOLERANCE = 0.5
+# |build + integrate + post − total| ≤ 50 % of the total + 5 ms per sweep: the split is timed on
+# one compiled call, the total through the sweep, which adds a fixed cost per sweep (the mesh,
+# transfers, reading back: 2–4 ms measured here), on a noisy shared machine.
+SPLIT_TOLERANCE, SWEEP_OVERHEAD_US = 0.5, 5000.0
 
 
 def make_app() -> typer.Typer:
@@ -80,7 +81,8 @@ def test_split_adds_up_to_the_total(tiny):
         total = float(row["us_per_impact_median"])
         parts = float(row["build_us"]) + float(row["integrate_us"]) + float(row["post_us"])
         assert float(row["build_us"]) > 0 and float(row["build_us"]) + float(row["integrate_us"]) > 0, row
-        assert abs(parts - total) <= SPLIT_TOLERANCE * total, (parts, total)
+        allowed = SPLIT_TOLERANCE * total + SWEEP_OVERHEAD_US / int(row["points"])
+        assert abs(parts - total) <= allowed, (parts, total)
 
 
 @pytest.mark.parametrize(
