@@ -2,3 +2,4 @@
 the modules (and JAX) that use them."""
 
 DEFAULT_CHUNK = 1000  # sweep points per compiled call
+SPEED_REPEATS = 5  # timed runs per row of `impact bench speed`: the median is reported

@@ -159,3 +159,47 @@ def _label_axes(axes: "Axes", data: dict, lowest: list) -> None:
         fontsize=7.5,
         color="dimgrey",
     )
+
+
+def save_speed_figure(path: str | Path, rows: list[dict]) -> Path:
+    """Write the figure of `impact bench speed` to `path` (PNG, 110 dpi), atomically."""
+    path = Path(path)
+    with atomic_path(path) as temporary:
+        speed_figure(rows).savefig(temporary, dpi=110, format="png")
+    return path
+
+
+def speed_figure(rows: list[dict]) -> "Figure":
+    """µs per impact against the points of a sweep (log–log, one line per workload, the bar
+    from the fastest to the slowest run); beside it, the spring array's µs per impact against
+    its number of springs N at the smallest points count measured."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(11.0, 4.8), layout="constrained")
+    by_points, by_springs = figure.subplots(1, 2, width_ratios=(1.6, 1.0))
+    workloads = list(dict.fromkeys(row["workload"] for row in rows))
+    for workload in workloads:
+        mine = sorted((row for row in rows if row["workload"] == workload), key=lambda row: row["points"])
+        if mine[0]["springs"] and len(mine) < 2 and len(workloads) > 1:
+            continue  # a point of the scan over N: drawn on the right
+        points = np.asarray([row["points"] for row in mine], float)
+        median = np.asarray([row["us_per_impact_median"] for row in mine])
+        spread = [median - [row["us_min"] for row in mine], [row["us_max"] for row in mine] - median]
+        by_points.errorbar(points, median, yerr=spread, marker="o", ms=4, capsize=2, label=workload)
+    by_points.set(xscale="log", yscale="log", xlabel="points in the sweep", ylabel="µs per impact (median)")
+    by_points.set_title("Cost per impact after compile", fontsize=10)
+    by_points.legend(fontsize=7.5, ncols=2)
+    by_points.grid(True, which="both", alpha=0.3)
+    springs = [row for row in rows if row["springs"]]
+    if springs:
+        smallest = min(row["points"] for row in springs)
+        scan = sorted((row for row in springs if row["points"] == smallest), key=lambda row: row["springs"])
+        counts = np.asarray([row["springs"] for row in scan], float)
+        cost = np.asarray([row["us_per_impact_median"] for row in scan])
+        by_springs.plot(counts, cost, "o-", color="#17becf", label=f"spring array, {smallest} points")
+        by_springs.plot(counts, cost[-1] * counts / counts[-1], ":", color="0.5", label="∝ N")
+        by_springs.legend(fontsize=7.5)
+    by_springs.set(xscale="log", yscale="log", xlabel="springs N", ylabel="µs per impact (median)")
+    by_springs.set_title("Spring array: cost against N", fontsize=10)
+    by_springs.grid(True, which="both", alpha=0.3)
+    return figure

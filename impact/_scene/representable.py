@@ -74,7 +74,8 @@ def check_representable(scene) -> None:
     approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         approach = adhesion.work_of_adhesion
-    units, energetic = _units(*_traced((profile, E_star, approach, mass, speed)), adhesion is not None)
+    body, modulus, attach, weight, impact_speed = _traced((profile, E_star, approach, mass, speed))
+    units, energetic = _units(body, modulus, attach, weight, impact_speed, adhesion is not None)
     values = {name: float(getattr(units, name)) for name in ("radial", "normal", "force", "time")}
     _check_units(values, float(units.velocity), float(units.energy))
     if adhesion is not None and adhesion.model == "jkr":

@@ -1,39 +1,105 @@
-"""The `impact bench` command (declared in `commands`).
+"""The `impact bench` commands (declared in `commands`): `impact bench` alone measures
+work-precision, `impact bench speed` what a point of a sweep costs.
 
-The benchmark itself lives in `impact._bench`. Float64 is the entry point's business (the
-`impact` command enables it); without it the command refuses to run.
+The benchmarks themselves live in `impact._bench`. Float64 is the entry point's business (the
+`impact` command enables it); without it the commands refuse to run.
 """
 
 import shutil
+from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
+from typing import TypeVar
 
 import jax
+from rich.table import Table
 
 from .._bench.plans import OUTPUTS
+from .._bench.speed import run as run_speed
 from .._bench.work_precision import run as run_benchmark
-from .console import refuse, say
+from .._bench.workloads import SPEED_OUTPUTS, speed_plan, workloads
+from .console import out, refuse, refuse_value, say
+
+Measured = TypeVar("Measured")
 
 
 def run_bench(quick: bool, output: Path | None, overwrite: bool) -> None:
     """`impact bench`: error against time per impact for every integrator (work-precision)."""
+    _into_folder(output, overwrite, lambda folder: run_benchmark(folder, quick=quick, log=say), OUTPUTS)
+
+
+def run_bench_speed(
+    quick: bool, points: list[int], only: list[str], repeats: int, output: Path | None, overwrite: bool
+) -> None:
+    """`impact bench speed`: µs per impact after compile, accuracy, compile time and the split
+    build / integrate / post-process of every workload; writes speed.csv and speed.png."""
+    for value in points:
+        if value < 1:
+            refuse_value("--points", value, "be >= 1")
+    if repeats < 1:
+        refuse_value("--repeats", repeats, "be >= 1")
+    keys = [workload.key for workload in workloads(quick=False)]
+    for key in only:
+        if key not in keys:
+            refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
+    plan = speed_plan(quick=quick, points=tuple(points), only=tuple(only), repeats=repeats)
+    rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
+    out.print(speed_table(rows), width=max(out.width, 160))
+
+
+def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:
+    """Check the output folder, run `measure(folder)`, list its outputs; a folder this call made
+    is removed again if the run fails or is interrupted."""
     folder = output or Path("runs") / "bench" / datetime.now().strftime("%Y%m%d-%H%M%S")
     if folder.exists() and not folder.is_dir():
         refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
     if folder.exists() and not overwrite:
         refuse(
-            "output folder",
-            [("--output", f"folder {folder} exists; pass --overwrite to replace the benchmark in it")],
+            "output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the benchmark in it")]
         )
     if not jax.config.read("jax_enable_x64"):
         refuse("float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")])
-
     created = not folder.exists()
     try:
-        run_benchmark(folder, quick=quick, log=say)
+        result = measure(folder)
     except BaseException:
         if created:
             shutil.rmtree(folder, ignore_errors=True)
         raise
-    for name in OUTPUTS:
+    for name in outputs:
         say(f"  {folder / name}")
+    return result
+
+
+def speed_table(rows: list[dict]) -> Table:
+    """The rows of `impact bench speed` as a rich table."""
+    table = Table(title="What a point costs (µs per impact after compile, median)")
+    for heading in (
+        "workload",
+        "points",
+        "µs/impact",
+        "min–max",
+        "max error",
+        "vs",
+        "compile s",
+        "build",
+        "integrate",
+        "post",
+        "steps",
+    ):
+        table.add_column(heading, justify="left" if heading in ("workload", "vs") else "right")
+    for row in rows:
+        table.add_row(
+            row["workload"],
+            str(row["points"]),
+            f"{row['us_per_impact_median']:.1f}",
+            f"{row['us_min']:.0f}–{row['us_max']:.0f}",
+            f"{row['max_error']:.1e}",
+            row["error_reference"],
+            f"{row['compile_s']:.1f}",
+            f"{row['build_us']:.1f}",
+            f"{row['integrate_us']:.1f}",
+            f"{row['post_us']:.1f}",
+            f"{row['steps_mean']:.0f}",
+        )
+    return table

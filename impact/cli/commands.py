@@ -10,8 +10,8 @@ from typing import Annotated
 
 import typer
 
-from .._core.defaults import DEFAULT_CHUNK
-from .console import FlagHelpCommand
+from .._core.defaults import DEFAULT_CHUNK, SPEED_REPEATS
+from .console import FlagHelpCommand, FlagHelpGroup
 from .settings import configured
 
 
@@ -23,9 +23,12 @@ def register(app: typer.Typer) -> None:
         ("show", show_command),
         ("sweep", sweep_command),
         ("merge", merge_command),
-        ("bench", bench_command),
     ):
         app.command(name, cls=FlagHelpCommand)(command)
+    bench = typer.Typer(invoke_without_command=True, cls=FlagHelpGroup)
+    bench.callback()(bench_command)
+    bench.command("speed", cls=FlagHelpCommand)(bench_speed_command)
+    app.add_typer(bench, name="bench")
 
 
 # --- one scene ------------------------------------------------------------------------------
@@ -161,7 +164,7 @@ def merge_command(ctx: typer.Context, shards: Shards, output: MergedFile, overwr
     merge_shards(shards, output, overwrite)
 
 
-# --- benchmark ------------------------------------------------------------------------------
+# --- benchmarks -----------------------------------------------------------------------------
 
 Quick = Annotated[
     bool, typer.Option("--quick", help="a reduced plan that finishes in about a minute (one solver, fewer points)")
@@ -171,13 +174,44 @@ BenchFolder = Annotated[
     typer.Option("-o", "--output", help="output folder (default: runs/bench/<YYYYmmdd-HHMMSS>)", show_default=False),
 ]
 BenchOverwrite = Annotated[bool, typer.Option("--overwrite", help="write into an existing output folder")]
+SpeedQuick = Annotated[bool, typer.Option("--quick", help="the light workloads at 100 points (a few minutes)")]
+Points = Annotated[
+    list[int] | None,
+    typer.Option(
+        "--points", help="points of every sweep, repeatable (default: 10², 10³, 10⁴ by workload)", show_default=False
+    ),
+]
+Only = Annotated[
+    list[str] | None, typer.Option("--only", help="run only this workload (its key), repeatable", show_default=False)
+]
+Repeats = Annotated[int, typer.Option("--repeats", help="timed runs per row (the median is shown)")]
 
 
 def bench_command(
     ctx: typer.Context, quick: Quick = False, output: BenchFolder = None, overwrite: BenchOverwrite = False
 ) -> None:
-    """Measure what accuracy costs: error against time per impact for every integrator (work-precision)."""
+    """Measure what accuracy costs: error against time per impact for every integrator (work-precision).
+
+    `impact bench speed` measures what a point of a sweep costs."""
+    if ctx.invoked_subcommand is not None:
+        return
     configured(ctx)
     from .bench import run_bench
 
     run_bench(quick, output, overwrite)
+
+
+def bench_speed_command(
+    ctx: typer.Context,
+    quick: SpeedQuick = False,
+    points: Points = None,
+    only: Only = None,
+    repeats: Repeats = SPEED_REPEATS,
+    output: BenchFolder = None,
+    overwrite: BenchOverwrite = False,
+) -> None:
+    """Measure what a sweep's point costs (µs per impact, accuracy, compile, split); writes speed.csv and .png."""
+    configured(ctx)
+    from .bench import run_bench_speed
+
+    run_bench_speed(quick, points or [], only or [], repeats, output, overwrite)

@@ -1,0 +1,129 @@
+"""`impact bench speed` through the command line, on a tiny plan
+(two spring arrays, two point counts): the CSV's rows and columns, the split adding up to the
+total, the figure, and the refusals of bad options."""
+
+import csv
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from impact._bench import speed
+from impact._bench.speed import COLUMNS, Reduction, speed_csv
+from impact._bench.workloads import CLOSED_FORM, TIGHTER, speed_plan, workloads
+from impact.cli import app
+
+POINTS = (32, 64)
+ONLY = ("springs256", "springs64")  # in the plan's order
+# |build + integrate + post − total| ≤ 50 % of the total + 5 ms per sweep: the split is timed on
+# one compiled call, the total through the sweep, which adds a fixed cost per sweep (the mesh,
+# transfers, reading back: 2–4 ms measured here), on a noisy shared machine.
+SPLIT_TOLERANCE, SWEEP_OVERHEAD_US = 0.5, 5000.0
+
+
+def invoke(*args: str):
+    return CliRunner().invoke(app, ["bench", "speed", *args])
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("speed") / "tiny"
+    options = [f"--points={n}" for n in POINTS] + [f"--only={key}" for key in ONLY]
+    result = invoke(*options, "--repeats", "3", "-o", str(folder))
+    rows = list(csv.DictReader((folder / "speed.csv").open())) if result.exit_code == 0 else []
+    return folder, result, rows
+
+
+def test_one_row_per_workload_and_points_count(tiny):
+    folder, result, rows = tiny
+    assert result.exit_code == 0, result.output
+    with (folder / "speed.csv").open() as file:
+        assert next(csv.reader(file)) == list(COLUMNS)
+    assert [(row["workload"], int(row["points"])) for row in rows] == [(k, n) for k in ONLY for n in POINTS]
+    for row in rows:
+        assert 0 < float(row["us_min"]) <= float(row["us_per_impact_median"]) <= float(row["us_max"]), row
+        assert row["error_reference"] == CLOSED_FORM
+        assert float(row["steps_mean"]) > 0 and float(row["peak_rss_mb"]) > 0
+    assert (folder / "speed.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "What a point costs" in result.output and "springs256" in result.output
+
+
+def test_spring_array_error_falls_with_n(tiny):
+    """The error against Thornton–Ning is the spatial error of N springs: about N⁻²."""
+    _, _, rows = tiny
+    error = {row["workload"]: float(row["max_error"]) for row in rows}
+    assert 0 < error["springs256"] < error["springs64"] / 4, error
+
+
+def test_compile_counted_once_per_call_size(tiny):
+    """N is traced: the second spring array reuses the first one's compiled batches."""
+    _, _, rows = tiny
+    compile_time = [float(row["compile_s"]) for row in rows]
+    assert compile_time[0] > 0 and compile_time[1] > 0
+    assert compile_time[2] == compile_time[3] == 0, compile_time
+
+
+def test_split_adds_up_to_the_total(tiny):
+    _, _, rows = tiny
+    for row in rows:
+        total = float(row["us_per_impact_median"])
+        parts = float(row["build_us"]) + float(row["integrate_us"]) + float(row["post_us"])
+        assert float(row["build_us"]) > 0 and float(row["build_us"]) + float(row["integrate_us"]) > 0, row
+        allowed = SPLIT_TOLERANCE * total + SWEEP_OVERHEAD_US / int(row["points"])
+        assert abs(parts - total) <= allowed, (parts, total)
+
+
+@pytest.mark.parametrize(
+    "options, named",
+    [
+        (["--points", "0"], "--points"),
+        (["--repeats", "0"], "--repeats"),
+        (["--only", "nothing"], "--only"),
+    ],
+)
+def test_bad_options_exit_2_naming_the_option(options, named, tmp_path):
+    result = invoke(*options, "-o", str(tmp_path / "out"))
+    assert result.exit_code == 2, result.output
+    assert named in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_existing_folder_is_refused(tmp_path):
+    result = invoke("--only", "tn", "-o", str(tmp_path))
+    assert result.exit_code == 2 and "--overwrite" in result.output
+
+
+def test_an_interrupted_run_leaves_no_folder(tmp_path, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(speed, "measure", interrupted)
+    result = invoke("--only", "tn", "-o", str(tmp_path / "out"))
+    assert result.exit_code != 0
+    assert not (tmp_path / "out").exists()
+
+
+def test_plans():
+    """The full plan has every workload of issue #14 and the scan over N = 64…4096; the quick
+    one leaves out the heavy ones; --points replaces every count."""
+    full = speed_plan()
+    keys = [workload.key for workload, _ in full.runs()]
+    assert keys[:9] == ["tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity"]
+    assert sorted(w.springs for w, _ in full.runs() if w.springs) == [64, 128, 256, 512, 1024, 2048, 4096]
+    assert all(100 in counts for _, counts in full.runs())
+    quick = [workload.key for workload, _ in speed_plan(quick=True).runs()]
+    assert "md" not in quick and "gravity" not in quick and "tn" in quick
+    assert {counts for _, counts in speed_plan(points=(10**6,), only=("tn",)).runs()} == {(10**6,)}
+    assert {w.reference for w in workloads() if w.key in ("md", "gravity")} == {TIGHTER}
+
+
+def test_reduction_counts_a_failed_point_as_infinite_error():
+    reduce = Reduction(3, CLOSED_FORM)
+    values = {"restitution": np.array([0.5, np.nan, 0.7]), "theory_restitution": np.full(3, 0.6), "steps": np.ones(3)}
+    reduce.add(np.arange(3), values)
+    assert reduce.error() == np.inf and reduce.steps == 3
+    clean = Reduction(2, CLOSED_FORM)
+    clean.add(np.arange(2), {**{k: v[[0, 2]] for k, v in values.items()}})
+    assert clean.error() == pytest.approx(0.1)
+    text = speed_csv([dict.fromkeys(COLUMNS, 1.0)])
+    assert text.splitlines()[0] == ",".join(COLUMNS)
