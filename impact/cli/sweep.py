@@ -94,15 +94,15 @@ def run_sweep(
     share = _share(coordinator, num_processes, process_id, distributed)
     if devices is not None:
         _ask_devices(devices)
-    spec = _sweep_spec(sweep_file)
     if chunk is not None and chunk < 1:
         refuse_value("--chunk", chunk, "be >= 1")
     folder = output or Path("runs") / "sweeps" / sweep_file.stem
     if folder.exists() and not folder.is_dir():
         refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
     joined = coordinator is not None or distributed
-    if joined:
+    if joined:  # before any JAX computation (checking the sweep's points computes their units)
         share = _join(coordinator, num_processes, process_id)
+    spec = _sweep_spec(sweep_file)
     path = folder / sweep_store.shard_name(*share)
     resume, stored_chunk = _existing(path, spec, share, overwrite)
     try:
