@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TypeVar
 
 import jax
+from rich.console import Console
 from rich.table import Table
 
 from .._bench.plans import OUTPUTS
@@ -44,7 +45,9 @@ def run_bench_speed(
             refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
     plan = speed_plan(quick=quick, points=tuple(points), only=tuple(only), repeats=repeats)
     rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
-    out.print(speed_table(rows), width=max(out.width, 160))
+    # Eleven columns: printed 160 wide whatever the terminal (rich cannot widen `out` per print,
+    # and a narrower table truncates every number); the CSV holds the same rows.
+    Console(width=max(out.width, 160), highlight=False).print(speed_table(rows))
 
 
 def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:
