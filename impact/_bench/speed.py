@@ -43,7 +43,7 @@ from .._io.files import write_text
 from .._plots.bench import save_speed_figure
 from .._run.programs import solve
 from .._run.sweep import execute, plan_sweep
-from .._run.sweep.batch import batch_sharding, compiled_batch, local_devices
+from .._run.sweep.batch import POINT_READS, batch_sharding, compiled_batch, local_devices
 from .._run.sweep.plan import Plan as SweepPlan
 from .._scene.sweep import make_spec
 from .workloads import CLOSED_FORM, TIGHTER_FACTOR, TIGHTER_POINTS, SpeedPlan, Workload
@@ -191,15 +191,6 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
             times[run, s] = time.perf_counter() - t0
     build, solved, full = np.median(times, axis=0) / size * 1e6
     return float(build), float(solved - build), float(full - solved)
-
-
-# The fields of the outcome that the sweep's point function reads (`impact._run.sweep.batch`):
-# the rest (the event log) is dropped from its compiled program, and writing it costs up to 7×.
-POINT_READS = (
-    "status", "stuck", "touch_velocity", "separation_velocity", "touch_time", "separation_time",
-    "max_indentation", "max_force", "min_force", "contacts", "first_contact_work", "steps",
-    "accepted_steps", "rejected_steps",
-)  # fmt: skip
 
 
 def read_by_point(solved) -> tuple:
