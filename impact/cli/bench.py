@@ -20,6 +20,7 @@ from .._bench.speed import run as run_speed
 from .._bench.work_precision import run as run_benchmark
 from .._bench.workloads import SPEED_OUTPUTS, speed_plan, workloads
 from .console import out, refuse, refuse_value, say
+from .folders import check_output
 
 Measured = TypeVar("Measured")
 
@@ -54,12 +55,7 @@ def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path],
     """Check the output folder, run `measure(folder)`, list its outputs; a folder this call made
     is removed again if the run fails or is interrupted."""
     folder = output or Path("runs") / "bench" / datetime.now().strftime("%Y%m%d-%H%M%S")
-    if folder.exists() and not folder.is_dir():
-        refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
-    if folder.exists() and not overwrite:
-        refuse(
-            "output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the benchmark in it")]
-        )
+    check_output(folder, overwrite, holds="benchmark")
     if not jax.config.read("jax_enable_x64"):
         refuse("float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")])
     created = not folder.exists()

@@ -8,7 +8,6 @@ without a physical outcome (status other than separated or captured) is still wr
 """
 
 import copy
-import os
 import shutil
 import time
 from datetime import datetime
@@ -31,6 +30,7 @@ from .._scene.errors import SceneError
 from .._scene.paths import NoField, NotASection, assign, check_path
 from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
 from .console import out, refuse, say, warn
+from .folders import check_output
 from .tables import facts_table, result_table
 
 
@@ -107,20 +107,6 @@ def apply_overrides(data: dict, assignments: list[str]) -> dict:
 
 
 # --- output ---------------------------------------------------------------------------------
-
-
-def check_output(folder: Path, overwrite: bool) -> None:
-    """Refuse, before any work, an output folder that cannot take the run: a file in its place or
-    in place of a parent, an unwritable place, or an existing folder without --overwrite."""
-    if folder.exists() and not folder.is_dir():
-        refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
-    if folder.exists() and not overwrite:
-        refuse("output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the run in it")])
-    nearest = next(place for place in (folder.absolute(), *folder.absolute().parents) if place.exists())
-    if not nearest.is_dir():
-        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is a file, not a folder")])
-    if not os.access(nearest, os.W_OK | os.X_OK):
-        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is not writable")])
 
 
 def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time: float, overwrite: bool) -> None:

@@ -1,0 +1,23 @@
+"""The output folder of a command, checked before any work."""
+
+import os
+from pathlib import Path
+
+from .console import refuse
+
+
+def check_output(folder: Path, overwrite: bool, holds: str = "run") -> None:
+    """Refuse, before any work, an output folder that cannot take the `holds` (run, benchmark): a
+    file in its place or in place of a parent, an unwritable place, or an existing folder
+    without --overwrite."""
+    if folder.exists() and not folder.is_dir():
+        refuse("output folder", [("--output", f"{folder} exists and is not a folder")])
+    if folder.exists() and not overwrite:
+        refuse(
+            "output folder", [("--output", f"folder {folder} exists; pass --overwrite to replace the {holds} in it")]
+        )
+    nearest = next(place for place in (folder.absolute(), *folder.absolute().parents) if place.exists())
+    if not nearest.is_dir():
+        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is a file, not a folder")])
+    if not os.access(nearest, os.W_OK | os.X_OK):
+        refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is not writable")])
