@@ -8,14 +8,18 @@ names one field, its value and the range it may take with the other fields as th
 """
 
 import math
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from .._core.runtime import float64
 from .._core.search import log_sign_change
 from .._law.scales import Scales, adhesive_scales, energy_scales
+from ..profiles import Profile
 from .domains import WORK_OF_ADHESION, Domain, outside
 from .errors import FieldProblem
 
@@ -37,25 +41,92 @@ SIZE_FIELD = {
     "capped_paraboloid": "R2",
 }
 _BISECTION_STEPS = 100
+# Scenes whose units are computed in one call (a sweep's points; one scene alone takes a batch of 1).
+_BATCH = 4096
+_UNIT_NAMES = ("radial", "normal", "force", "time", "velocity", "energy")
 
 
-def _traced(tree):
-    """Every number of `tree` as a float64 array: `eqx.filter_jit` keeps Python floats static, so a
-    new value would compile anew (a sweep validates every point: thousands of programs)."""
-    return jax.tree.map(lambda leaf: jnp.asarray(leaf, float) if isinstance(leaf, float) else leaf, tree)
+class UnitInputs(NamedTuple):
+    """What the units of an impact scene depend on (SI): its profile, E* (Pa), the approach work
+    of adhesion (J/m², 0 without adhesion), the mass (kg) and the speed at the touch (m/s)."""
+
+    profile: Profile
+    E_star: float
+    approach: float
+    mass: float
+    speed: float
+
+
+class Units(NamedTuple):
+    """The units of one scene in SI: of the run (by name), and the indentation unit of the impact
+    energy alone."""
+
+    values: dict[str, float]
+    energetic_depth: float
+
+
+def unit_inputs(scene, profile: Profile | None = None) -> UnitInputs:
+    """The numbers the units of an impact scene depend on (`profile`: the scene's, if built)."""
+    adhesion = scene.active_adhesion
+    approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
+    if adhesion is not None and adhesion.model == "maugis_dugdale":
+        approach = adhesion.work_of_adhesion
+    return UnitInputs(
+        profile=scene.body.profile.build() if profile is None else profile,
+        E_star=scene.material.effective_modulus,
+        approach=approach,
+        mass=scene.body.resolved_mass,
+        speed=math.sqrt(scene.start.velocity**2 + _fall(scene)),
+    )
+
+
+def _fall(scene) -> float:
+    """2·g·gap (m²/s²): what the fall to the touch adds to v0²."""
+    gravity = scene.effects.gravity
+    return 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
 
 
 @eqx.filter_jit
-def _units(profile, E_star, approach, mass, speed, adhesive: bool) -> tuple[Scales, Scales]:
-    """(units of the run, units of the impact energy alone)."""
-    energetic = energy_scales(profile, E_star, mass, speed)
-    units = adhesive_scales(profile, E_star, approach, mass, speed) if adhesive else energetic
-    return units, energetic
+def _units(inputs: UnitInputs, adhesive: bool) -> tuple[Scales, Scales]:
+    """(units of the run, units of the impact energy alone), for a batch of inputs."""
+
+    def one(point: UnitInputs):
+        energetic = energy_scales(point.profile, point.E_star, point.mass, point.speed)
+        if not adhesive:
+            return energetic, energetic
+        return adhesive_scales(point.profile, point.E_star, point.approach, point.mass, point.speed), energetic
+
+    return jax.vmap(one)(inputs)
+
+
+@float64
+def units_of(inputs: Sequence[UnitInputs], adhesive: bool) -> list[Units]:
+    """The units of many scenes of one structure, computed together in batches of `_BATCH` (one
+    compiled program serves every sweep: numbers are traced, the batch shape fixed)."""
+    leaves = [jax.tree.leaves(point) for point in inputs]
+    treedef = jax.tree.structure(inputs[0])
+    units: list[Units] = []
+    for first in range(0, len(inputs), _BATCH):
+        rows = leaves[first : first + _BATCH]
+        size = _BATCH if len(inputs) > 1 else 1
+        rows = rows + [rows[-1]] * (size - len(rows))
+        columns = [np.stack([np.asarray(row[k], np.float64) for row in rows]) for k in range(len(rows[0]))]
+        run, energetic = _units(jax.tree.unflatten(treedef, columns), adhesive)
+        values = {name: np.asarray(getattr(run, name)) for name in _UNIT_NAMES}
+        depth = np.asarray(energetic.normal)
+        for row in range(min(_BATCH, len(inputs) - first)):
+            units.append(Units({name: float(column[row]) for name, column in values.items()}, float(depth[row])))
+    return units
+
+
+@float64
+def _radius_at_height(spec, height: float) -> float:
+    """The radius x (m) where the profile of `spec` has g(x) = height (m)."""
+    return float(_root_of_height(spec.build(), np.float64(height)))
 
 
 @eqx.filter_jit
-def _radius_at_height(profile, height):
-    """The radius x where g(x) = height (m)."""
+def _root_of_height(profile, height):
     reference = profile.radius_scale()
     lower, upper = reference * 1e-100, jnp.minimum(profile.extent(), reference * 1e100)
     radius, _ = log_sign_change(lambda x: profile.g(x) - height, lower, upper, _BISECTION_STEPS)
@@ -65,28 +136,22 @@ def _radius_at_height(profile, height):
 @float64
 def check_representable(scene) -> None:
     """Raise FieldProblem (dotted path from the scene) where the impact cannot be represented."""
-    profile = scene.body.profile.build()
+    check_units(scene, units_of([unit_inputs(scene)], scene.active_adhesion is not None)[0])
+
+
+def check_units(scene, units: Units) -> None:
+    """Raise FieldProblem where the scene's units (`units_of`) cannot represent its impact."""
+    _check_units(units.values)
     adhesion = scene.active_adhesion
-    E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
-    gravity = scene.effects.gravity
-    fall = 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
-    speed = math.sqrt(scene.start.velocity**2 + fall)
-    approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
-    if adhesion is not None and adhesion.model == "maugis_dugdale":
-        approach = adhesion.work_of_adhesion
-    body, modulus, attach, weight, impact_speed = _traced((profile, E_star, approach, mass, speed))
-    units, energetic = _units(body, modulus, attach, weight, impact_speed, adhesion is not None)
-    values = {name: float(getattr(units, name)) for name in ("radial", "normal", "force", "time")}
-    _check_units(values, float(units.velocity), float(units.energy))
     if adhesion is not None and adhesion.model == "jkr":
-        _check_adhesion_resolved(adhesion, E_star, values)
+        _check_adhesion_resolved(adhesion, scene.material.effective_modulus, units.values)
     if scene.body.profile.shape in SIZE_FIELD:
-        _check_depth(scene, profile, float(energetic.normal), fall)
+        _check_depth(scene, units.energetic_depth, _fall(scene))
 
 
-def _check_units(values: dict[str, float], velocity: float, energy: float) -> None:
+def _check_units(values: dict[str, float]) -> None:
     low, high = UNIT_RANGE
-    for name, value in {**values, "velocity": velocity, "energy": energy}.items():
+    for name, value in values.items():
         if not (math.isfinite(value) and low <= value <= high):
             raise FieldProblem(
                 "body",
@@ -110,7 +175,7 @@ def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) 
     raise FieldProblem("effects.adhesion.work_of_adhesion", outside(adhesion.work_of_adhesion, allowed, why))
 
 
-def _check_depth(scene, profile, energetic_depth: float, fall: float) -> None:
+def _check_depth(scene, energetic_depth: float, fall: float) -> None:
     """The indentation the impact energy alone would reach (its unit ℓz, ~0.8 of Hertz's maximum)
     must not exceed the body's size."""
     size_field = SIZE_FIELD[scene.body.profile.shape]
@@ -123,7 +188,7 @@ def _check_depth(scene, profile, energetic_depth: float, fall: float) -> None:
     )
     E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
     # the impact energy: E*·x·g(x)² at g(x) = size is the most it may be
-    most_energy = E_star * float(_radius_at_height(*_traced((profile, size)))) * size**2
+    most_energy = E_star * _radius_at_height(scene.body.profile, size) * size**2
     if scene.start.velocity > 0 or fall == 0:
         most = math.sqrt(max(2.0 * most_energy / mass - fall, 0.0))
         raise FieldProblem("initial.velocity", outside(scene.start.velocity, Domain(0.0, most, "m/s"), why))

@@ -3,20 +3,28 @@
 The points go through the model validators (`mode="after"`) of the sections on the swept
 paths, on one copy of the base scene whose swept fields are set in place point by point (a few
 µs a point instead of a full `Scene.model_validate`): this is what a full validation would
-check, as the rest of the scene is the already valid base. Models with other kinds of
+check, as the rest of the scene is the already valid base. The representability check (units
+from the profile, in JAX) runs for all points in one batched call. Models with other kinds of
 validators fall back to a full validation per point.
 """
 
 import copy
 
+import jax
 from pydantic import BaseModel, ValidationError
 
-from .errors import SweepError, problems_of
+from .._core.runtime import float64
+from .errors import FieldProblem, SweepError, problems_of
 from .paths import assign, resolve_field, section_at
+from .representable import UnitInputs, check_units, unit_inputs, units_of
 from .scene import Scene
 from .sweep_spec import MAX_LISTED, SweepSpec
 
+# The scene's representability validator: checked for all the points of a sweep at once.
+_REPRESENTABLE = "_representable"
 
+
+@float64
 def check_points(spec: SweepSpec) -> None:
     """Validate every point of the sweep as a scene; SweepError naming the axes if one is invalid."""
     chains = _chains(spec.scene, spec.paths)
@@ -29,34 +37,60 @@ def check_points(spec: SweepSpec) -> None:
     ) and not any(_has_field_validator(*resolve_field(spec.scene, path)) for path in spec.paths)
     params = spec.flat_params()
     columns = [params[path].tolist() for path in spec.paths]
-    failures: list[tuple[dict, str]] = []
-    count = 0
-    if fast:
-        # One private deep copy of the base scene, its swept fields set in place point by point.
-        point = spec.scene.model_copy(deep=True)
-        owners = [resolve_field(point, path) for path in spec.paths]
-        models = [(prefix, section_at(point, prefix)) for prefix, _ in chains]
-        for index in range(spec.size):
-            for (owner, name), column in zip(owners, columns, strict=True):
-                owner.__dict__[name] = column[index]
-            message = _validators_problem(models)
-            if message is not None:
-                count += 1
-                if len(failures) < MAX_LISTED:
-                    failures.append(
-                        ({path: column[index] for path, column in zip(spec.paths, columns, strict=True)}, message)
-                    )
-    else:
-        base_data = spec.scene.model_dump(exclude_none=True)
-        for index in range(spec.size):
-            values = {path: column[index] for path, column in zip(spec.paths, columns, strict=True)}
-            message = _full_validation_problem(base_data, values)
-            if message is not None:
-                count += 1
-                if len(failures) < MAX_LISTED:
-                    failures.append((values, message))
-    if failures:
-        raise _invalid_points(spec, failures, count)
+    problems = _fast_problems(spec, chains, columns) if fast else _full_problems(spec, columns)
+    if problems:
+        listed = [
+            ({path: column[index] for path, column in zip(spec.paths, columns, strict=True)}, message)
+            for index, message in sorted(problems.items())[:MAX_LISTED]
+        ]
+        raise _invalid_points(spec, listed, len(problems))
+
+
+def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
+    """{point: complaint} from the after-validators, run on one private copy of the base scene
+    whose swept fields are set in place point by point; the representability check of the
+    impacts (the costly one: units from the profile) runs for all points at once."""
+    point = spec.scene.model_copy(deep=True)
+    owners = [resolve_field(point, path) for path in spec.paths]
+    models = [(prefix, section_at(point, prefix)) for prefix, _ in chains]
+    profile_swept = any(path.startswith("body.profile.") for path in spec.paths)
+    base_profile = None if profile_swept else spec.scene.body.profile.build()
+
+    def set_point(index: int) -> None:
+        for (owner, name), column in zip(owners, columns, strict=True):
+            owner.__dict__[name] = column[index]
+
+    problems: dict[int, str] = {}
+    pending: dict[tuple, list[tuple[int, UnitInputs]]] = {}
+    for index in range(spec.size):
+        set_point(index)
+        message = _validators_problem(models, skip=_REPRESENTABLE)
+        if message is not None:
+            problems[index] = message
+        elif point.kind == "impact":
+            inputs = unit_inputs(point, base_profile)
+            key = (point.active_adhesion is not None, jax.tree.structure(inputs))
+            pending.setdefault(key, []).append((index, inputs))
+    for (adhesive, _), group in pending.items():
+        for (index, _), units in zip(group, units_of([inputs for _, inputs in group], adhesive), strict=True):
+            set_point(index)
+            try:
+                check_units(point, units)
+            except FieldProblem as error:
+                problems[index] = f"{error.field}: {error}"
+    return problems
+
+
+def _full_problems(spec: SweepSpec, columns) -> dict[int, str]:
+    """{point: complaint} of a full validation of every point (models with other validators)."""
+    base_data = spec.scene.model_dump(exclude_none=True)
+    problems = {}
+    for index in range(spec.size):
+        values = {path: column[index] for path, column in zip(spec.paths, columns, strict=True)}
+        message = _full_validation_problem(base_data, values)
+        if message is not None:
+            problems[index] = message
+    return problems
 
 
 def _invalid_points(spec: SweepSpec, failures: list[tuple[dict, str]], count: int) -> SweepError:
@@ -91,10 +125,12 @@ def _chains(scene: Scene, paths) -> list[tuple[str, BaseModel]]:
     return sorted(seen.items(), key=lambda item: -len(item[0].split(".")) if item[0] else 1)
 
 
-def _validators_problem(models) -> str | None:
-    """The first complaint of the after-validators of the given (prefix, model) sections."""
+def _validators_problem(models, skip: str) -> str | None:
+    """The first complaint of the after-validators (but `skip`) of the given (prefix, model) sections."""
     for prefix, model in models:
-        for decorator in type(model).__pydantic_decorators__.model_validators.values():
+        for name, decorator in type(model).__pydantic_decorators__.model_validators.items():
+            if name == skip:
+                continue
             try:
                 decorator.func(model)
             except (ValueError, AssertionError) as error:

@@ -106,3 +106,25 @@ def test_a_run_without_compressive_force_says_so(tmp_path):
     assert result.exit_code == 1, result.output
     assert "no compressive force" in result.output
     assert "unbounded_contact" in result.output
+
+
+def test_sweep_points_are_refused_as_their_scenes_are():
+    """The sweep checks representability for all points in one batch: each invalid point gets the
+    message its scene alone gets, the points listed in order and the rest counted."""
+    velocities = [1.0, 1e4, 2.0, 5e3, 3e3, 2e3, 1.5e3, 3.0]
+    spec = {"scene": str(THORNTON_NING), "axes": {"initial.velocity": velocities}, "order": "given"}
+    with pytest.raises(impact.SceneError) as error:
+        load_sweep(spec)
+    (path, message), *_ = error.value.problems
+    assert path == "axes.initial.velocity"
+    expected = []
+    for velocity in velocities:
+        data = yaml.safe_load(THORNTON_NING.read_text())
+        data["initial"]["velocity"] = velocity
+        try:
+            impact.load_scene(data)
+        except impact.SceneError as refusal:
+            (field, why), *_ = refusal.problems
+            expected.append(f"value {velocity!r} makes the scene invalid: {field}: {why}")
+    assert len(expected) == 5
+    assert message == "; ".join(expected[:4]) + "; and 1 more invalid points"
