@@ -22,7 +22,7 @@ import jax.numpy as jnp
 from .._core.pytree import where
 from .._core.quadrature import gauss_legendre
 from .._core.types import Parameter
-from .._law.curve import AbstractCurve
+from .._law.curve import AbstractCurve, CurveLaw
 from .._law.scales import Scales
 from .base import AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
@@ -41,7 +41,7 @@ _SAME_STATE = 1e-12
 class CurveProblem(eqx.Module):
     """The scaled impact: law, its curve and the initial state (`Carry.radius` holds s)."""
 
-    law: eqx.Module  # has `scales` and `onset`, the depth where the interaction starts
+    law: CurveLaw
     curve: AbstractCurve
     gravity: Parameter
     start_indentation: Parameter  # the onset less the gap (scaled)
@@ -76,7 +76,7 @@ class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
 
 
 class _Args(eqx.Module):
-    law: eqx.Module
+    law: CurveLaw
     curve: AbstractCurve
     gravity: Parameter
     velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
@@ -108,7 +108,7 @@ def _first_event(t, y, args: _Args, **kwargs):
     return jnp.max(_conditions(y, args))
 
 
-def _work(law, curve: AbstractCurve, start, end):
+def _work(law: CurveLaw, curve: AbstractCurve, start, end):
     """∫F dd along the curve from s = start to end (Gauss–Legendre; smooth on a segment)."""
     nodes, weights = gauss_legendre(_QUADRATURE_NODES)
     points = start + (end - start) * nodes

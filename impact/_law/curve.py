@@ -8,6 +8,7 @@ snap-out) or, with none left, lets go. Maugis–Dugdale (`dugdale`, §3.8) and G
 """
 
 import abc
+from typing import Protocol
 
 import equinox as eqx
 import jax
@@ -15,8 +16,20 @@ import jax.numpy as jnp
 
 from .._core.search import bisect
 from .branches import next_rising, previous_rising
+from .scales import Scales
 
 _INVERSION_STEPS = 100
+
+
+class CurveLaw(Protocol):
+    """What a rider needs of a curve's law besides the curve: its units and the depth d where
+    the interaction starts."""
+
+    @property
+    def scales(self) -> Scales: ...
+
+    @property
+    def onset(self) -> jax.Array: ...
 
 
 class AbstractCurve(eqx.Module):
