@@ -72,7 +72,7 @@ def check_representable(scene) -> None:
     fall = 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
     speed = math.sqrt(scene.start.velocity**2 + fall)
     approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
-    if adhesion is not None and adhesion.model == "maugis_dugdale":
+    if adhesion is not None and adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
         approach = adhesion.work_of_adhesion
     body, modulus, attach, weight, impact_speed = _traced((profile, E_star, approach, mass, speed))
     units, energetic = _units(body, modulus, attach, weight, impact_speed, adhesion is not None)
