@@ -1,16 +1,17 @@
 """Greenwood–Johnson double-Hertz adhesion (§3.9, Greenwood and Johnson 1998) of a paraboloid
-f = r²/(2R), in the scaled units of `Scales`, as an equilibrium curve parametrised by the
-contact radius s = â.
+f = r²/(2R), in the scaled units of `Scales`, as an explicit equilibrium curve.
 
 With Ĉ = ℓx²/(R·ℓz) (the scaled ĝ(1)) and the ring width û = ĉ − â, the root of
 û²(û + 3â) = K̂ = 3πR²Δγ/(2E*k(k+1)ℓx³) (3.201):
 
     d̂ = Ĉ·(â² − k·û(2â + û)),   F̂ = (4/3)·Ĉ·(â³ − k·û(3â² + 3âû + û²)),
 
-explicit along the whole curve (no range condition to solve). It starts at â = 0, where the
-interaction switches on (d̂₀ = −k·Ĉ·K̂^(2/3)); d rises from there for k ≤ 1 and first falls
-to its minimum at â/ĉ = (k − 1)/(k + 1) for k > 1 (`impact.theory.double_hertz_pull_off`), its
-only turning point: the nodes are 0, that minimum (0 when k ≤ 1) and the top.
+Parametrised by the ring width, s = ln(û₀/û) with û₀ = K̂^(1/3), the cubic (3.201) is solved
+for â instead: â = (K̂/û² − û)/3, so the whole curve is explicit (no root inside a step) and
+dâ/ds = 2â + û. s = 0 is â = 0, where the interaction switches on (d̂₀ = −k·Ĉ·û₀²); d rises
+from there for k ≤ 1, and first falls to its minimum at 2â = (k − 1)û, â/ĉ = (k − 1)/(k + 1),
+for k > 1 (`impact.theory.double_hertz_pull_off`), its only turning point: the nodes are 0, that
+minimum (0 when k ≤ 1) and the top.
 """
 
 import equinox as eqx
@@ -18,12 +19,12 @@ import jax
 import jax.numpy as jnp
 
 from ..profiles import Paraboloid, Profile, Sphere
-from ..theory._double_hertz import ring_width
 from .curve import AbstractCurve
 from .scales import Scales
 
-# Contact radii searched for the reach of an impact: 0 and logarithmic from 1e-3 to 1e3 units.
-_REACH_POINTS = 256
+# States searched for the reach of an impact: s from 0 to 40 (â up to ~e^80·û₀/3).
+_REACH_SPAN = 40.0
+_REACH_POINTS = 513
 _TOP_MARGIN = 4.0
 
 
@@ -59,16 +60,21 @@ class DoubleHertzLaw(eqx.Module):
         """d̂₀ = −k·Ĉ·ĉ₀² where the interaction starts (â = 0)."""
         return -self.factor * self.curvature * jnp.cbrt(self.ring) ** 2
 
-    def turning_radius(self):
-        """â of the minimum of d(â) for k > 1, (k − 1)/(k + 1) of ĉ; 0 for k ≤ 1."""
+    def radius(self, s):
+        """(â, û) at s = ln(û₀/û), û₀ = K̂^(1/3): â = (K̂/û² − û)/3 from (3.201), explicit."""
+        u = jnp.cbrt(self.ring) * jnp.exp(-jnp.maximum(s, 0.0))
+        return jnp.maximum((self.ring / u**2 - u) / 3.0, 0.0), u
+
+    def turning_point(self):
+        """s of the minimum of d for k > 1, where 2â = (k − 1)·û, i.e. û³ = 2K̂/(3k − 1)
+        (â/ĉ = (k − 1)/(k + 1)); 0 for k ≤ 1."""
         k = self.factor
-        gap = jnp.where(k > 1.0, 2.0 / (k + 1.0), 1.0)
-        ratio = 1.0 - gap
-        return ratio * jnp.cbrt(self.ring / (gap**2 * (1.0 + 2.0 * ratio)))
+        return jnp.where(k > 1.0, jnp.log((3.0 * k - 1.0) / 2.0) / 3.0, 0.0)
 
 
 class DoubleHertzCurve(AbstractCurve):
-    """The double-Hertz states along s = â ≥ 0: nodes 0, the turning radius, the top."""
+    """The double-Hertz states along s = ln(û₀/û) ≥ 0 (`DoubleHertzLaw.radius`): nodes 0, the
+    turning point, the top."""
 
     junction: jax.Array  # 0: every state is a contact
     nodes: jax.Array
@@ -77,26 +83,25 @@ class DoubleHertzCurve(AbstractCurve):
     overflow: jax.Array
 
     def state(self, law: DoubleHertzLaw, s):
-        """(d̂, F̂, â, ĉ) at â = s."""
-        a = jnp.maximum(s, 0.0)
-        u = ring_width(a, law.ring)
+        """(d̂, F̂, â, ĉ) at s."""
+        a, u = law.radius(s)
         k, curvature = law.factor, law.curvature
         depth = curvature * (a**2 - k * u * (2.0 * a + u))
         force = 4.0 / 3.0 * curvature * (a**3 - k * u * (3.0 * a**2 + 3.0 * a * u + u**2))
         return depth, force, a, a + u
 
     def riding(self, law: DoubleHertzLaw, s):
-        """(d̂, F̂, dd̂/dâ) with dĉ/dâ = 2â/(â + ĉ): dd̂/dâ = 2Ĉ·â·(1 − k·û/(2â + û))."""
+        """(d̂, F̂, dd̂/ds) with dâ/ds = 2â + û: dd̂/ds = 2Ĉ·â·(2â − (k − 1)·û)."""
         depth, force, a, outer = self.state(law, s)
         u = outer - a
-        return depth, force, 2.0 * law.curvature * a * (1.0 - law.factor * u / (2.0 * a + u))
+        return depth, force, 2.0 * law.curvature * a * (2.0 * a - (law.factor - 1.0) * u)
 
 
 def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
     """The curve up to `_TOP_MARGIN` times the contact radius where the work ∫F dd from the onset
     (trapezoids) first exceeds ½v² + 1 plus twice the largest work the adhesive pull gave back
     before (an impact at scaled speed v cannot reach further)."""
-    turn = law.turning_radius()
+    turn = law.turning_point()
     partial = DoubleHertzCurve(
         junction=jnp.zeros(()),
         nodes=jnp.zeros(1),
@@ -104,14 +109,15 @@ def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
         increasing=jnp.zeros(0, bool),
         overflow=jnp.asarray(False),
     )
-    grid = jnp.concatenate([jnp.zeros(1), jnp.logspace(-3.0, 3.0, _REACH_POINTS)])
-    depths, forces, _, _ = partial.state(law, grid)
+    grid = jnp.linspace(0.0, _REACH_SPAN, _REACH_POINTS)
+    depths, forces, radii, _ = partial.state(law, grid)
     steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
     work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
     given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
     enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
-    reach = grid[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
-    top = _TOP_MARGIN * jnp.maximum(jnp.maximum(reach, turn), 1.0)
+    reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
+    beyond = radii >= _TOP_MARGIN * jnp.maximum(reach, 1.0)
+    top = jnp.maximum(grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)], 2.0 * turn)
     nodes = jnp.stack([jnp.zeros(()), turn, top])
     return DoubleHertzCurve(
         junction=jnp.zeros(()),
