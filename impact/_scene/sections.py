@@ -122,7 +122,10 @@ class Initial(Section):
     )
     gap: Annotated[Number, within(d.GAP)] = Field(
         0.0,
-        description="initial distance between tip and surface (m); with maugis_dugdale adhesion, beyond the range h",
+        description=(
+            "initial distance between tip and surface (m); with maugis_dugdale adhesion, beyond the range h; "
+            "with greenwood_johnson, beyond the onset d₀ = −k·c₀²/R"
+        ),
     )
 
 

@@ -121,3 +121,17 @@ def test_gradient_of_the_pull_off_force():
     upper = float(theory.double_hertz_pull_off(k + step, R, E_STAR, DGAMMA, 3)[2])
     lower = float(theory.double_hertz_pull_off(k - step, R, E_STAR, DGAMMA, 3)[2])
     assert exact == pytest.approx((upper - lower) / (2 * step), rel=1e-6)
+
+
+def test_transition_figure_compares_both_models_within_one_and_a_half_percent():
+    """At the equivalent Λ(k), Greenwood–Johnson's force-controlled pull-off is within 1.5 % of
+    Maugis–Dugdale's (3.171) for 1e-3 ≤ Λ ≤ 1e3; the figure draws both models and the limits."""
+    from impact._plots.transition import pull_off_figure
+
+    tabors = np.geomspace(1e-3, 1e3, 61)
+    maugis = 1.5 * theory.maugis_pull_off(tabors)
+    factors = np.asarray(theory.double_hertz_factor(tabors))
+    greenwood = -np.asarray(theory.double_hertz_pull_off(factors, R, E_STAR, DGAMMA, 3)[2]) / (np.pi * R * DGAMMA)
+    assert np.max(np.abs(greenwood / maugis - 1)) < 0.015
+    gids = [line.get_gid() for line in pull_off_figure(tabors).axes[0].get_lines()]
+    assert gids == ["maugis", "greenwood_johnson", "greenwood_johnson", "limit", "limit", "limit"]
