@@ -43,7 +43,9 @@ Misprints found in the chapter (the code uses the corrected forms):
 (3.82) reduces to (3.51) at n = 2, c = 1/(2R).
 
 The Maugis–Dugdale functions (§3.6–3.8, from ``tabor_parameter`` on) use numpy/scipy (hypergeometric
-function, scalar minimization) and compute in float64 whatever the jax setting.
+function, scalar minimization) and compute in float64 whatever the jax setting. The
+Greenwood–Johnson double-Hertz functions (§3.9, ``double_hertz_*``) are jax.numpy closed forms
+(jit/vmap/grad-ready); their equivalent Tabor parameter maps k onto the Maugis–Dugdale Λ.
 """
 
 from ..profiles import kappa as kappa
