@@ -1,11 +1,12 @@
 """Adhesion of the interface: the work of adhesion, its approach value and, for Maugis–Dugdale,
-the adhesive stress.
+the adhesive stress; for Greenwood–Johnson, the double-Hertz factor k.
 
 Zero range (JKR) by the rule of Heß (3.26): the edge spring at x lets go at the elongation
 Δl(x) = √(2πxΔγ/E*), and on approach the next spring attaches once its gap closes to
 √(2πxΔγa/E*), 0 ≤ Δγa ≤ Δγ (Δγa = Δγ: the reversible JKR law with its jump-in; Δγa = 0:
 attach on touch). Finite range (Maugis–Dugdale, §3.8): the stress σ0 acts up to the range
-h = Δγ/σ0 (3.4).
+h = Δγ/σ0 (3.4); or Greenwood and Johnson's double Hertz (§3.9), the factor k of the second
+Hertz distribution (k → ∞: JKR, k → 0: DMT).
 """
 
 import equinox as eqx
@@ -21,13 +22,14 @@ class Adhesion(eqx.Module):
 
     work_of_adhesion: Parameter  # Δγ (J/m²): the Dupré work of separation
     approach_work_of_adhesion: Parameter  # Δγa ≤ Δγ (J/m²): the JKR law's attachment on approach
-    adhesive_stress: Parameter  # σ0 (Pa) of Maugis–Dugdale adhesion; nan for the JKR law
+    adhesive_stress: Parameter  # σ0 (Pa) of Maugis–Dugdale adhesion; nan for the other laws
+    double_hertz_factor: Parameter  # k of Greenwood–Johnson adhesion; nan for the other laws
 
     @staticmethod
     def none() -> "Adhesion":
         """No adhesion (the effect switched off)."""
         zero = jnp.zeros(())
-        return Adhesion(zero, zero, jnp.full((), jnp.nan))
+        return Adhesion(zero, zero, jnp.full((), jnp.nan), jnp.full((), jnp.nan))
 
     @property
     def adhesion_range(self) -> Parameter:

@@ -1,73 +1,27 @@
-"""Impacts with Maugis–Dugdale adhesion: the body rides the equilibrium curve of `dugdale`.
+"""Impacts with Maugis–Dugdale adhesion (§3.8): the body rides the equilibrium curve of
+`_law.dugdale` (`curve`). The tip comes within the range h of the surface at d = −h, where the
+adhesive zone snaps to its first stable radius."""
 
-The body is free until its tip comes within the range h of the surface (d = −h, the `touch`
-event); the adhesive zone then snaps to its first stable radius. While the state sits on a
-rising segment of the curve d(s) the motion is integrated in the pseudo-time of the JKR
-integrator (`continuum`), with the curve parameter s as state:
-
-    s' = v·q,   v' = (g − F(s))·d'(s)·q,   t' = d'(s)·q,   q = 1/√(1 + d'(s)²).
-
-At the end of a rising segment (a turning point of d, or the junction where the zone's centre
-closes into a contact) the state moves at fixed d to the next rising segment at that level:
-a snap-in or snap-out, or the release of the body when none is left. An outward turnaround on
-the curve is a capture (the argument of `transitions.capture` holds: only the jumps dissipate).
-"""
-
-import equinox as eqx
 import jax.numpy as jnp
 
-from .._core.pytree import where
-from .._core.quadrature import gauss_legendre
-from .._core.types import Parameter
-from .._law.dugdale import DugdaleCurve, DugdaleLaw, build_curve
-from .._law.scales import Scales, adhesive_scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
-from .flight import land
+from .._law.dugdale import DugdaleLaw, build_curve
+from .._law.scales import adhesive_scales
+from .curve import AbstractCurveIntegrator, CurveProblem
 from .problem import Options, Physics, touch_velocity
-from .transitions import Next, next_phase
-from .work import ContactSummary, extremes
-
-_PHASE_HORIZON = 1.0e4
-_QUADRATURE_NODES = 48
-# A landing further than this (relative) from the segment end is a jump, not a continuation.
-_SAME_STATE = 1e-12
 
 
-class DugdaleProblem(eqx.Module):
-    """The scaled impact: law, its curve and the initial state (`Carry.radius` holds s)."""
-
-    law: DugdaleLaw
-    curve: DugdaleCurve
-    gravity: Parameter
-    start_indentation: Parameter  # −h − gap (scaled)
-    start_velocity: Parameter
-    touch_speed: Parameter  # speed when the tip comes within range
-    bounded: Parameter
-    time_limit: Parameter
-
-    @property
-    def scales(self) -> Scales:
-        return self.law.law.scales
-
-    @property
-    def overflow(self):
-        return self.curve.overflow
-
-
-class MaugisDugdale(AbstractAdaptiveIntegrator):
+class MaugisDugdale(AbstractCurveIntegrator):
     """Impacts with Maugis–Dugdale adhesion (§3.8) on power-law bodies: the body rides the
     equilibrium curve of the finite-range law, phase by phase with an adaptive diffrax solver."""
 
-    def build(self, physics: Physics, options: Options) -> DugdaleProblem:
+    def build(self, physics: Physics, options: Options) -> CurveProblem:
         """Scale (JKR units, or the impact energy's where it reaches further) and tabulate."""
         profile, adhesion = physics.profile, physics.adhesion
         speed = touch_velocity(physics, options)
         scales = adhesive_scales(profile, physics.E_star, adhesion.work_of_adhesion, physics.mass, speed)
         law = DugdaleLaw.scaled(profile, scales, physics.E_star, adhesion.adhesive_stress, adhesion.adhesion_range)
         touch_speed = speed / scales.velocity
-        return DugdaleProblem(
+        return CurveProblem(
             law=law,
             curve=build_curve(law, touch_speed, options.tabulation.max_turns),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
@@ -77,136 +31,3 @@ class MaugisDugdale(AbstractAdaptiveIntegrator):
             bounded=jnp.asarray(True),
             time_limit=physics.time_limit / scales.time,
         )
-
-    def integrate(self, problem: DugdaleProblem, options: Options) -> Outcome:
-        def flight(c: Carry) -> Carry:
-            # The tip comes within range at d = −h; the zone snaps to the first rising state there.
-            reach = -problem.law.range
-            landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-            stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], -1)
-            touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
-            return land(problem, options, c, reach, touch, problem.curve.force(problem.law, landing), samples=True)
-
-        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
-
-
-class _Args(eqx.Module):
-    law: DugdaleLaw
-    curve: DugdaleCurve
-    gravity: Parameter
-    velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
-    end: Parameter  # the segment end in s the phase runs to
-    end_sign: Parameter
-    time_limit: Parameter
-    speed_scale: Parameter
-
-
-def _vector_field(pseudo_time, y, args: _Args):
-    s, v = y[0], y[1]
-    _, force, slope = args.curve.riding(args.law, s)
-    pace = 1.0 / jnp.sqrt(1.0 + slope**2)
-    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-
-
-def _conditions(y, args: _Args):
-    """Turnaround, segment end, time limit: each negative until its event, of relative size."""
-    return jnp.stack(
-        [
-            args.velocity_sign * y[1] / args.speed_scale,
-            args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
-
-
-def _first_event(t, y, args: _Args, **kwargs):
-    return jnp.max(_conditions(y, args))
-
-
-def _work(law: DugdaleLaw, curve: DugdaleCurve, start, end):
-    """∫F dd along the curve from s = start to end (Gauss–Legendre; smooth on a segment)."""
-    nodes, weights = gauss_legendre(_QUADRATURE_NODES)
-    points = start + (end - start) * nodes
-    _, force, slope = curve.riding(law, points)
-    return (end - start) * jnp.sum(weights * force * slope)
-
-
-def _after(problem: DugdaleProblem, advancing, turned, segment, s_end, d_end):
-    """The phase after a ride ended (`Next.radius` holds s)."""
-    law, curve = problem.law, problem.curve
-    junction = curve.junction
-    # Loading reaches its segment's top: on to the next rising state at this level.
-    out_s, out_segment, blocked = curve.cascade_out(law, curve.nodes[segment + 1], d_end)
-    jumped_out = out_s > curve.nodes[segment + 1] + _SAME_STATE * (1.0 + out_s)
-    out_event = jnp.where(jumped_out, EVENT_CODE["snap_in"], EVENT_CODE["contact_start"])
-    # Unloading reaches its segment's foot: back to the last rising state at this level.
-    in_s, in_segment, released = curve.cascade_in(law, curve.nodes[segment], d_end)
-    jumped_in = in_s < curve.nodes[segment] - _SAME_STATE * (1.0 + in_s)
-    in_event = jnp.where(
-        released,
-        EVENT_CODE["separation"],
-        jnp.where(jumped_in | (curve.nodes[segment] != junction), EVENT_CODE["snap_out"], EVENT_CODE["contact_end"]),
-    )
-    mode = jnp.where(
-        advancing,
-        jnp.where(turned, RECEDE, jnp.where(blocked, DONE, ADVANCE)),
-        jnp.where(turned, DONE, jnp.where(released, FLIGHT, RECEDE)),
-    )
-    new_segment = jnp.where(advancing, jnp.where(turned, segment, out_segment), jnp.where(turned, segment, in_segment))
-    new_s = jnp.where(turned, s_end, jnp.where(advancing, out_s, in_s))
-    event = jnp.where(
-        advancing,
-        jnp.where(turned, EVENT_CODE["max_indentation"], out_event),
-        jnp.where(turned, EVENT_CODE["capture"], in_event),
-    )
-    return Next(
-        mode=mode,
-        segment=new_segment,
-        radius=new_s,
-        event=event,
-        separated=~advancing & ~turned & released,
-        captured=~advancing & turned,
-        stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
-    )
-
-
-def _contact(integrator: MaugisDugdale, problem: DugdaleProblem, options: Options, c: Carry) -> Carry:
-    """One ride along a rising segment with diffrax, ended by its located event."""
-    law, curve = problem.law, problem.curve
-    riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
-    advancing = c.mode == ADVANCE
-    args = _Args(
-        law=law,
-        curve=curve,
-        gravity=problem.gravity,
-        velocity_sign=jnp.where(advancing, -1.0, 1.0),
-        end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
-        end_sign=jnp.where(advancing, 1.0, -1.0),
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
-    )
-    s_start = c.radius
-    solution = integrator.ride(
-        _vector_field,
-        _first_event,
-        jnp.stack([s_start, c.v, c.t]),
-        args,
-        horizon=jnp.where(riding, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
-    )
-    _, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
-    d_end = curve.depth(law, s_end)
-
-    if options.samples_per_phase:
-        states = dense_states(solution, options.samples_per_phase)
-        s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
-        depth, force, radius, _ = curve.state(law, s)
-        rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
-        c = where(riding, store_samples(c, options, rows), c)
-
-    work = _work(law, curve, s_start, s_end)
-    low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
-    nxt = _after(problem, advancing, turned, c.segment, s_end, d_end)
-    summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    return close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)

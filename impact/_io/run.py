@@ -12,7 +12,7 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
         bounces, touch_velocity, separation_velocity, dissipated_energy,
-        tabor_parameter   (scalars; Λ is nan unless Maugis–Dugdale on a paraboloid)
+        tabor_parameter   (scalars; Λ: Maugis–Dugdale on a paraboloid, Greenwood–Johnson; else nan)
         events/{time, kind}
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes

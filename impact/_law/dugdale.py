@@ -29,15 +29,14 @@ import jax
 import jax.numpy as jnp
 
 from .._core.quadrature import gauss_legendre
-from .._core.search import bisect
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
-from .branches import next_rising, previous_rising, sign_changes
+from .branches import sign_changes
+from .curve import AbstractCurve
 from .law import ContactLaw
 from .scales import Scales
 
 _QUADRATURE_NODES = 32
 _RADIUS_NEWTON_STEPS = 12
-_INVERSION_STEPS = 100
 _ZONE_POINTS = 192
 # Contact states searched for turning points: s − b_J = −ln p from 0 to this, evenly.
 _CONTACT_LOG_SPAN = 40.0
@@ -85,6 +84,15 @@ class DugdaleLaw(eqx.Module):
         """C_f = f̂(1)."""
         scales = self.law.scales
         return self.law.profile.f(scales.radial) / scales.normal
+
+    @property
+    def scales(self) -> Scales:
+        return self.law.scales
+
+    @property
+    def onset(self):
+        """d where the interaction starts: the tip within the range, −h."""
+        return -self.range
 
     def zone(self, zone):
         """(d, F) of an adhesive zone of radius b without contact."""
@@ -150,7 +158,7 @@ class DugdaleLaw(eqx.Module):
         return depth, force, radius, zone
 
 
-class DugdaleCurve(eqx.Module):
+class DugdaleCurve(AbstractCurve):
     """The equilibrium states of one Dugdale law along s, split into monotone segments."""
 
     junction: jax.Array  # b_J
@@ -171,36 +179,6 @@ class DugdaleCurve(eqx.Module):
             jnp.where(contact, radius, 0.0),
             jnp.where(contact, contact_zone, zone),
         )
-
-    def riding(self, law: DugdaleLaw, s):
-        """(d, F, dd/ds) at s."""
-        (depth, force), (slope, _) = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
-        return depth, force, slope
-
-    def depth(self, law: DugdaleLaw, s):
-        return self.state(law, s)[0]
-
-    def force(self, law: DugdaleLaw, s):
-        return self.state(law, s)[1]
-
-    def invert(self, law: DugdaleLaw, depth, segment):
-        """s with d(s) = depth on a rising segment (clamped to it), by bisection."""
-        lower, upper = self.nodes[segment], self.nodes[segment + 1]
-        lo, hi = bisect(lambda s: self.depth(law, s) < depth, lower, upper, _INVERSION_STEPS)
-        return 0.5 * (lo + hi)
-
-    def cascade_out(self, law: DugdaleLaw, start, depth):
-        """First rising state beyond `start` at level d: (s, segment, blocked)."""
-        segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
-        landing = jnp.maximum(self.invert(law, depth, segment), start)
-        return jnp.where(blocked, self.nodes[-1], landing), segment, blocked
-
-    def cascade_in(self, law: DugdaleLaw, start, depth):
-        """Last rising state below `start` at level d: (s, segment, released); released means
-        no state holds: the body leaves the range of the adhesive stress."""
-        segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
-        landing = jnp.minimum(self.invert(law, depth, segment), start)
-        return jnp.where(released, 0.0, landing), segment, released
 
 
 def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:

@@ -35,7 +35,7 @@ class Result:
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
     dissipated_energy: float  # J lost in the first contact: ∮F dd
-    tabor_parameter: float  # Λ (3.172) of Maugis–Dugdale adhesion on a paraboloid; nan otherwise
+    tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
     t: np.ndarray = field(repr=False)  # s
     indentation: np.ndarray = field(repr=False)  # m
     velocity: np.ndarray = field(repr=False)  # m/s, towards the surface positive
@@ -56,8 +56,11 @@ def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
 
 
 def tabor_parameter(scene: Scene) -> float:
-    """Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172) of a Maugis–Dugdale scene on a paraboloid; nan else."""
+    """Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172) of a Maugis–Dugdale scene on a paraboloid, or the
+    equivalent Λ(k) of a Greenwood–Johnson scene (`theory.double_hertz_tabor_parameter`); nan else."""
     adhesion = scene.active_adhesion
+    if adhesion is not None and adhesion.model == "greenwood_johnson":
+        return float(theory.double_hertz_tabor_parameter(adhesion.double_hertz_factor))
     if adhesion is None or adhesion.model != "maugis_dugdale" or scene.body.profile.shape != "paraboloid":
         return float("nan")
     return float(

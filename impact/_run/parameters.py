@@ -9,6 +9,7 @@ from .._effects.adhesion import Adhesion
 from .._effects.gravity import Gravity
 from .._integrate.base import AbstractIntegrator
 from .._integrate.continuum import Continuum
+from .._integrate.double_hertz import GreenwoodJohnson
 from .._integrate.dugdale import MaugisDugdale
 from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
@@ -21,11 +22,13 @@ _SAMPLES_PER_PHASE = 64
 
 def integrator_for(scene: Scene) -> AbstractIntegrator:
     """The integrator a scene names: the continuum law with a diffrax solver, a spring array
-    (exact, or stepped with Verlet), or the Maugis–Dugdale law."""
+    (exact, or stepped with Verlet), or a finite-range law (Maugis–Dugdale, Greenwood–Johnson)."""
     solver = scene.solver
     adhesion = scene.active_adhesion
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+    if adhesion is not None and adhesion.model == "greenwood_johnson":
+        return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.contact.springs == "continuum":
         return Continuum(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if solver.method == "verlet":
@@ -84,6 +87,7 @@ def adhesion_for(scene: Scene) -> Adhesion:
         work_of_adhesion=_float64(adhesion.work_of_adhesion),
         approach_work_of_adhesion=_float64(adhesion.approach),
         adhesive_stress=_float64(adhesion.adhesive_stress if dugdale else np.nan),
+        double_hertz_factor=_float64(np.nan if adhesion.k is None else adhesion.k),
     )
 
 

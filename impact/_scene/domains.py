@@ -85,6 +85,7 @@ PREFACTOR = Domain(1e-300, 1e300, "m^(1-n)", reason="float64's range")
 MASS = Domain(1e-30, 1e6, "kg", reason="from below an electron to a thousand tonnes")
 DENSITY = Domain(1e-3, 1e5, "kg/m³", reason="from below aerogels to above osmium")
 MODULUS = Domain(1.0, 1e13, "Pa", reason="from the softest gels to ten times diamond")
+DOUBLE_HERTZ_FACTOR = Domain(1e-6, 1e6, "", reason="from DMT (k → 0) to JKR (k → ∞) within float64's reach")
 STRESS = Domain(1.0, 1e13, "Pa", reason="up to ten times the modulus of diamond")
 VELOCITY = Domain(
     1e-20,

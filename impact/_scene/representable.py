@@ -69,7 +69,7 @@ def unit_inputs(scene, profile: Profile | None = None) -> UnitInputs:
     """The numbers the units of an impact scene depend on (`profile`: the scene's, if built)."""
     adhesion = scene.active_adhesion
     approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
-    if adhesion is not None and adhesion.model == "maugis_dugdale":
+    if adhesion is not None and adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
         approach = adhesion.work_of_adhesion
     return UnitInputs(
         profile=scene.body.profile.build() if profile is None else profile,

@@ -14,6 +14,7 @@ from pydantic import Field, ValidationError, model_validator
 from .errors import FieldProblem, SceneError, problems_of
 from .representable import check_representable
 from .sections import (
+    DOUBLE_HERTZ_SHAPES,
     DUGDALE_SHAPES,
     MASS_OR_DENSITY,
     SOLVER_METHODS,
@@ -120,6 +121,26 @@ class Scene(Section):
             )
         if self.contact.springs != "continuum":
             raise FieldProblem("contact.springs", "maugis_dugdale runs on the continuum law only ('continuum')")
+        return self
+
+    @model_validator(mode="after")
+    def _double_hertz_supported(self):
+        adhesion = self.effects.adhesion
+        if adhesion is None or adhesion.model != "greenwood_johnson":
+            return self
+        if self.kind != "impact":
+            raise FieldProblem(
+                "effects.adhesion.model", "greenwood_johnson is simulated in impacts only (kind 'impact')"
+            )
+        shape = self.body.profile.shape
+        if shape not in DOUBLE_HERTZ_SHAPES:
+            raise FieldProblem(
+                "effects.adhesion.model",
+                f"greenwood_johnson needs a paraboloid ({', '.join(DOUBLE_HERTZ_SHAPES)}): the double-Hertz "
+                f"stress of §3.9 holds for f = r²/(2R) only, not {shape!r}",
+            )
+        if self.contact.springs != "continuum":
+            raise FieldProblem("contact.springs", "greenwood_johnson runs on the continuum law only ('continuum')")
         return self
 
     @model_validator(mode="after")

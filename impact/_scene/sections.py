@@ -122,7 +122,10 @@ class Initial(Section):
     )
     gap: Annotated[Number, within(d.GAP)] = Field(
         0.0,
-        description="initial distance between tip and surface (m); with maugis_dugdale adhesion, beyond the range h",
+        description=(
+            "initial distance between tip and surface (m); with maugis_dugdale adhesion, beyond the range h; "
+            "with greenwood_johnson, beyond the onset d₀ = −k·c₀²/R"
+        ),
     )
 
 
@@ -131,12 +134,22 @@ class Initial(Section):
 DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
 
 
+# Profiles Greenwood and Johnson's double Hertz is built for: the paraboloid of §3.9 (and the
+# sphere's tip, its paraboloid r²/(2R)).
+DOUBLE_HERTZ_SHAPES = ("paraboloid", "sphere")
+
+
 class Adhesion(Section):
     """Adhesion: JKR (zero range) by the rule of Heß, with hysteretic attachment; or
-    Maugis–Dugdale (a constant stress σ0 up to the range h, Δγ = σ0·h)."""
+    Maugis–Dugdale (a constant stress σ0 up to the range h, Δγ = σ0·h); or Greenwood–Johnson
+    (double Hertz with the factor k)."""
 
-    model: Literal["jkr", "maugis_dugdale"] = Field(
-        "jkr", description="'jkr' (zero range, rule of Heß) or 'maugis_dugdale' (stress σ0 up to the range h)"
+    model: Literal["jkr", "maugis_dugdale", "greenwood_johnson"] = Field(
+        "jkr",
+        description=(
+            "'jkr' (zero range, rule of Heß), 'maugis_dugdale' (stress σ0 up to the range h) or "
+            "'greenwood_johnson' (double Hertz of factor k, §3.9)"
+        ),
     )
     work_of_adhesion: WorkOfAdhesion = Field(
         description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
@@ -154,6 +167,13 @@ class Adhesion(Section):
     range: Length | None = Field(
         None, description="maugis_dugdale only: range h (m) of the adhesive stress; or give stress"
     )
+    k: Annotated[Number, within(d.DOUBLE_HERTZ_FACTOR)] | None = Field(
+        None,
+        description=(
+            "greenwood_johnson only: the factor k of the double-Hertz stress (3.198); "
+            "large k is JKR-like, small k DMT-like (Tabor Λ = (36k²/(π³(1 + k)))^(1/3))"
+        ),
+    )
 
     @model_validator(mode="after")
     def _approach_not_above(self):
@@ -163,11 +183,15 @@ class Adhesion(Section):
 
     @model_validator(mode="after")
     def _parameters_of_the_model(self):
+        if self.k is not None and self.model != "greenwood_johnson":
+            raise FieldProblem("k", f"only for model 'greenwood_johnson' ({self.model} has no double-Hertz factor)")
         if self.model == "jkr":
             for name in ("stress", "range"):
                 if getattr(self, name) is not None:
                     raise FieldProblem(name, "only for model 'maugis_dugdale' (jkr has zero range)")
             return self
+        if self.model == "greenwood_johnson":
+            return self._double_hertz_parameters()
         if self.approach_work_of_adhesion is not None:
             raise FieldProblem(
                 "approach_work_of_adhesion",
@@ -179,6 +203,22 @@ class Adhesion(Section):
             )
         if self.work_of_adhesion == 0:
             raise FieldProblem("work_of_adhesion", "must be > 0 for model 'maugis_dugdale' (drop adhesion for none)")
+        return self
+
+    def _double_hertz_parameters(self):
+        for name in ("stress", "range"):
+            if getattr(self, name) is not None:
+                raise FieldProblem(name, "only for model 'maugis_dugdale' (greenwood_johnson takes k)")
+        if self.approach_work_of_adhesion is not None:
+            raise FieldProblem(
+                "approach_work_of_adhesion",
+                "only for model 'jkr': Greenwood–Johnson loads and unloads on the stable branches of "
+                "its equilibrium curve, without approach hysteresis",
+            )
+        if self.k is None:
+            raise FieldProblem("k", "model 'greenwood_johnson' needs the double-Hertz factor k > 0")
+        if self.work_of_adhesion == 0:
+            raise FieldProblem("work_of_adhesion", "must be > 0 for model 'greenwood_johnson' (drop adhesion for none)")
         return self
 
     @property
@@ -193,6 +233,12 @@ class Adhesion(Section):
             return self.stress
         assert self.range is not None, "validated: maugis_dugdale takes stress or range"
         return self.work_of_adhesion / self.range
+
+    @property
+    def double_hertz_factor(self) -> float:
+        """k of the Greenwood–Johnson model."""
+        assert self.k is not None, "validated: greenwood_johnson takes k"
+        return self.k
 
     @property
     def adhesion_range(self) -> float:

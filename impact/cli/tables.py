@@ -104,6 +104,10 @@ def _effects(scene: Scene) -> str:
             f"Maugis–Dugdale adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², "
             f"σ0 = {adhesion.adhesive_stress:.6g} Pa, h = {adhesion.adhesion_range:.6g} m)"
         )
+    elif adhesion is not None and adhesion.model == "greenwood_johnson":
+        effects.append(
+            f"Greenwood–Johnson double-Hertz adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², k = {adhesion.k:g})"
+        )
     elif adhesion is not None:
         effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
     if gravity is not None:

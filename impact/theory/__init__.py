@@ -43,7 +43,9 @@ Misprints found in the chapter (the code uses the corrected forms):
 (3.82) reduces to (3.51) at n = 2, c = 1/(2R).
 
 The Maugis–Dugdale functions (§3.6–3.8, from ``tabor_parameter`` on) use numpy/scipy (hypergeometric
-function, scalar minimization) and compute in float64 whatever the jax setting.
+function, scalar minimization) and compute in float64 whatever the jax setting. The
+Greenwood–Johnson double-Hertz functions (§3.9, ``double_hertz_*``) are jax.numpy closed forms
+(jit/vmap/grad-ready); their equivalent Tabor parameter maps k onto the Maugis–Dugdale Λ.
 """
 
 from ..profiles import kappa as kappa
@@ -79,6 +81,15 @@ from ._critical import power_law_critical as power_law_critical
 from ._critical import power_law_half_threshold as power_law_half_threshold
 from ._critical import power_law_jump_in as power_law_jump_in
 from ._critical import sphere_critical as sphere_critical
+from ._double_hertz import double_hertz_adhesive_stress as double_hertz_adhesive_stress
+from ._double_hertz import double_hertz_factor as double_hertz_factor
+from ._double_hertz import double_hertz_force as double_hertz_force
+from ._double_hertz import double_hertz_indentation as double_hertz_indentation
+from ._double_hertz import double_hertz_onset as double_hertz_onset
+from ._double_hertz import double_hertz_outer_radius as double_hertz_outer_radius
+from ._double_hertz import double_hertz_pull_off as double_hertz_pull_off
+from ._double_hertz import double_hertz_range as double_hertz_range
+from ._double_hertz import double_hertz_tabor_parameter as double_hertz_tabor_parameter
 from ._impact import attach_on_touch_energy_loss as attach_on_touch_energy_loss
 from ._impact import attach_on_touch_restitution as attach_on_touch_restitution
 from ._impact import hertz_contact_time as hertz_contact_time
@@ -210,4 +221,13 @@ __all__ = [
     "maugis_pull_off_force",
     "maugis_pull_off_large_tabor",
     "maugis_pull_off_force_large_tabor",
+    "double_hertz_outer_radius",
+    "double_hertz_force",
+    "double_hertz_indentation",
+    "double_hertz_pull_off",
+    "double_hertz_onset",
+    "double_hertz_adhesive_stress",
+    "double_hertz_range",
+    "double_hertz_tabor_parameter",
+    "double_hertz_factor",
 ]

@@ -69,6 +69,19 @@ def test_new_traced_values_do_not_recompile():
         assert result.success and result.restitution != reference.restitution, name
 
 
+def test_new_double_hertz_factors_do_not_recompile():
+    """Greenwood–Johnson's k is traced: a new k (either side of k = 1, where the curve gains its
+    turning point) runs the compiled program."""
+    scene = read_yaml(ROOT / "configs" / "greenwood_johnson.yaml")
+    reference = impact.simulate(scene)  # compiles here unless done before
+    for k in (0.5, 1e3):
+        scene["effects"]["adhesion"]["k"] = k
+        with Compiles() as compiles:
+            result = impact.simulate(scene)
+        assert compiles.count == 0, f"k = {k} recompiled ({compiles.count} compilations)"
+        assert result.success and result.restitution != reference.restitution
+
+
 @pytest.mark.parametrize(
     ("variable", "arguments", "expected"),
     [

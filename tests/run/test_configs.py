@@ -103,6 +103,18 @@ def maugis_dugdale_pull_off(result):
     assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
 
 
+def greenwood_johnson_pull_off(result):
+    """k = 10: e between Thornton–Ning and 1; the unloading passes the force-controlled pull-off of
+    the double-Hertz curve (theory.double_hertz_pull_off, ξ = 3)."""
+    scene = result.scene
+    adhesion = scene.effects.adhesion
+    R, E_star = scene.body.profile.R, scene.material.effective_modulus
+    assert result.tabor_parameter == pytest.approx(float(theory.double_hertz_tabor_parameter(adhesion.k)), rel=1e-12)
+    assert thornton_ning(scene, result.touch_velocity) < result.restitution < 1.0
+    pull_off = float(theory.double_hertz_pull_off(adhesion.k, R, E_star, adhesion.work_of_adhesion, 3)[2])
+    assert result.min_force == pytest.approx(pull_off, rel=1e-8)
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -115,6 +127,7 @@ CHECKS = {
     "indentation_paraboloid": force_controlled_pull_off,
     "indentation_wavy": displacement_controlled_wavy_pull_off,
     "maugis_dugdale": maugis_dugdale_pull_off,
+    "greenwood_johnson": greenwood_johnson_pull_off,
 }
 
 

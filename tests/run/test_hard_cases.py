@@ -335,7 +335,7 @@ def test_16_vanishing_approach_adhesion_tends_to_attach_on_touch(share):
     assert abs(result.restitution - expected) <= ATTACH_ON_TOUCH_TOLERANCE
 
 
-def maugis_energy_balance(result, scene):
+def finite_range_energy_balance(result, scene):
     mass = scene.body.resolved_mass
     lost = 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2)
     assert abs(lost - result.dissipated_energy) <= 1e-7 * 0.5 * mass * result.touch_velocity**2
@@ -348,7 +348,7 @@ def test_17_maugis_dugdale_deep_on_the_dmt_side():
     kinds = [kind for _, kind in result.events]
     assert kinds == ["touch", "contact_start", "max_indentation", "contact_end", "separation"]
     assert abs(1.0 - result.restitution) < 1e-8  # the dissipation of its snaps is below 1e-10
-    maugis_energy_balance(result, scene)
+    finite_range_energy_balance(result, scene)
 
 
 def test_18_maugis_dugdale_deep_on_the_jkr_side():
@@ -356,4 +356,14 @@ def test_18_maugis_dugdale_deep_on_the_jkr_side():
     assert result.status == "separated"
     assert result.tabor_parameter == pytest.approx(1000.0, rel=1e-9)
     assert 0.0 < result.restitution - tn_restitution(scene) < 2e-4
-    maugis_energy_balance(result, scene)
+    finite_range_energy_balance(result, scene)
+
+
+def test_19_greenwood_johnson_deep_on_the_jkr_side():
+    scene, result = run_case("19_greenwood_johnson_extremes")
+    assert result.status == "separated"
+    assert result.tabor_parameter == pytest.approx(float(theory.double_hertz_tabor_parameter(1e6)), rel=1e-12)
+    assert 0.0 < result.restitution - tn_restitution(scene) < 3e-3
+    pull_off = float(theory.double_hertz_pull_off(1e6, 1.0e-6, 1.0e9, 0.05, 3)[2])
+    assert result.min_force == pytest.approx(pull_off, rel=1e-8)
+    finite_range_energy_balance(result, scene)

@@ -9,7 +9,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ... import profiles, theory
-from ..._integrate.dugdale import MaugisDugdale
+from ..._integrate.curve import AbstractCurveIntegrator
 from ..._integrate.problem import Physics, touch_velocity
 from ..._scene.scene import Scene
 
@@ -21,8 +21,8 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     """The chapter's restitution for one point (traced): Thornton–Ning for the paraboloid with
     Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
-    NaN elsewhere. Maugis–Dugdale points get their JKR limit (Λ → ∞): no closed form has a
-    finite range."""
+    NaN elsewhere. Maugis–Dugdale and Greenwood–Johnson points get their JKR limit (Λ → ∞,
+    k → ∞): no closed form has a finite range."""
     options = choices.options
     if not options.adhesive:
         return jnp.ones(())
@@ -32,7 +32,7 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     profile = physics.profile
     v, m, modulus = touch_velocity(physics, options), physics.mass, physics.E_star
     work, approach = physics.adhesion.work_of_adhesion, physics.adhesion.approach_work_of_adhesion
-    reversible = (approach == work) | isinstance(choices.integrator, MaugisDugdale)
+    reversible = (approach == work) | isinstance(choices.integrator, AbstractCurveIntegrator)
     if type(profile) is profiles.Paraboloid:
         jkr = theory.thornton_ning_restitution(v, m, profile.R, modulus, work)
         on_touch = theory.attach_on_touch_restitution(v, m, profile.R, modulus, work)
@@ -63,6 +63,8 @@ def closed_form_name(scene: Scene) -> str:
             "cone": "power law (3.81–82)",
         }
         return f"{limit[shape]}: the JKR limit Λ → ∞ of Maugis–Dugdale"
+    if adhesion.model == "greenwood_johnson":
+        return "Thornton–Ning (3.50–51): the JKR limit k → ∞ of Greenwood–Johnson"
     if shape == "paraboloid":
         if adhesion.approach == adhesion.work_of_adhesion:
             return "Thornton–Ning (3.50–51)"

@@ -86,7 +86,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
         for new, ref in zip(jax.tree.leaves(profile), reference, strict=True)
     ]
     adhesion, gravity = batch.effects.adhesion, batch.effects.gravity
-    stress = np.full((), np.nan)
+    stress = factor = np.full((), np.nan)
     if adhesion is None:
         work = approach = np.zeros(())
     else:
@@ -94,6 +94,9 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
         work = np.where(adhesive, adhesion.work_of_adhesion, 0.0)
         if adhesion.model == "maugis_dugdale":
             stress = np.where(adhesive, adhesion.adhesive_stress, np.nan)
+            approach = np.zeros(())
+        elif adhesion.model == "greenwood_johnson":
+            factor = np.where(adhesive, adhesion.double_hertz_factor, np.nan)
             approach = np.zeros(())
         else:
             approach = np.where(adhesive, adhesion.approach, 0.0)
@@ -108,6 +111,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
             work_of_adhesion=_batched(work, (), size),
             approach_work_of_adhesion=_batched(approach, (), size),
             adhesive_stress=_batched(stress, (), size),
+            double_hertz_factor=_batched(factor, (), size),
         ),
         gravity=Gravity(_batched(0.0 if gravity is None else gravity.g, (), size)),
         time_limit=_batched(np.inf if duration is None else duration, (), size),

@@ -1,0 +1,77 @@
+"""An equilibrium curve of a finite-range adhesive law: every quasi-static state (d, F, a, outer
+radius) along one parameter s, split at the turning points of d(s) into monotone segments.
+
+Under displacement control (and for a free body) the rising segments are stable: a state rides
+one of them and, at its end, jumps at fixed d to the next rising state at that level (snap-in,
+snap-out) or, with none left, lets go. Maugis–Dugdale (`dugdale`, §3.8) and Greenwood–Johnson
+(`double_hertz`, §3.9) are such curves; `_integrate.curve` rides them.
+"""
+
+import abc
+from typing import Protocol
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._core.search import bisect
+from .branches import next_rising, previous_rising
+from .scales import Scales
+
+_INVERSION_STEPS = 100
+
+
+class CurveLaw(Protocol):
+    """What a rider needs of a curve's law besides the curve: its units and the depth d where
+    the interaction starts."""
+
+    @property
+    def scales(self) -> Scales: ...
+
+    @property
+    def onset(self) -> jax.Array: ...
+
+
+class AbstractCurve(eqx.Module):
+    """The states of one law along s ≥ 0, with its segments (`nodes`: 0, turning points, …, the
+    top; `levels`: d at the nodes; `increasing`: which segments rise)."""
+
+    junction: eqx.AbstractVar[jax.Array]  # s where a contact closes (unloading there ends it)
+    nodes: eqx.AbstractVar[jax.Array]  # [S+1]
+    levels: eqx.AbstractVar[jax.Array]  # [S+1]
+    increasing: eqx.AbstractVar[jax.Array]  # [S]
+    overflow: eqx.AbstractVar[jax.Array]  # more turning points than the curve holds
+
+    @abc.abstractmethod
+    def state(self, law, s):
+        """(d, F, a, outer radius) at s, scaled."""
+
+    def riding(self, law, s):
+        """(d, F, dd/ds) at s."""
+        (depth, force), (slope, _) = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
+        return depth, force, slope
+
+    def depth(self, law, s):
+        return self.state(law, s)[0]
+
+    def force(self, law, s):
+        return self.state(law, s)[1]
+
+    def invert(self, law, depth, segment):
+        """s with d(s) = depth on a rising segment (clamped to it), by bisection."""
+        lower, upper = self.nodes[segment], self.nodes[segment + 1]
+        lo, hi = bisect(lambda s: self.depth(law, s) < depth, lower, upper, _INVERSION_STEPS)
+        return 0.5 * (lo + hi)
+
+    def cascade_out(self, law, start, depth):
+        """First rising state beyond `start` at level d: (s, segment, blocked)."""
+        segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
+        landing = jnp.maximum(self.invert(law, depth, segment), start)
+        return jnp.where(blocked, self.nodes[-1], landing), segment, blocked
+
+    def cascade_in(self, law, start, depth):
+        """Last rising state below `start` at level d: (s, segment, released); released means
+        no state holds: the body leaves the range of the adhesive stress."""
+        segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
+        landing = jnp.minimum(self.invert(law, depth, segment), start)
+        return jnp.where(released, 0.0, landing), segment, released
