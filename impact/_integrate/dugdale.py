@@ -25,7 +25,7 @@ from .base import AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
-from .problem import Options, Physics, touch_velocity
+from .problem import Options, Physics, scaled_time_limit, touch_velocity
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
 
@@ -75,7 +75,7 @@ class MaugisDugdale(AbstractAdaptiveIntegrator):
             start_velocity=physics.velocity / scales.velocity,
             touch_speed=touch_speed,
             bounded=jnp.asarray(True),
-            time_limit=physics.time_limit / scales.time,
+            time_limit=scaled_time_limit(physics, scales),
         )
 
     def integrate(self, problem: DugdaleProblem, options: Options) -> Outcome:
