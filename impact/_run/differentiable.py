@@ -74,29 +74,65 @@ def as_function(
         out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in names])
         return out[0] if isinstance(output, str) else out
 
+    def jacobian(x: jax.Array) -> tuple[jax.Array, jax.Array]:
+        """(f(x), ∂f/∂x [outputs…, inputs]): one forward-mode tangent per input, the point
+        repeated with it (a tangent batched over an unbatched point trips optimistix's implicit
+        solve at diffrax's events)."""
+        size = x.shape[0]
+        values, columns = jax.vmap(
+            lambda point, tangent: jax.jvp(lambda y: results(forward_point, y), (point,), (tangent,))
+        )(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
+        return values[0], jnp.moveaxis(columns, 0, -1)
+
     @jax.custom_jvp
     def solved(x: jax.Array) -> jax.Array:
         return results(value_point, x)
 
     @solved.defjvp
     def solved_jvp(primals, tangents):
-        (x,), (dx,) = primals, tangents
-        # One forward-mode tangent per input, the point repeated with it (a tangent batched
-        # over an unbatched point trips optimistix's implicit solve at diffrax's events).
-        size = x.shape[0]
-        values, columns = jax.vmap(
-            lambda point, tangent: jax.jvp(lambda y: results(forward_point, y), (point,), (tangent,))
-        )(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
-        return values[0], jnp.tensordot(columns, dx, axes=(0, 0))
+        value, derivative = jacobian(primals[0])
+        return value, derivative @ tangents[0]
 
-    compiled = jax.jit(solved)
+    return _in_float64(solved, jacobian, paths, () if isinstance(output, str) else (len(names),))
+
+
+def _in_float64(
+    solved: Callable, jacobian: Callable, paths: list[str], shape: tuple
+) -> Callable[[jax.Array], jax.Array]:
+    """f computing in float64 whatever JAX's global flag. With the flag on, f is `solved`
+    itself. With it off JAX holds no float64 value in a traced program, so f hands the solve
+    and its Jacobian to the host (`jax.pure_callback`, where they run in float64) and returns
+    the dtype of its input; J·ẋ keeps it differentiable in both modes."""
+    compiled_value, compiled_jacobian = jax.jit(solved), jax.jit(lambda x: jacobian(x)[1])
+
+    def on_host(function: Callable, dtype) -> Callable:
+        def run(x: np.ndarray) -> np.ndarray:
+            with jax.enable_x64(True):
+                flat = np.asarray(x, np.float64).reshape(-1, len(paths))
+                out = np.asarray(jax.vmap(function)(flat))
+            return out.reshape(x.shape[:-1] + out.shape[1:]).astype(dtype)
+
+        return run
+
+    @jax.custom_jvp
+    def hosted(x: jax.Array) -> jax.Array:
+        result = jax.ShapeDtypeStruct(shape, x.dtype)
+        return jax.pure_callback(on_host(compiled_value, x.dtype), result, x, vmap_method="expand_dims")
+
+    @hosted.defjvp
+    def hosted_jvp(primals, tangents):
+        (x,), (dx,) = primals, tangents
+        value = hosted(x)
+        result = jax.ShapeDtypeStruct((*value.shape, len(paths)), x.dtype)
+        derivative = jax.pure_callback(on_host(compiled_jacobian, x.dtype), result, x, vmap_method="expand_dims")
+        return value, derivative @ dx
 
     def f(x: jax.Array) -> jax.Array:
-        with jax.enable_x64(True):
-            x = jnp.asarray(x, jnp.float64)
-            if x.shape != (len(paths),):
-                raise ValueError(f"f takes its {len(paths)} inputs {paths} as a vector, got shape {x.shape}")
-            return compiled(x)
+        if jnp.shape(x) != (len(paths),):
+            raise ValueError(f"f takes its {len(paths)} inputs {paths} as a vector, got shape {jnp.shape(x)}")
+        if jax.config.read("jax_enable_x64"):
+            return compiled_value(jnp.asarray(x, jnp.float64))
+        return hosted(jnp.asarray(x, jnp.result_type(float)))
 
     return f
 
