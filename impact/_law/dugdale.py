@@ -28,8 +28,8 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .._core.quadrature import gauss_legendre
 from .._core.derivatives import implicit_root
+from .._core.quadrature import gauss_legendre
 from .._core.search import bisect
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import next_rising, previous_rising, sign_changes
