@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from . import profiles as profiles
     from . import theory as theory
     from ._core.runtime import configure as configure
+    from ._run.differentiable import as_function as as_function
     from ._run.impacts import Result as Result
     from ._run.indentation import IndentationResult as IndentationResult
     from ._run.simulate import simulate as simulate
@@ -33,6 +34,7 @@ _SOURCES = {
     "Scene": "._scene.scene",
     "SceneError": "._scene.scene",
     "SweepResult": "._run.sweep",
+    "as_function": "._run.differentiable",
     "configure": "._core.runtime",
     "load_scene": "._scene.scene",
     "profiles": ".profiles",
@@ -48,6 +50,7 @@ __all__ = [
     "SceneError",
     "SweepResult",
     "__version__",
+    "as_function",
     "configure",
     "load_scene",
     "profiles",

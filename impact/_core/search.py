@@ -12,6 +12,8 @@ import jax
 import jax.numpy as jnp
 from jaxtyping import Array, ArrayLike
 
+from .derivatives import implicit_root
+
 # (√5 − 1)/2: the golden-section ratio.
 GOLDEN_RATIO = 0.5 * (math.sqrt(5.0) - 1.0)
 
@@ -53,14 +55,14 @@ def sign_change(function: Callable[[Array], Array], lower: ArrayLike, upper: Arr
 def log_sign_change(
     excess: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int
 ) -> tuple[Array, Array]:
-    """Where `excess` changes sign between two positive points, bisected in log x:
-    (point, found). Where the signs at the ends agree, `found` is False and the point is the
+    """Where `excess` changes sign between two positive points, bisected in log x (and
+    differentiated implicitly): (point, found). Where the signs at the ends agree, `found` is False and the point is the
     upper end."""
     lower, upper = jnp.asarray(lower), jnp.asarray(upper)
     sign = jnp.sign(excess(lower))
     found = sign != jnp.sign(excess(upper))
     low, high = bisect(lambda log_x: jnp.sign(excess(jnp.exp(log_x))) == sign, jnp.log(lower), jnp.log(upper), steps)
-    return jnp.where(found, jnp.exp(0.5 * (low + high)), upper), found
+    return jnp.where(found, implicit_root(excess, jnp.exp(0.5 * (low + high))), upper), found
 
 
 def golden_section(

@@ -13,6 +13,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core import derivatives
 from .._core.types import Parameter
 from .._law.scales import Scales
 
@@ -40,5 +41,5 @@ class Adhesion(eqx.Module):
         """(λ, λa) of the scaled Heß rule: the edge spring at x̂ detaches at the elongation λ·√x̂
         and the next one attaches at λa·√x̂, λa = λ·√(Δγa/Δγ) (3.26 in the units of `scales`)."""
         detach = jnp.sqrt(2.0 * jnp.pi * scales.radial * self.work_of_adhesion / E_star) / scales.normal
-        attach = detach * jnp.sqrt(self.approach_work_of_adhesion / self.work_of_adhesion)
+        attach = detach * derivatives.sqrt(self.approach_work_of_adhesion / self.work_of_adhesion)
         return detach, attach

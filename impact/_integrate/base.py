@@ -29,6 +29,10 @@ SOLVERS = {
     "kvaerno5": dfx.Kvaerno5,
 }
 
+# How a ride is differentiated: diffrax's default (reverse mode through checkpoints), or
+# forward mode (`jax.jvp`, `jax.jacfwd`); each fails under the other kind of derivative.
+ADJOINTS = {"checkpoint": dfx.RecursiveCheckpointAdjoint, "forward": dfx.ForwardMode}
+
 # Events are located by bisection inside the step that crossed, to a bracket of
 # 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
 _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
@@ -58,10 +62,13 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
     rtol: float | jax.Array = 1e-10
     atol: float | jax.Array = 1e-12  # in scaled units
     max_steps: int = eqx.field(default=4096, static=True)  # per phase
+    adjoint: str = eqx.field(default="checkpoint", static=True)  # a key of ADJOINTS
 
     def __check_init__(self):
         if self.method not in SOLVERS:
             raise ValueError(f"unknown solver {self.method!r}; known: {', '.join(SOLVERS)}")
+        if self.adjoint not in ADJOINTS:
+            raise ValueError(f"unknown adjoint {self.adjoint!r}; known: {', '.join(ADJOINTS)}")
 
     def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> dfx.Solution:
         """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
@@ -80,6 +87,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
                 first_event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True
             ),
             max_steps=self.max_steps,
+            adjoint=ADJOINTS[self.adjoint](),
             throw=False,
         )
 

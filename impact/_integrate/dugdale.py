@@ -7,7 +7,7 @@ import jax.numpy as jnp
 from .._law.dugdale import DugdaleLaw, build_curve
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
-from .problem import Options, Physics, touch_velocity
+from .problem import Options, Physics, scaled_time_limit, touch_velocity
 
 
 class MaugisDugdale(AbstractCurveIntegrator):
@@ -29,5 +29,5 @@ class MaugisDugdale(AbstractCurveIntegrator):
             start_velocity=physics.velocity / scales.velocity,
             touch_speed=touch_speed,
             bounded=jnp.asarray(True),
-            time_limit=physics.time_limit / scales.time,
+            time_limit=scaled_time_limit(physics, scales),
         )

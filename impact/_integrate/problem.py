@@ -63,6 +63,13 @@ def touch_velocity(physics: Physics, options: Options) -> Parameter:
     return physics.gravity.touch_velocity(physics.velocity, physics.gap)
 
 
+def scaled_time_limit(physics: Physics, scales: Scales) -> jax.Array:
+    """The time limit in units of `scales` (an infinite one kept out of the division, whose
+    derivative would be nan)."""
+    limit = physics.time_limit
+    return jnp.where(jnp.isfinite(limit), limit / scales.time, jnp.inf)
+
+
 class Problem(eqx.Module):
     """The scaled impact of the continuum (and spring-array) law: the law, its two branches and
     the initial state."""
@@ -121,5 +128,5 @@ def build_problem(physics: Physics, options: Options) -> Problem:
         start_velocity=physics.velocity / scales.velocity,
         touch_speed=touch_speed,
         bounded=bounded | jnp.isfinite(law.extent()),
-        time_limit=physics.time_limit / scales.time,
+        time_limit=scaled_time_limit(physics, scales),
     )

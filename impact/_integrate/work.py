@@ -5,6 +5,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core import derivatives
 from .._core.quadrature import gauss_legendre
 from .._core.search import golden_section
 from .._law.branches import Branch
@@ -102,7 +103,7 @@ def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start
     # Hold: a harmonic arc about d_eq; if it starts inward it turns at d_eq + amplitude.
     stiffness = 2.0 * jnp.maximum(a_start, 1e-300)
     balance = (2.0 * law.G(a_start) + gravity) / stiffness
-    turn = balance + jnp.sqrt((d_start - balance) ** 2 + v_start**2 / stiffness)
+    turn = balance + derivatives.sqrt((d_start - balance) ** 2 + v_start**2 / stiffness)
     deepest_hold = jnp.where(v_start > 0.0, jnp.maximum(turn, d_start), jnp.maximum(d_start, d_end))
     forces_hold = law.force(a_start, jnp.stack([jnp.minimum(d_start, d_end), deepest_hold]))
     work_hold = hold_work(law, a_start, d_start, d_end)

@@ -19,6 +19,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.derivatives import implicit_root
 from .._core.search import bisect
 from ..profiles import Profile, Tabulated, WavyParaboloid
 from .law import ContactLaw
@@ -228,14 +229,15 @@ def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, tabl
 
 def sign_changes(slope, grid, rising, max_turns: int):
     """Where `slope` changes sign between neighbours of the sorted `grid` (`rising`: slope > 0
-    there), bisected to round-off: (points [max_turns], valid [max_turns], count)."""
+    there), bisected to round-off and differentiated implicitly: (points [max_turns], valid
+    [max_turns], count)."""
     change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
     count = jnp.sum(change)
     (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
 
     rising_below = rising[index]  # the lower end keeps its sign: bisect towards the other one
     lo, hi = bisect(lambda x: (slope(x) > 0.0) == rising_below, grid[index], grid[index + 1], _BISECTION_STEPS)
-    return 0.5 * (lo + hi), jnp.arange(max_turns) < count, count
+    return implicit_root(slope, 0.5 * (lo + hi)), jnp.arange(max_turns) < count, count
 
 
 def _tip_turn_bracket(slope, lower, upper):

@@ -14,6 +14,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.derivatives import implicit_root
 from .._core.search import bisect
 from .branches import next_rising, previous_rising
 from .scales import Scales
@@ -61,7 +62,7 @@ class AbstractCurve(eqx.Module):
         """s with d(s) = depth on a rising segment (clamped to it), by bisection."""
         lower, upper = self.nodes[segment], self.nodes[segment + 1]
         lo, hi = bisect(lambda s: self.depth(law, s) < depth, lower, upper, _INVERSION_STEPS)
-        return 0.5 * (lo + hi)
+        return implicit_root(lambda s: self.depth(law, s) - depth, 0.5 * (lo + hi))
 
     def cascade_out(self, law, start, depth):
         """First rising state beyond `start` at level d: (s, segment, blocked)."""

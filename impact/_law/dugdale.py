@@ -28,6 +28,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core.derivatives import implicit_root
 from .._core.quadrature import gauss_legendre
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import sign_changes
@@ -126,8 +127,9 @@ class DugdaleLaw(eqx.Module):
 
     def zone_radius(self, share):
         """b solving bⁿ·P + b·Q = h: Newton on ln(bⁿP + bQ) = ln h (convex in ln b) from the
-        smaller one-term root, which lies above; one last step outside the loop carries the
-        derivative db/dp."""
+        smaller one-term root, which lies above; one last step outside the loop, from the root
+        differentiated implicitly, carries the derivatives of b (the curve's slope dd/ds is
+        itself one: its derivative needs the second)."""
         shape, adhesive = self.shape_term(share), self.adhesive_term(share)
         n, log_range = self.degree, jnp.log(self.range)
 
@@ -139,10 +141,8 @@ class DugdaleLaw(eqx.Module):
             return log_zone - value / slope
 
         start = jnp.minimum((log_range - jnp.log(shape)) / n, log_range - jnp.log(adhesive))
-        settled = jax.lax.stop_gradient(
-            jax.lax.fori_loop(0, _RADIUS_NEWTON_STEPS, lambda _, x: newton(x), jax.lax.stop_gradient(start))
-        )
-        return jnp.exp(newton(settled))
+        settled = jax.lax.fori_loop(0, _RADIUS_NEWTON_STEPS, lambda _, x: newton(x), jax.lax.stop_gradient(start))
+        return jnp.exp(newton(implicit_root(residual, settled)))
 
     def contact(self, share):
         """(d, F, a, b) of the contact with zone share p = (b − a)/b."""

@@ -11,6 +11,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core import derivatives
 from ..profiles import Profile
 from .scales import Scales
 
@@ -33,14 +34,16 @@ class ContactLaw(eqx.Module):
         return self.profile.G(x * self.scales.radial) / (self.scales.radial * self.scales.normal)
 
     def extent(self):
-        """Largest scaled contact radius the body allows (inf for unbounded shapes)."""
-        return self.profile.extent() / self.scales.radial
+        """Largest scaled contact radius the body allows (inf for unbounded shapes; kept out of
+        the division, whose derivative would be nan)."""
+        extent = self.profile.extent()
+        return jnp.where(jnp.isfinite(extent), extent / self.scales.radial, jnp.inf)
 
     def edge(self, x, coefficient):
         """Edge function h(x̂) = ĝ(x̂) − coefficient·√x̂ (ĝ alone without adhesion)."""
         if not self.adhesive:
             return self.g(x)
-        return self.g(x) - coefficient * jnp.sqrt(x)
+        return self.g(x) - coefficient * derivatives.sqrt(x)
 
     def g_slope(self, x):
         """dĝ/dx̂."""

@@ -3,6 +3,7 @@
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.derivatives import implicit_root
 from .._core.search import bisect
 from .law import ContactLaw
 
@@ -46,8 +47,9 @@ def radius_bound(law: ContactLaw, coefficient, speed):
     index = jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)
     start, start_work = grid[index - 1], work[index - 1]
 
-    def short(a):
-        return start_work + boundary(a) - boundary(start) + squared_area(start, a) < energy
+    def excess(a):  # W(a) − (½v² + 1)
+        return start_work + boundary(a) - boundary(start) + squared_area(start, a) - energy
 
-    _, bound = bisect(short, start, grid[index], _BISECTION_STEPS)
+    _, bound = bisect(lambda a: excess(a) < 0.0, start, grid[index], _BISECTION_STEPS)
+    bound = implicit_root(excess, bound)  # a spring array's default length follows it
     return jnp.minimum(jnp.where(jnp.any(enough), bound, grid[-1]), law.extent()), jnp.any(enough)

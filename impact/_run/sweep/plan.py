@@ -70,53 +70,60 @@ def plan_sweep(spec: SweepSpec) -> Plan:
 
 
 def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> Physics:
-    """`physics_for` of every point at once: numpy leaves with a leading axis of `size`.
+    """`physics_for` of every point at once: numpy leaves with a leading axis of `size`."""
+    template = physics_for(scene)
+    physics = physics_with(scene, params, np)
+    return jax.tree.map(lambda new, ref: _batched(new, np.shape(ref), size), physics, template)
 
-    The base scene is copied with the swept values as arrays (no validation: the points are
-    validated already), so derived values (E* from E and ν, mass from density) follow the
-    scene's own formulas elementwise."""
+
+def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
+    """`physics_for` of the scene with the fields at dotted paths set to `params`, in the array
+    module `xp` (numpy for a sweep's batch, `jax.numpy` for traced values).
+
+    The base scene is copied with the values (no validation: they are validated already, or
+    traced), so derived values (E* from E and ν, mass from density) follow the scene's own
+    formulas elementwise."""
     template = physics_for(scene)
     batch = with_values(scene, params)
     profile = (
         batch.body.profile.build() if any(path.startswith("body.profile.") for path in params) else template.profile
     )
-    reference, treedef = jax.tree.flatten(template.profile)
-    leaves = [
-        _batched(np.asarray(new), np.shape(ref), size)
-        for new, ref in zip(jax.tree.leaves(profile), reference, strict=True)
-    ]
     adhesion, gravity = batch.effects.adhesion, batch.effects.gravity
-    stress = factor = np.full((), np.nan)
+    stress = factor = xp.full((), xp.nan)
     if adhesion is None:
-        work = approach = np.zeros(())
+        work = approach = xp.zeros(())
     else:
-        adhesive = np.asarray(adhesion.work_of_adhesion) > 0
-        work = np.where(adhesive, adhesion.work_of_adhesion, 0.0)
+        adhesive = xp.asarray(adhesion.work_of_adhesion) > 0
+        work = xp.where(adhesive, adhesion.work_of_adhesion, 0.0)
         if adhesion.model == "maugis_dugdale":
-            stress = np.where(adhesive, adhesion.adhesive_stress, np.nan)
-            approach = np.zeros(())
+            stress = xp.where(adhesive, adhesion.adhesive_stress, xp.nan)
+            approach = xp.zeros(())
         elif adhesion.model == "greenwood_johnson":
-            factor = np.where(adhesive, adhesion.double_hertz_factor, np.nan)
-            approach = np.zeros(())
+            factor = xp.where(adhesive, adhesion.double_hertz_factor, xp.nan)
+            approach = xp.zeros(())
         else:
-            approach = np.where(adhesive, adhesion.approach, 0.0)
+            approach = xp.where(adhesive, adhesion.approach, 0.0)
     duration, length, springs = batch.limits.duration, batch.contact.length, batch.contact.springs
+
+    def value(number):
+        return xp.asarray(number, dtype=xp.float64)
+
     return Physics(
-        profile=jax.tree.unflatten(treedef, leaves),
-        E_star=_batched(batch.material.effective_modulus, (), size),
-        mass=_batched(batch.body.resolved_mass, (), size),
-        velocity=_batched(batch.start.velocity, (), size),
-        gap=_batched(batch.start.gap, (), size),
+        profile=jax.tree.map(value, profile),
+        E_star=value(batch.material.effective_modulus),
+        mass=value(batch.body.resolved_mass),
+        velocity=value(batch.start.velocity),
+        gap=value(batch.start.gap),
         adhesion=Adhesion(
-            work_of_adhesion=_batched(work, (), size),
-            approach_work_of_adhesion=_batched(approach, (), size),
-            adhesive_stress=_batched(stress, (), size),
-            double_hertz_factor=_batched(factor, (), size),
+            work_of_adhesion=value(work),
+            approach_work_of_adhesion=value(approach),
+            adhesive_stress=value(stress),
+            double_hertz_factor=value(factor),
         ),
-        gravity=Gravity(_batched(0.0 if gravity is None else gravity.g, (), size)),
-        time_limit=_batched(np.inf if duration is None else duration, (), size),
-        spring_length=_batched(np.nan if length is None else length, (), size),
-        spring_count=_batched(np.nan if isinstance(springs, str) else springs, (), size),
+        gravity=Gravity(value(0.0 if gravity is None else gravity.g)),
+        time_limit=value(xp.inf if duration is None else duration),
+        spring_length=value(xp.nan if length is None else length),
+        spring_count=value(xp.nan if isinstance(springs, str) else springs),
     )
 
 
