@@ -17,23 +17,29 @@ if TYPE_CHECKING:
     from . import profiles as profiles
     from . import theory as theory
     from ._core.runtime import configure as configure
+    from ._run.fit import FitResult as FitResult
+    from ._run.fit import fit as fit
     from ._run.impacts import Result as Result
     from ._run.indentation import IndentationResult as IndentationResult
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
+    from ._scene.fit_spec import FitError as FitError
     from ._scene.scene import Scene as Scene
     from ._scene.scene import SceneError as SceneError
     from ._scene.scene import load_scene as load_scene
 
 # Each public name → the module that defines it (the subpackages are their own modules).
 _SOURCES = {
+    "FitError": "._scene.fit_spec",
+    "FitResult": "._run.fit",
     "IndentationResult": "._run.indentation",
     "Result": "._run.impacts",
     "Scene": "._scene.scene",
     "SceneError": "._scene.scene",
     "SweepResult": "._run.sweep",
     "configure": "._core.runtime",
+    "fit": "._run.fit",
     "load_scene": "._scene.scene",
     "profiles": ".profiles",
     "simulate": "._run.simulate",
@@ -42,6 +48,8 @@ _SOURCES = {
 }
 
 __all__ = [
+    "FitError",
+    "FitResult",
     "IndentationResult",
     "Result",
     "Scene",
@@ -49,6 +57,7 @@ __all__ = [
     "SweepResult",
     "__version__",
     "configure",
+    "fit",
     "load_scene",
     "profiles",
     "simulate",
