@@ -30,7 +30,7 @@ from .uncertainty import uncertainty
 TOLERANCE = 1e-6
 MAX_STEPS = 100
 SIGMA_SOURCES = {
-    True: "data: the standard errors follow from the σ given",
+    True: "given: the standard errors follow from the σ of the data",
     False: "scatter: σ unknown, the covariance is scaled by χ²/dof",
 }
 
@@ -88,9 +88,14 @@ class Reporter:
     bounds: Bounds
     names: tuple[str, ...]
     progress: Progress
+    scale: float  # of the residuals LM sees
 
     def report(self, step, loss, values) -> None:
-        self.progress(int(step), 2.0 * float(loss), dict(zip(self.names, np.asarray(values).tolist(), strict=True)))
+        self.progress(
+            int(step),
+            2.0 * float(loss) * self.scale**2,
+            dict(zip(self.names, np.asarray(values).tolist(), strict=True)),
+        )
 
     def __call__(self, **entries) -> None:
         step, loss, u = (entries[key][1] for key in ("num_steps", "loss_this_step", "y"))
@@ -135,11 +140,10 @@ def fit_spec(
     rows = np.stack([spec.data[path] for path in spec.inputs], axis=1).reshape(spec.rows, -1)
     args = (jnp.asarray(rows), jnp.asarray(measured), jnp.asarray(sigma))
     start = jnp.asarray(residuals.bounds.internal([entry.start for entry in spec.parameters.values()]))
-    initial = _optimum(residuals, start, args)[1]
-    scaled = (*args, jnp.sqrt(jnp.mean(initial**2)))
-    verbose = Reporter(residuals.bounds, names, progress) if progress else False
+    scale = jnp.sqrt(jnp.mean(_optimum(residuals, start, args)[1] ** 2))
+    verbose = Reporter(residuals.bounds, names, progress, float(scale)) if progress else False
     solver = optx.LevenbergMarquardt(rtol=TOLERANCE, atol=TOLERANCE, norm=optx.rms_norm, verbose=verbose)
-    solution = optx.least_squares(residuals, solver, start, scaled, max_steps=max_steps, throw=False)
+    solution = optx.least_squares(residuals, solver, start, (*args, scale), max_steps=max_steps, throw=False)
     values, weighted, jacobian, predicted = _at_optimum(residuals, solution.value, args)
     chi2, dof = float(weighted @ weighted), weighted.size - len(names)
     found = uncertainty(jacobian, values, names, list(spec.observables), 1.0 if given is not None else chi2 / dof)
