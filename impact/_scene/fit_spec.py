@@ -243,6 +243,8 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray]) -> list[tupl
         elif name not in columns:
             problems.append((f"observables.{name}", f"no column {name!r} in the data; its columns: {known}"))
         problems += _sigma_problems(f"observables.{name}.sigma", spec.sigma, columns)
+    if len({spec.sigma is None for spec in file.observables.values()}) > 1:
+        problems.append(("observables", "give sigma for every observable or for none (then it is estimated)"))
     if problems:
         return problems
     sizes = {len(columns[name]) for name in _used_columns(file)}
