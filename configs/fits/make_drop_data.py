@@ -44,7 +44,8 @@ def main() -> None:
         f"# closed forms at work_of_adhesion = {WORK_OF_ADHESION} J/m², E_star = {E_STAR:g} Pa, with Gaussian noise\n"
         f"# sigma {RESTITUTION_SIGMA} on restitution, {FORCE_RELATIVE_SIGMA:.0%} (relative) on max_force (N).\n"
     )
-    rows = [",".join(columns)] + [",".join(f"{value:.10g}" for value in row) for row in zip(*columns.values(), strict=True)]
+    table = np.stack(list(columns.values()), axis=1)
+    rows = [",".join(columns)] + [",".join(f"{value:.10g}" for value in row) for row in table]
     (Path(__file__).parent / "drops.csv").write_text(header + "\n".join(rows) + "\n")
 
 
