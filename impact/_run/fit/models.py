@@ -35,8 +35,10 @@ THEORY_OBSERVABLES = {
 def simulation_model(spec: FitSpec) -> Model:
     """The simulation of the scene as a model: `impact.as_function` with the fitted paths and
     the input columns as inputs and the observables as its (vector) output."""
-    from ..differentiable import as_function  # type: ignore[import-not-found]  # issue #15, part 1
-
+    try:
+        from ..differentiable import as_function  # type: ignore[import-not-found]  # issue #15, part 1
+    except ModuleNotFoundError:
+        raise FitError([("model", "'simulation' needs impact.as_function (issue #15); use 'theory'")]) from None
     return as_function(spec.scene, inputs=[*spec.parameters, *spec.inputs], output=list(spec.observables))
 
 
