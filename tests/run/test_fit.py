@@ -13,6 +13,7 @@ import pytest
 import impact
 from impact._run.fit.bounds import Bounds
 from impact._scene.fit_spec import ParameterSpec
+from tests.run.test_compilation import Compiles
 
 CONFIGS = Path(__file__).parents[2] / "configs"
 ADHESION, MODULUS = "effects.adhesion.work_of_adhesion", "material.E_star"
@@ -55,6 +56,14 @@ def test_drop_test_recovers_work_of_adhesion_and_modulus_within_three_standard_e
 def test_two_parameter_fit_to_thirty_points_converges_in_at_most_fifteen_steps(drop_fit):
     assert drop_fit.converged
     assert drop_fit.iterations <= 15
+
+
+def test_a_second_fit_of_other_data_compiles_nothing(scene, drop_fit):
+    moved = {path: {**entry, "start": 2 * entry["start"]} for path, entry in PARAMETERS.items()}
+    data = DROPS.drop_data(seed=5)
+    with Compiles() as compiles:
+        impact.fit(scene, data, moved, OBSERVABLES, ["initial.velocity"], model="theory")
+    assert compiles.count == 0
 
 
 def test_restitution_alone_reports_the_combination_it_fixes(scene):

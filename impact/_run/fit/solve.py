@@ -63,25 +63,24 @@ class FitResult:
 
 @dataclass(frozen=True)
 class Residuals:
-    """r = (model − data)/σ, flat; `args` = (rows of inputs, data, σ)."""
+    """r = (model − data)/σ, flat; `args` = (bounds, rows of inputs, data, σ[, scale])."""
 
     model: Model
-    bounds: Bounds
 
     def predicted(self, values, rows):
         return jax.vmap(lambda row: jnp.atleast_1d(self.model(jnp.concatenate([values, row]))))(rows)
 
     def weighted(self, values, args):
-        rows, measured, sigma = args
+        _, rows, measured, sigma = args[:4]
         return ((self.predicted(values, rows) - measured) / sigma).reshape(-1)
 
     def __call__(self, u, args):
-        """The residuals LM sees: divided by their root mean square at the start (`args[3]`), as
+        """The residuals LM sees: divided by their root mean square at the start (`args[4]`), as
         its damping, which starts at 1, is not invariant to their scale."""
-        return self.weighted(self.bounds.physical(u), args[:3]) / args[3]
+        return self.weighted(args[0].physical(u), args) / args[4]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # hashed by identity: a static part of the solver
 class Reporter:
     """optimistix's `verbose` hook: hands each step's χ² and parameters to `progress`."""
 
@@ -133,15 +132,15 @@ def fit_spec(
 ) -> FitResult:
     """Run a validated fit (`impact.fit` after validation; `impact fit` with a fit file)."""
     names = tuple(spec.parameters)
-    residuals = Residuals(_model(spec, model), Bounds.of(spec.parameters))
+    residuals, bounds = Residuals(_model(spec, model)), Bounds.of(spec.parameters)
     given = spec.sigmas()
     measured = np.stack([spec.data[name] for name in spec.observables], axis=1)
     sigma = np.ones(measured.shape) if given is None else given
     rows = np.stack([spec.data[path] for path in spec.inputs], axis=1).reshape(spec.rows, -1)
-    args = (jnp.asarray(rows), jnp.asarray(measured), jnp.asarray(sigma))
-    start = jnp.asarray(residuals.bounds.internal([entry.start for entry in spec.parameters.values()]))
+    args = (bounds, jnp.asarray(rows), jnp.asarray(measured), jnp.asarray(sigma))
+    start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
     scale = jnp.sqrt(jnp.mean(_optimum(residuals, start, args)[1] ** 2))
-    verbose = Reporter(residuals.bounds, names, progress, float(scale)) if progress else False
+    verbose = Reporter(bounds, names, progress, float(scale)) if progress else False
     solver = optx.LevenbergMarquardt(rtol=TOLERANCE, atol=TOLERANCE, norm=optx.rms_norm, verbose=verbose)
     solution = optx.least_squares(residuals, solver, start, (*args, scale), max_steps=max_steps, throw=False)
     values, weighted, jacobian, predicted = _at_optimum(residuals, solution.value, args)
@@ -173,10 +172,10 @@ def _model(spec: FitSpec, model: "Model | str") -> Model:
 
 @eqx.filter_jit
 def _optimum(residuals: Residuals, u, args):
-    values = residuals.bounds.physical(u)
+    values = args[0].physical(u)
     weighted = residuals.weighted(values, args)
     jacobian = jax.jacfwd(residuals.weighted)(values, args)
-    return values, weighted, jacobian, residuals.predicted(values, args[0])
+    return values, weighted, jacobian, residuals.predicted(values, args[1])
 
 
 def _at_optimum(residuals: Residuals, u, args) -> tuple[np.ndarray, ...]:
