@@ -2,6 +2,7 @@
 model against the input column (the row number without one), the closed-form curve at the
 fitted values where one describes the scene, and the normalised residuals below."""
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -68,7 +69,18 @@ def _draw_observable(top: "Axes", bottom: "Axes", result: FitResult, index: int,
     bottom.axhline(0.0, color="0.6", lw=0.8)
     bottom.plot(x, (model - data) / sigma, "o", ms=3, color="C0", gid="residuals")
     if result.spec.inputs and np.all(x > 0) and x.max() > 5 * x.min():
+        from matplotlib.ticker import FuncFormatter
+
         top.set_xscale("log")
+        for axis in (top.xaxis, bottom.xaxis):
+            axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+            axis.set_minor_formatter(FuncFormatter(_minor_label))
+
+
+def _minor_label(value: float, _) -> str:
+    """Minor ticks of a log axis: label 2, 3 and 5 times a power of ten."""
+    leading = round(value / 10.0 ** math.floor(math.log10(value)))
+    return f"{value:g}" if leading in (2, 3, 5) else ""
 
 
 def _theory_curve(result: FitResult, x: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
