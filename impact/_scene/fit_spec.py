@@ -18,6 +18,7 @@ Every problem is a `FitError` (a `SceneError`) naming the field by its dotted pa
 """
 
 import csv
+import dataclasses
 import io
 import math
 from collections.abc import Mapping
@@ -148,7 +149,7 @@ def load_fit(path: str | Path) -> FitSpec:
     scene = _scene(file.scene, path.parent)
     table = read_table(path.parent / file.data)
     spec = make_fit_spec(scene, table, file.parameters, file.observables, file.inputs, file.model)
-    return FitSpec(**{**spec.__dict__, "source": text})
+    return dataclasses.replace(spec, source=text)
 
 
 def _scene(entry, folder: Path) -> Scene:
@@ -188,14 +189,16 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
 
 def make_fit_spec(
     scene,
-    data: Mapping,
+    data: "Mapping | str | Path",
     parameters: Mapping,
     observables: Mapping,
     inputs=(),
     model: str = "simulation",
 ) -> FitSpec:
-    """Validate a fit given in Python (scene, data columns, parameter and observable specs by
-    name) into a FitSpec; the fit file's checks, each naming its field."""
+    """Validate a fit given in Python (scene, data columns by name or a CSV file, parameter and
+    observable specs by name) into a FitSpec; the fit file's checks, each naming its field."""
+    if isinstance(data, (str, Path)):
+        data = read_table(Path(data))
     try:
         scene = load_scene(scene)
         file = FitFile.model_validate(

@@ -1,6 +1,7 @@
 """`impact fit`: the drop-test example end to end (progress, fit.yaml, fit.h5 and fit.png that
 round-trip), and bad fit files refused with exit code 2, the field named and nothing written."""
 
+import dataclasses
 import math
 import shutil
 from pathlib import Path
@@ -62,7 +63,7 @@ def test_fit_yaml_and_fit_h5_round_trip(fitted):
 
 def test_fit_summary_writes_null_for_an_undetermined_error():
     spec = load_fit(DROP_TEST)
-    only = type(spec)(**{**spec.__dict__, "observables": {"restitution": spec.observables["restitution"]}})
+    only = dataclasses.replace(spec, observables={"restitution": spec.observables["restitution"]})
     summary = fit_summary(fit_spec(only, "theory"))
     assert all(entry["standard_error"] is None for entry in summary["parameters"].values())
     assert summary["unidentifiable"][0].startswith("restitution alone fixes only a combination")

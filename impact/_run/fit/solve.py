@@ -9,6 +9,7 @@ programs as arguments: a second fit of the same model and bounds compiles nothin
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import equinox as eqx
 import jax
@@ -103,7 +104,7 @@ class Reporter:
 
 def fit(
     scene,
-    data: Mapping,
+    data: "Mapping | str | Path",
     parameters: Mapping[str, Mapping],
     observables: Mapping[str, Mapping],
     inputs: Sequence[str] = (),
@@ -114,9 +115,9 @@ def fit(
 ) -> FitResult:
     """Fit scene values to measurements by weighted least squares (Levenberg–Marquardt).
 
-    `scene`: a Scene, a scene file or mapping; `data`: columns by name (one row per
-    measurement): the observables, their σ columns and the `inputs` (dotted scene paths set
-    row by row); `parameters`: dotted path → {start, min, max, scale: linear|log};
+    `scene`: a Scene, a scene file or mapping; `data`: columns by name or a CSV file (one row
+    per measurement): the observables, their σ columns and the `inputs` (dotted scene paths
+    set row by row); `parameters`: dotted path → {start, min, max, scale: linear|log};
     `observables`: result name → {sigma: number or column name (leave out when unknown),
     relative: bool}. `model`: "simulation" (the default), "theory" (a closed form instead of
     the simulation: Thornton–Ning, restitution and max_force), or any differentiable function
