@@ -7,6 +7,7 @@ Jacobian in the physical parameters at the optimum (`uncertainty`). The data ent
 programs as arguments: a second fit of the same model and bounds compiles nothing.
 """
 
+import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -62,23 +63,32 @@ class FitResult:
     jacobian: np.ndarray = field(repr=False)
 
 
+class Measurements(eqx.Module):
+    """What the residuals take besides the parameters (traced: other data compile nothing)."""
+
+    bounds: Bounds
+    rows: jax.Array  # [rows, inputs]
+    measured: jax.Array  # [rows, observables]
+    sigma: jax.Array  # [rows, observables]
+    scale: jax.Array  # the root mean square of the weighted residuals at the start
+
+
 @dataclass(frozen=True)
 class Residuals:
-    """r = (model − data)/σ, flat; `args` = (bounds, rows of inputs, data, σ[, scale])."""
+    """r = (model − data)/σ, flat."""
 
     model: Model
 
     def predicted(self, values, rows):
         return jax.vmap(lambda row: jnp.atleast_1d(self.model(jnp.concatenate([values, row]))))(rows)
 
-    def weighted(self, values, args):
-        _, rows, measured, sigma = args[:4]
-        return ((self.predicted(values, rows) - measured) / sigma).reshape(-1)
+    def weighted(self, values, data: Measurements):
+        return ((self.predicted(values, data.rows) - data.measured) / data.sigma).reshape(-1)
 
-    def __call__(self, u, args):
-        """The residuals LM sees: divided by their root mean square at the start (`args[4]`), as
-        its damping, which starts at 1, is not invariant to their scale."""
-        return self.weighted(args[0].physical(u), args) / args[4]
+    def __call__(self, u, data: Measurements):
+        """The residuals LM sees: divided by their root mean square at the start, as its damping,
+        which starts at 1, is not invariant to their scale."""
+        return self.weighted(data.bounds.physical(u), data) / data.scale
 
 
 @dataclass(frozen=True, eq=False)  # hashed by identity: a static part of the solver
@@ -138,13 +148,13 @@ def fit_spec(
     measured = np.stack([spec.data[name] for name in spec.observables], axis=1)
     sigma = np.ones(measured.shape) if given is None else given
     rows = np.stack([spec.data[path] for path in spec.inputs], axis=1).reshape(spec.rows, -1)
-    args = (bounds, jnp.asarray(rows), jnp.asarray(measured), jnp.asarray(sigma))
+    data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, 1.0)))
     start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
-    scale = jnp.sqrt(jnp.mean(_optimum(residuals, start, args)[1] ** 2))
-    verbose = Reporter(bounds, names, progress, float(scale)) if progress else False
+    data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(_optimum(residuals, start, data)[1] ** 2)))
+    verbose = Reporter(bounds, names, progress, float(data.scale)) if progress else False
     solver = optx.LevenbergMarquardt(rtol=TOLERANCE, atol=TOLERANCE, norm=optx.rms_norm, verbose=verbose)
-    solution = optx.least_squares(residuals, solver, start, (*args, scale), max_steps=max_steps, throw=False)
-    values, weighted, jacobian, predicted = _at_optimum(residuals, solution.value, args)
+    solution = optx.least_squares(residuals, solver, start, data, max_steps=max_steps, throw=False)
+    values, weighted, jacobian, predicted = _at_optimum(residuals, solution.value, data)
     chi2, dof = float(weighted @ weighted), weighted.size - len(names)
     found = uncertainty(jacobian, values, names, list(spec.observables), 1.0 if given is not None else chi2 / dof)
     return FitResult(
@@ -172,13 +182,13 @@ def _model(spec: FitSpec, model: "Model | str") -> Model:
 
 
 @eqx.filter_jit
-def _optimum(residuals: Residuals, u, args):
-    values = args[0].physical(u)
-    weighted = residuals.weighted(values, args)
-    jacobian = jax.jacfwd(residuals.weighted)(values, args)
-    return values, weighted, jacobian, residuals.predicted(values, args[1])
+def _optimum(residuals: Residuals, u, data: Measurements):
+    values = data.bounds.physical(u)
+    weighted = residuals.weighted(values, data)
+    jacobian = jax.jacfwd(residuals.weighted)(values, data)
+    return values, weighted, jacobian, residuals.predicted(values, data.rows)
 
 
-def _at_optimum(residuals: Residuals, u, args) -> tuple[np.ndarray, ...]:
+def _at_optimum(residuals: Residuals, u, data: Measurements) -> tuple[np.ndarray, ...]:
     """The parameters, weighted residuals, their Jacobian and the model at the optimum u."""
-    return tuple(np.asarray(part) for part in _optimum(residuals, u, args))
+    return tuple(np.asarray(part) for part in _optimum(residuals, u, data))
