@@ -238,8 +238,11 @@ def _path_problems(scene: Scene, key: str, path: str) -> list[tuple[str, str]]:
 def _column_problems(file: FitFile, columns: dict[str, np.ndarray]) -> list[tuple[str, str]]:
     """Missing columns, unknown observables, bad σ and non-finite values."""
     known = ", ".join(columns) or "none"
-    problems = [(f"inputs.{path}", f"no column {path!r} in the data; its columns: {known}") for path in file.inputs]
-    problems = [problem for problem in problems if problem[0][len("inputs.") :] not in columns]
+    problems = [
+        (f"inputs.{path}", f"no column {path!r} in the data; its columns: {known}")
+        for path in file.inputs
+        if path not in columns
+    ]
     for name, spec in file.observables.items():
         if name not in OBSERVABLES:
             problems.append((f"observables.{name}", f"unknown observable; known: {', '.join(OBSERVABLES)}"))
@@ -257,6 +260,10 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray]) -> list[tupl
         bad = np.flatnonzero(~np.isfinite(columns[name]))
         if bad.size:
             problems.append(("data", f"column {name!r} holds {columns[name][bad[0]]} in row {bad[0] + 1}"))
+    for name, spec in file.observables.items():
+        zero = np.flatnonzero(columns[name] == 0)
+        if spec.relative and zero.size:
+            problems.append((f"observables.{name}.relative", f"σ·|value| is 0 in row {zero[0] + 1}"))
     measured = min(sizes) * len(file.observables)
     if measured <= len(file.parameters):
         problems.append(("data", f"{measured} measured values cannot determine {len(file.parameters)} parameters"))

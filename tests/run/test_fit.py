@@ -159,3 +159,11 @@ def test_bad_specifications_name_the_field(scene, change, field, message):
     with pytest.raises(impact.FitError) as caught:
         impact.fit(scene, DROPS.drop_data(), model="theory", **arguments)
     assert any(path == field and message in text for path, text in caught.value.problems), caught.value.problems
+
+
+def test_a_relative_sigma_of_a_zero_value_is_refused(scene):
+    data = DROPS.drop_data()
+    data["max_force"][4] = 0.0
+    with pytest.raises(impact.FitError) as caught:
+        impact.fit(scene, data, PARAMETERS, OBSERVABLES, ["initial.velocity"], model="theory")
+    assert caught.value.problems == [("observables.max_force.relative", "σ·|value| is 0 in row 5")]
