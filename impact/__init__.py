@@ -18,17 +18,22 @@ if TYPE_CHECKING:
     from . import theory as theory
     from ._core.runtime import configure as configure
     from ._run.differentiable import as_function as as_function
+    from ._run.fit import FitResult as FitResult
+    from ._run.fit import fit as fit
     from ._run.impacts import Result as Result
     from ._run.indentation import IndentationResult as IndentationResult
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
+    from ._scene.fit_spec import FitError as FitError
     from ._scene.scene import Scene as Scene
     from ._scene.scene import SceneError as SceneError
     from ._scene.scene import load_scene as load_scene
 
 # Each public name → the module that defines it (the subpackages are their own modules).
 _SOURCES = {
+    "FitError": "._scene.fit_spec",
+    "FitResult": "._run.fit",
     "IndentationResult": "._run.indentation",
     "Result": "._run.impacts",
     "Scene": "._scene.scene",
@@ -36,6 +41,7 @@ _SOURCES = {
     "SweepResult": "._run.sweep",
     "as_function": "._run.differentiable",
     "configure": "._core.runtime",
+    "fit": "._run.fit",
     "load_scene": "._scene.scene",
     "profiles": ".profiles",
     "simulate": "._run.simulate",
@@ -44,6 +50,8 @@ _SOURCES = {
 }
 
 __all__ = [
+    "FitError",
+    "FitResult",
     "IndentationResult",
     "Result",
     "Scene",
@@ -52,6 +60,7 @@ __all__ = [
     "__version__",
     "as_function",
     "configure",
+    "fit",
     "load_scene",
     "profiles",
     "simulate",

@@ -23,6 +23,7 @@ def register(app: typer.Typer) -> None:
         ("show", show_command),
         ("sweep", sweep_command),
         ("merge", merge_command),
+        ("fit", fit_command),
     ):
         app.command(name, cls=FlagHelpCommand)(command)
     bench = typer.Typer(invoke_without_command=True, cls=FlagHelpGroup)
@@ -162,6 +163,23 @@ def merge_command(ctx: typer.Context, shards: Shards, output: MergedFile, overwr
     from .sweep import merge_shards
 
     merge_shards(shards, output, overwrite)
+
+
+# --- fits -----------------------------------------------------------------------------------
+
+FitFile = Annotated[Path, typer.Argument(metavar="FIT.yaml", help="fit YAML file", show_default=False)]
+FitFolder = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="output folder (default: runs/fits/<file stem>)", show_default=False),
+]
+
+
+def fit_command(ctx: typer.Context, fit_file: FitFile, output: FitFolder = None, overwrite: Overwrite = False) -> None:
+    """Fit scene values to measurements (weighted least squares); write fit.yaml, fit.h5 and fit.png."""
+    configured(ctx)
+    from .fit import run_fit
+
+    run_fit(fit_file, output, overwrite)
 
 
 # --- benchmarks -----------------------------------------------------------------------------

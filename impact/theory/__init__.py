@@ -104,6 +104,7 @@ from ._impact import power_law_restitution as power_law_restitution
 from ._impact import power_law_sticking_velocity as power_law_sticking_velocity
 from ._impact import thornton_ning_beta as thornton_ning_beta
 from ._impact import thornton_ning_energy_loss as thornton_ning_energy_loss
+from ._impact import thornton_ning_max_force as thornton_ning_max_force
 from ._impact import thornton_ning_restitution as thornton_ning_restitution
 from ._impact import thornton_ning_sticking_velocity as thornton_ning_sticking_velocity
 from ._jkr import jkr_force as jkr_force
@@ -166,6 +167,7 @@ __all__ = [
     "thornton_ning_energy_loss",
     "thornton_ning_beta",
     "thornton_ning_restitution",
+    "thornton_ning_max_force",
     "thornton_ning_sticking_velocity",
     "attach_on_touch_energy_loss",
     "attach_on_touch_restitution",

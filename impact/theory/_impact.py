@@ -2,6 +2,7 @@
 velocity (reversible JKR law, separation at ξ = 1; (3.50)–(3.51), (3.81)–(3.82)), and the
 non-adhesive (Hertz-type) impact of a power-law body."""
 
+import jax
 import jax.numpy as jnp
 from jax.scipy.special import gammaln
 
@@ -75,6 +76,41 @@ def thornton_ning_restitution(velocity: Scalars, mass: Scalars, R: Scalars, E_st
 def thornton_ning_sticking_velocity(mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Impact velocity [m/s] with β = 1 for the paraboloid."""
     return jnp.sqrt(2 * thornton_ning_energy_loss(R, E_star, work_of_adhesion) / mass)
+
+
+def _jkr_units(R, E_star, work_of_adhesion):
+    """JKR units of the paraboloid at the jump-in: a0 = (2πΔγR²/E*)^(1/3) [m], a0²/R [m] and
+    the energy E*·a0·(a0²/R)² [J]; in them d = a² − √a, F = (4/3)a³ − 2a^(3/2) (3.44)."""
+    a0 = jnp.cbrt(2.0 * jnp.pi * work_of_adhesion * R**2 / E_star)
+    depth = a0**2 / R
+    return a0, depth, E_star * a0 * depth**2
+
+
+def _jkr_work(a):
+    """∫ F dd along the JKR branch up to contact radius a, in JKR units (an antiderivative of
+    F(a)·d'(a) with F = (4/3)a³ − 2a^(3/2), d' = 2a − a^(−1/2)/2)."""
+    return 8.0 / 15.0 * a**5 - 4.0 / 3.0 * a**3.5 + 0.5 * a**2
+
+
+@float64
+def thornton_ning_max_force(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
+    """Largest compressive force [N] of the Thornton–Ning impact (reversible JKR law, jump-in at
+    first touch): the energy balance ½ m v₀² = ∫ F dd along the JKR branch (3.44) from the
+    jump-in (a = a0, d = 0) to the turning point a_m, then F_max = F(a_m).
+
+    In JKR units the balance reads w(a_m) − w(1) = ½ m v₀²/(E* a0 (a0²/R)²), with w convex and
+    increasing beyond F = 0; Newton's method from above converges monotonically. Its iterations
+    run without gradient and one differentiable step follows (exact derivatives)."""
+    a0, depth, energy = _jkr_units(R, E_star, work_of_adhesion)
+    target = _jkr_work(1.0) + 0.5 * mass * velocity**2 / energy
+
+    def newton(a):
+        force = 4.0 / 3.0 * a**3 - 2.0 * a**1.5
+        return a - (_jkr_work(a) - target) / (force * (2.0 * a - 0.5 / jnp.sqrt(a)))
+
+    start = 2.0 + (15.0 / 8.0 * (target + 1.0)) ** 0.2
+    a_m = newton(jax.lax.stop_gradient(jax.lax.fori_loop(0, 80, lambda _, a: newton(a), start)))
+    return (4.0 / 3.0 * a_m**3 - 2.0 * a_m**1.5) * E_star * a0 * depth
 
 
 @float64

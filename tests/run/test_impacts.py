@@ -51,14 +51,19 @@ VELOCITY_FACTORS = np.geomspace(1.001, 50.0, 24)
 @pytest.mark.parametrize("material", sorted(MATERIALS))
 @pytest.mark.parametrize("solver, tolerance", [(None, 1e-6), (TIGHT, 1e-9)], ids=["default", "tight"])
 def test_thornton_ning_restitution(material, solver, tolerance):
-    """(3.50–51) over 24 velocities in [1.001, 50]·v_s."""
+    """(3.50–51) over 24 velocities in [1.001, 50]·v_s; the largest force against the energy
+    balance along the JKR branch (`theory.thornton_ning_max_force`), relative."""
     v_s = sticking_velocity(material)
-    errors = []
+    m = MATERIALS[material]
+    errors, force_errors = [], []
     for factor in VELOCITY_FACTORS:
         result = simulate(paraboloid_scene(material, factor * v_s, solver=solver), trajectory=False)
         assert result.status == "separated"
         errors.append(abs(result.restitution - tn_restitution(material, factor * v_s)))
+        expected = theory.thornton_ning_max_force(factor * v_s, m["mass"], m["R"], m["E_star"], m["work_of_adhesion"])
+        force_errors.append(abs(result.max_force / float(expected) - 1))
     assert max(errors) <= tolerance, max(errors)
+    assert max(force_errors) <= tolerance, max(force_errors)
 
 
 def test_pull_off_force_is_reached_during_unloading():

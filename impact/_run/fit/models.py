@@ -1,0 +1,102 @@
+"""The model of a fit: a differentiable function of one vector, the fitted parameters then the
+row's inputs (in the order of the fit), to the vector of the observables.
+
+`simulation_model` is the simulation itself (`impact.as_function`); `theory_model` the closed
+form of the Thornton–Ning impact (3.50)–(3.51) and its largest force (`thornton_ning_max_force`),
+a fast model for scenes it describes; any other such function may be passed to `impact.fit`.
+"""
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import jax
+import jax.numpy as jnp
+
+from ... import theory
+from ..._scene.fit_spec import FitError, FitSpec
+from ..._scene.profiles import ParaboloidSpec
+from ..differentiable import as_function
+
+Model = Callable[[jax.Array], jax.Array]
+
+# Scene paths the closed form takes, by the name of its argument.
+THEORY_ARGUMENTS = {
+    "initial.velocity": "velocity",
+    "body.mass": "mass",
+    "body.profile.R": "R",
+    "material.E_star": "E_star",
+    "effects.adhesion.work_of_adhesion": "work_of_adhesion",
+}
+THEORY_OBSERVABLES = {
+    "restitution": theory.thornton_ning_restitution,
+    "max_force": theory.thornton_ning_max_force,
+}
+
+
+def simulation_model(spec: FitSpec) -> Model:
+    """The simulation of the scene as a model: `impact.as_function` with the fitted paths and
+    the input columns as inputs and the observables as its (vector) output."""
+    return as_function(spec.scene, inputs=[*spec.parameters, *spec.inputs], output=list(spec.observables))
+
+
+@dataclass(frozen=True)
+class ClosedForm:
+    """The Thornton–Ning closed form as a model: `varied` arguments from x, the others `fixed`
+    (argument name, value); equal instances share one compiled fit."""
+
+    varied: tuple[str, ...]
+    fixed: tuple[tuple[str, float], ...]
+    observables: tuple[str, ...]
+
+    def __call__(self, x: jax.Array) -> jax.Array:
+        arguments = dict(self.fixed) | {name: x[index] for index, name in enumerate(self.varied)}
+        return jnp.stack([THEORY_OBSERVABLES[name](**arguments) for name in self.observables])
+
+
+def theory_model(spec: FitSpec) -> Model:
+    """The Thornton–Ning closed form of the scene as a model (a paraboloid with reversible JKR
+    adhesion and no gravity); FitError naming the field it cannot describe."""
+    _check_theory(spec)
+    scene = spec.scene
+    adhesion = scene.active_adhesion
+    assert isinstance(scene.body.profile, ParaboloidSpec) and adhesion is not None, "checked"
+    fixed = {
+        "velocity": scene.start.velocity,
+        "mass": scene.body.resolved_mass,
+        "R": scene.body.profile.R,
+        "E_star": scene.material.effective_modulus,
+        "work_of_adhesion": adhesion.work_of_adhesion,
+    }
+    varied = tuple(THEORY_ARGUMENTS[path] for path in (*spec.parameters, *spec.inputs))
+    constant = tuple((name, value) for name, value in fixed.items() if name not in varied)
+    return ClosedForm(varied, constant, tuple(spec.observables))
+
+
+def _check_theory(spec: FitSpec) -> None:
+    scene = spec.scene
+    adhesion = scene.active_adhesion
+    problems = []
+    if scene.kind != "impact" or scene.body.profile.shape != "paraboloid":
+        problems.append(("scene.body.profile.shape", "model 'theory' describes the impact of a paraboloid"))
+    if adhesion is None or adhesion.model != "jkr" or adhesion.approach != adhesion.work_of_adhesion:
+        problems.append(("scene.effects.adhesion", "model 'theory' needs reversible JKR adhesion (Δγa = Δγ)"))
+    if scene.effects.gravity is not None:
+        problems.append(("scene.effects.gravity", "model 'theory' has no gravity"))
+    for key, paths in (("parameters", spec.parameters), ("inputs", spec.inputs)):
+        for path in paths:
+            if path not in THEORY_ARGUMENTS:
+                problems.append((f"{key}.{path}", f"model 'theory' takes only {', '.join(THEORY_ARGUMENTS)}"))
+    for name in spec.observables:
+        if name not in THEORY_OBSERVABLES:
+            problems.append((f"observables.{name}", f"model 'theory' gives only {', '.join(THEORY_OBSERVABLES)}"))
+    if problems:
+        raise FitError(problems)
+
+
+def theory_applies(spec: FitSpec) -> bool:
+    """Whether the closed form describes the scene, its paths and its observables."""
+    try:
+        _check_theory(spec)
+    except FitError:
+        return False
+    return True

@@ -1,0 +1,73 @@
+"""`impact fit`: calibrate scene values against measurements (declared in `commands`).
+
+    impact fit FIT.yaml [-o DIR] [--overwrite]
+
+Bad input (the fit file, its scene or data, the output folder) exits with code 2, names the
+field, prints no traceback and writes nothing. Each Levenberg–Marquardt step prints its χ² and
+parameters; DIR then receives fit.yaml, fit.h5 and fit.png, each written atomically (a folder
+created here is removed again if a write fails).
+"""
+
+import math
+import shutil
+from pathlib import Path
+
+from .._io.fit import write_fit, write_fit_yaml
+from .._plots.fit import save_fit_figure
+from .._run.fit import FitResult, fit_spec
+from .._scene.errors import SceneError
+from .._scene.fit_spec import FitSpec, load_fit
+from .console import refuse, say, warn
+from .folders import check_output
+
+
+def run_fit(fit_file: Path, output: Path | None, overwrite: bool) -> None:
+    """`impact fit`: fit the parameters of a fit file; write fit.yaml, fit.h5 and fit.png."""
+    try:
+        spec = load_fit(fit_file)
+    except SceneError as error:
+        refuse(f"{fit_file} is not a valid fit", error.problems)
+    folder = output or Path("runs") / "fits" / fit_file.stem
+    check_output(folder, overwrite, holds="fit")
+    try:
+        result = fit_spec(spec, spec.model, progress=_progress(spec))
+    except SceneError as error:
+        refuse(f"{fit_file} is not a valid fit", error.problems)
+    _write(result, folder)
+    _summary(result)
+    say(f"fit written to {folder}")
+
+
+def _progress(spec: FitSpec):
+    names = list(spec.parameters)
+
+    def show(step: int, chi2: float, values: dict[str, float]) -> None:
+        listed = ", ".join(f"{name} = {values[name]:.6g}" for name in names)
+        say(f"step {step:3d}  χ² = {chi2:.6g}  {listed}")
+
+    return show
+
+
+def _write(result: FitResult, folder: Path) -> None:
+    created = not folder.exists()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        write_fit_yaml(result, folder / "fit.yaml")
+        write_fit(result, folder / "fit.h5")
+        save_fit_figure(result, folder)
+    except BaseException:
+        if created:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise
+
+
+def _summary(result: FitResult) -> None:
+    for path, value in result.values.items():
+        error = result.standard_errors[path]
+        shown = "not determined" if math.isnan(error) else f"± {error:.3g}"
+        say(f"{path} = {value:.6g} {shown}")
+    say(f"χ² = {result.chi2:.4g} for {result.dof} degrees of freedom")
+    say(f"standard errors: {result.sigma_source}")
+    say(f"{'converged' if result.converged else 'NOT converged'} after {result.iterations} steps")
+    for message in result.unidentifiable:
+        warn(f"unidentifiable: {message}")

@@ -1,0 +1,143 @@
+"""`impact fit`: the drop-test example end to end (progress, fit.yaml, fit.h5 and fit.png that
+round-trip), and bad fit files refused with exit code 2, the field named and nothing written."""
+
+import dataclasses
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from impact._io.fit import fit_summary, read_fit
+from impact._run.fit import fit_spec
+from impact._scene.fit_spec import load_fit, read_table
+from impact.cli import app
+
+FITS = Path(__file__).parents[2] / "configs" / "fits"
+DROP_TEST = FITS / "drop_test.yaml"
+
+
+def invoke(*args):
+    return CliRunner().invoke(app, [str(arg) for arg in args])
+
+
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("fit") / "drop_test"
+    return folder, invoke("fit", DROP_TEST, "-o", folder)
+
+
+def test_fit_prints_its_steps_and_writes_three_files(fitted):
+    folder, result = fitted
+    assert result.exit_code == 0, result.output
+    assert "step   0  χ² = " in result.output and "converged after" in result.output
+    assert {entry.name for entry in folder.iterdir()} == {"fit.yaml", "fit.h5", "fit.png"}
+    assert (folder / "fit.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_fit_yaml_and_fit_h5_round_trip(fitted):
+    folder, _ = fitted
+    summary = yaml.safe_load((folder / "fit.yaml").read_text())
+    stored = read_fit(folder / "fit.h5")
+    assert list(summary) == ["parameters", "correlation", "chi2", "dof", "converged", "iterations"] + [
+        "sigma_source",
+        "model",
+        "unidentifiable",
+    ]
+    assert stored["parameters"] == summary["parameters"]
+    for key in ("chi2", "dof", "converged", "iterations", "sigma_source", "model", "unidentifiable"):
+        assert stored[key] == summary[key]
+    np.testing.assert_array_equal(stored["correlation"], summary["correlation"])
+    table = read_table(FITS / "drops.csv")
+    for column, values in stored["data"].items():
+        np.testing.assert_array_equal(values, table[column])
+    errors = [entry["standard_error"] for entry in summary["parameters"].values()]
+    np.testing.assert_allclose(np.sqrt(np.diag(stored["covariance"])), errors, rtol=1e-12)
+    assert stored["jacobian"].shape == (2 * 30, 2)
+    assert stored["source"] == DROP_TEST.read_text()
+    assert summary["dof"] == 58 and summary["converged"] and summary["sigma_source"].startswith("given")
+
+
+def test_fit_summary_writes_null_for_an_undetermined_error():
+    spec = load_fit(DROP_TEST)
+    only = dataclasses.replace(spec, observables={"restitution": spec.observables["restitution"]})
+    summary = fit_summary(fit_spec(only, "theory"))
+    assert all(entry["standard_error"] is None for entry in summary["parameters"].values())
+    assert summary["unidentifiable"][0].startswith("restitution alone fixes only a combination")
+    assert math.isfinite(summary["chi2"])
+
+
+def _bad_fit(tmp_path: Path, change=None, csv=None) -> Path:
+    data = yaml.safe_load(DROP_TEST.read_text())
+    data["scene"] = str(FITS.parent / "thornton_ning.yaml")
+    shutil.copy(FITS / "drops.csv", tmp_path / "drops.csv")
+    if csv is not None:
+        (tmp_path / "drops.csv").write_text(csv((FITS / "drops.csv").read_text()))
+    for key, value in (change or {}).items():
+        data[key] = value
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+ADHESION = "effects.adhesion.work_of_adhesion"
+SIGMAS = {"restitution": {"sigma": "restitution_sigma"}}
+
+
+def _nan_in_row_3(text: str) -> str:
+    lines = text.splitlines()
+    fields = lines[6].split(",")  # three comment lines, the header, then rows 1, 2 and 3
+    fields[1] = "nan"
+    lines[6] = ",".join(fields)
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize(
+    ("change", "csv", "field", "message"),
+    [
+        (
+            {"parameters": {"material.E_starr": {"start": 1.0e9}}},
+            None,
+            "parameters.material.E_starr",
+            "no field 'material.E_starr' in the scene; material takes: E, E_body, E_star, nu, nu_body",
+        ),
+        (
+            {"inputs": ["contact.springs"]},
+            None,
+            "inputs.contact.springs",
+            "is a static choice ('continuum'; changing it compiles anew), not a traced value",
+        ),
+        (
+            {"inputs": ["initial.velocity", "body.mass"]},
+            None,
+            "inputs.body.mass",
+            "no column 'body.mass' in the data; its columns: initial.velocity, restitution, restitution_sigma, "
+            "max_force",
+        ),
+        (
+            {"observables": {**SIGMAS, "max_force": {"sigma": -0.02, "relative": True}}},
+            None,
+            "observables.max_force.sigma",
+            "must be > 0, got -0.02",
+        ),
+        ({}, _nan_in_row_3, "data", "column 'restitution' holds nan in row 3"),
+        (
+            {"parameters": {ADHESION: {"start": 2.0, "min": 1.0e-4, "max": 1.0, "scale": "log"}}},
+            None,
+            f"parameters.{ADHESION}.start",
+            "2 lies outside the bounds (0.0001, 1)",
+        ),
+    ],
+    ids=["unknown path", "static input", "missing column", "negative sigma", "nan in data", "start outside bounds"],
+)
+def test_bad_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, change, csv, field, message):
+    path = _bad_fit(tmp_path, change, csv)
+    folder = tmp_path / "out"
+    result = invoke("fit", path, "-o", folder)
+    assert result.exit_code == 2, result.output
+    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
+    assert "Traceback" not in result.output
+    assert not folder.exists()
