@@ -79,7 +79,7 @@ def workloads(quick: bool = False) -> list[Workload]:
     )
     if quick:
         return [*light, attach, *(spring_array(n) for n in (64, 1024))]
-    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead()]
+    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s)]
     return [*light, *heavy, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
 
 
@@ -89,6 +89,13 @@ def _dugdale(v_s: float) -> Workload:
         model="maugis_dugdale", work_of_adhesion=WORK_OF_ADHESION, stress=DUGDALE_STRESS
     )
     return Workload("md", "Maugis–Dugdale Λ=1", scene, _range(v_s), TIGHTER)
+
+
+def _double_hertz(v_s: float) -> Workload:
+    """Greenwood–Johnson at k = 10 (configs/greenwood_johnson.yaml): its goal is the JKR law's cost."""
+    scene = case_scene("greenwood_johnson", dict(shape="paraboloid", R=RADIUS), v_s)
+    scene["effects"]["adhesion"] = dict(model="greenwood_johnson", work_of_adhesion=WORK_OF_ADHESION, k=10.0)
+    return Workload("gj", "Greenwood–Johnson k=10", scene, _range(v_s), TIGHTER)
 
 
 def _bead() -> Workload:

@@ -4,7 +4,7 @@ f = r²/(2R), in the scaled units of `Scales`, as an explicit equilibrium curve.
 With Ĉ = ℓx²/(R·ℓz) (the scaled ĝ(1)) and the ring width û = ĉ − â, the root of
 û²(û + 3â) = K̂ = 3πR²Δγ/(2E*k(k+1)ℓx³) (3.201):
 
-    d̂ = Ĉ·(â² − k·û(2â + û)),   F̂ = (4/3)·Ĉ·(â³ − k·û(3â² + 3âû + û²)),
+    d̂ = Ĉ·(â² − k·û(2â + û)),   F̂ = (4/3)·Ĉ·(â³ − k·û(3â² + 3âû + û²)).
 
 Parametrised by the ring width, s = ln(û₀/û) with û₀ = K̂^(1/3), the cubic (3.201) is solved
 for â instead: â = (K̂/û² − û)/3, so the whole curve is explicit (no root inside a step) and

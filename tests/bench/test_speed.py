@@ -114,7 +114,7 @@ def test_plans():
     quick = [workload.key for workload, _ in speed_plan(quick=True).runs()]
     assert "md" not in quick and "gravity" not in quick and "tn" in quick
     assert {counts for _, counts in speed_plan(points=(10**6,), only=("tn",)).runs()} == {(10**6,)}
-    assert {w.reference for w in workloads() if w.key in ("md", "gravity")} == {TIGHTER}
+    assert {w.reference for w in workloads() if w.key in ("md", "gravity", "gj")} == {TIGHTER}
 
 
 def test_reduction_counts_a_failed_point_as_infinite_error():
