@@ -91,14 +91,21 @@ def as_function(
         )(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
         return values[0], jnp.moveaxis(columns, 0, -1)
 
+    value = jax.jit(lambda x: results(value_point, x))
+
+    # Not itself under jax.jit: a jitted custom_jvp function, vmapped and differentiated inside
+    # an outer jit (a fit: jit(jvp(vmap(f)))), returned its outputs transposed (jax 0.10.2).
     @jax.custom_jvp
     def solved(x: jax.Array) -> jax.Array:
-        return results(value_point, x)
+        return value(x)
 
     @solved.defjvp
     def solved_jvp(primals, tangents):
-        value, derivative = jacobian(primals[0])
-        return value, derivative @ tangents[0]
+        # The value from its own program, not from the Jacobian's batch of jvps: taken from
+        # there, vmapped under an outer jit (optimistix's Levenberg–Marquardt over a fit's rows)
+        # the outputs came back transposed (jax 0.10.2). One solve more per Jacobian.
+        derivative = jacobian(primals[0])[1]
+        return value(primals[0]), derivative @ tangents[0]
 
     return _in_float64(solved, jacobian, paths, () if isinstance(output, str) else (len(names),))
 
@@ -107,11 +114,9 @@ def _in_float64(
     solved: Callable, jacobian: Callable, paths: list[str], shape: tuple
 ) -> Callable[[jax.Array], jax.Array]:
     """f computing in float64 whatever JAX's global flag. With the flag on, f is `solved`
-    (compiled). With it off JAX holds no float64 value in a traced program, so f hands the
+    (its programs compiled). With it off JAX holds no float64 value in a traced program, so f hands the
     solve and its Jacobian to the host (`jax.pure_callback`, where they run in float64, a
     batch point by point) and returns the dtype of its input; J·ẋ keeps it differentiable."""
-    compiled_value = jax.jit(solved)
-
     def compiled_jacobian(x: jax.Array) -> jax.Array:
         return jacobian(x)[1]
 
@@ -127,7 +132,7 @@ def _in_float64(
     @jax.custom_jvp
     def hosted(x: jax.Array) -> jax.Array:
         result = jax.ShapeDtypeStruct(shape, x.dtype)
-        return jax.pure_callback(on_host(compiled_value, x.dtype), result, x, vmap_method="expand_dims")
+        return jax.pure_callback(on_host(solved, x.dtype), result, x, vmap_method="expand_dims")
 
     @hosted.defjvp
     def hosted_jvp(primals, tangents):
@@ -141,7 +146,7 @@ def _in_float64(
         if jnp.shape(x) != (len(paths),):
             raise ValueError(f"f takes its {len(paths)} inputs {paths} as a vector, got shape {jnp.shape(x)}")
         if jax.config.read("jax_enable_x64"):
-            return compiled_value(jnp.asarray(x, jnp.float64))
+            return solved(jnp.asarray(x, jnp.float64))
         return hosted(jnp.asarray(x, jnp.result_type(float)))
 
     return f
