@@ -13,6 +13,8 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
         bounces, touch_velocity, separation_velocity, dissipated_energy,
         tabor_parameter   (scalars; Λ is nan unless Maugis–Dugdale on a paraboloid)
+        centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
+                          (lab frame, along the body's approach; speeds above are relative)
         events/{time, kind}
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes
@@ -45,6 +47,9 @@ SCALAR_UNITS = {
     "separation_velocity": "m s-1",
     "dissipated_energy": "J",
     "tabor_parameter": "",
+    "centre_of_mass_velocity": "m s-1",
+    "body_velocity_after": "m s-1",
+    "counterpart_velocity_after": "m s-1",
 }
 # Time series under observables/contact/: Result field → (unit, description).
 CONTACT_SERIES = {

@@ -45,12 +45,12 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
         # Only a partial approach work of adhesion puts the attach edge's turn decades below the
         # branch grid (Δγa = Δγ turns at the jump-in scale, Δγa = 0 does not turn).
         tabulation=Tabulation.for_profile(
-            scene.body.profile.build(),
+            scene.contact_profile.build(),
             tip_search=partial_approach,
         ),
         # Loading from a = 0 on a steep tip needs the timed path: no jump-in, or a power law
         # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
-        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.body.profile.shape == "power_law",
+        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.contact_profile.shape == "power_law",
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
     )
 
@@ -61,10 +61,10 @@ def physics_for(scene: Scene) -> Physics:
     gravity = scene.effects.gravity
     duration = scene.limits.duration
     return Physics(
-        profile=scene.body.profile.build(),
+        profile=scene.contact_profile.build(),
         E_star=_float64(scene.material.effective_modulus),
-        mass=_float64(scene.body.resolved_mass),
-        velocity=_float64(scene.start.velocity),
+        mass=_float64(scene.reduced_mass),
+        velocity=_float64(scene.approach_velocity),
         gap=_float64(scene.start.gap),
         adhesion=adhesion_for(scene),
         gravity=Gravity(_float64(gravity.g)) if gravity else Gravity.none(),

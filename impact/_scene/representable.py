@@ -65,12 +65,12 @@ def _radius_at_height(profile, height):
 @float64
 def check_representable(scene) -> None:
     """Raise FieldProblem (dotted path from the scene) where the impact cannot be represented."""
-    profile = scene.body.profile.build()
+    profile = scene.contact_profile.build()
     adhesion = scene.active_adhesion
-    E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
+    E_star, mass = scene.material.effective_modulus, scene.reduced_mass
     gravity = scene.effects.gravity
     fall = 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
-    speed = math.sqrt(scene.start.velocity**2 + fall)
+    speed = math.sqrt(scene.approach_velocity**2 + fall)
     approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         approach = adhesion.work_of_adhesion
@@ -80,7 +80,7 @@ def check_representable(scene) -> None:
     _check_units(values, float(units.velocity), float(units.energy))
     if adhesion is not None and adhesion.model == "jkr":
         _check_adhesion_resolved(adhesion, E_star, values)
-    if scene.body.profile.shape in SIZE_FIELD:
+    if scene.contact_profile.shape in SIZE_FIELD:
         _check_depth(scene, profile, float(energetic.normal), fall)
 
 
@@ -113,15 +113,15 @@ def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) 
 def _check_depth(scene, profile, energetic_depth: float, fall: float) -> None:
     """The indentation the impact energy alone would reach (its unit ℓz, ~0.8 of Hertz's maximum)
     must not exceed the body's size."""
-    size_field = SIZE_FIELD[scene.body.profile.shape]
-    size = getattr(scene.body.profile, size_field)
+    size_field = SIZE_FIELD[scene.contact_profile.shape]
+    size = getattr(scene.contact_profile, size_field)
     if energetic_depth <= size:
         return  # a jump-in deeper than the body is left to run (configs/hard/15_huge_adhesion: 3.4 R)
     why = (
         f"the body would be pressed in about {energetic_depth:.3g} m, deeper than its size "
         f"body.profile.{size_field} = {size:g} m"
     )
-    E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
+    E_star, mass = scene.material.effective_modulus, scene.reduced_mass
     # the impact energy: E*·x·g(x)² at g(x) = size is the most it may be
     most_energy = E_star * float(_radius_at_height(*_traced((profile, size)))) * size**2
     if scene.start.velocity > 0 or fall == 0:

@@ -16,8 +16,8 @@ def thornton_ning(scene, velocity):
     return float(
         theory.thornton_ning_restitution(
             velocity,
-            scene.body.resolved_mass,
-            scene.body.profile.R,
+            scene.reduced_mass,
+            scene.contact_profile.R,
             scene.material.effective_modulus,
             scene.effects.adhesion.work_of_adhesion,
         )
@@ -115,6 +115,7 @@ CHECKS = {
     "indentation_paraboloid": force_controlled_pull_off,
     "indentation_wavy": displacement_controlled_wavy_pull_off,
     "maugis_dugdale": maugis_dugdale_pull_off,
+    "two_spheres": matches(thornton_ning, 1e-6),
 }
 
 

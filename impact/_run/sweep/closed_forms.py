@@ -55,7 +55,7 @@ def closed_form_name(scene: Scene) -> str:
         return "no adhesion: e = 1"
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
-    shape = scene.body.profile.shape
+    shape = scene.contact_profile.shape
     if adhesion.model == "maugis_dugdale":
         limit = {
             "paraboloid": "Thornton–Ning (3.50–51)",

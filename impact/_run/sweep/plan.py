@@ -78,7 +78,9 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
     template = physics_for(scene)
     batch = with_values(scene, params)
     profile = (
-        batch.body.profile.build() if any(path.startswith("body.profile.") for path in params) else template.profile
+        batch.contact_profile.build()
+        if any(path.startswith(("body.profile.", "counterpart.profile.")) for path in params)
+        else template.profile
     )
     reference, treedef = jax.tree.flatten(template.profile)
     leaves = [
@@ -101,8 +103,8 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
     return Physics(
         profile=jax.tree.unflatten(treedef, leaves),
         E_star=_batched(batch.material.effective_modulus, (), size),
-        mass=_batched(batch.body.resolved_mass, (), size),
-        velocity=_batched(batch.start.velocity, (), size),
+        mass=_batched(batch.reduced_mass, (), size),
+        velocity=_batched(batch.approach_velocity, (), size),
         gap=_batched(batch.start.gap, (), size),
         adhesion=Adhesion(
             work_of_adhesion=_batched(work, (), size),
