@@ -37,6 +37,7 @@ class Result:
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
     dissipated_energy: float  # J lost in the first contact: ∮F dd
+    plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
     tabor_parameter: float  # Λ (3.172) of Maugis–Dugdale adhesion on a paraboloid; nan otherwise
     centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
     body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
@@ -111,6 +112,7 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         contact_time = float("inf")  # captured, or stopped in contact
     else:
         contact_time = (let_go - touched) * time
+    dissipated = float(o["first_contact_work"]) * force * length
     rebound = separation * speed if is_success(o["status"]) else float("nan")
     centre, body_after, counterpart_after = velocities_after(scene, rebound)
     rows = o["trajectory"]
@@ -133,7 +135,8 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         bounces=int(o["contacts"]),
         touch_velocity=touch * speed,
         separation_velocity=separation * speed,
-        dissipated_energy=float(o["first_contact_work"]) * force * length,
+        dissipated_energy=dissipated,
+        plastic_work=dissipated if scene.effects.plasticity is not None else 0.0,
         tabor_parameter=tabor_parameter(scene),
         centre_of_mass_velocity=centre,
         body_velocity_after=body_after,

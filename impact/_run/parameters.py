@@ -7,9 +7,11 @@ import numpy as np
 
 from .._effects.adhesion import Adhesion
 from .._effects.gravity import Gravity
+from .._effects.plasticity import Plasticity
 from .._integrate.base import AbstractIntegrator
 from .._integrate.continuum import Continuum
 from .._integrate.dugdale import MaugisDugdale
+from .._integrate.plastic import Plastic
 from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
 from .._integrate.verlet import Verlet
@@ -21,9 +23,11 @@ _SAMPLES_PER_PHASE = 64
 
 def integrator_for(scene: Scene) -> AbstractIntegrator:
     """The integrator a scene names: the continuum law with a diffrax solver, a spring array
-    (exact, or stepped with Verlet), or the Maugis–Dugdale law."""
+    (exact, or stepped with Verlet), the Maugis–Dugdale law, or Thornton's plastic law."""
     solver = scene.solver
     adhesion = scene.active_adhesion
+    if scene.effects.plasticity is not None:
+        return Plastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.contact.springs == "continuum":
@@ -58,7 +62,7 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
 def physics_for(scene: Scene) -> Physics:
     """The traced SI parameters of a scene."""
     springs = scene.contact.springs
-    gravity = scene.effects.gravity
+    gravity, plasticity = scene.effects.gravity, scene.effects.plasticity
     duration = scene.limits.duration
     return Physics(
         profile=scene.contact_profile.build(),
@@ -68,6 +72,7 @@ def physics_for(scene: Scene) -> Physics:
         gap=_float64(scene.start.gap),
         adhesion=adhesion_for(scene),
         gravity=Gravity(_float64(gravity.g)) if gravity else Gravity.none(),
+        plasticity=Plasticity(_float64(plasticity.yield_pressure)) if plasticity else Plasticity.none(),
         time_limit=_float64(np.inf if duration is None else duration),
         spring_length=_float64(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=_float64(np.nan if springs == "continuum" else springs),

@@ -146,6 +146,29 @@ class Scene(Section):
         return self
 
     @model_validator(mode="after")
+    def _plasticity_supported(self):
+        if self.effects.plasticity is None:
+            return self
+        why = None
+        if self.kind != "impact":
+            why = "simulated in impacts only (kind 'impact')"
+        elif self.contact_profile.shape != "paraboloid":
+            why = (
+                f"Thornton's limiting contact pressure is a law of the paraboloid (the Hertzian peak pressure "
+                f"2E*a/(πR)), not of {self.contact_profile.shape!r}"
+            )
+        elif self.effects.adhesion is not None:
+            why = (
+                "not with effects.adhesion: the adhesive elastic–plastic law (Thornton & Ning 1998) is not "
+                "simulated yet"
+            )
+        elif self.contact.springs != "continuum":
+            why = "runs on the continuum law only (contact.springs: continuum)"
+        if why is not None:
+            raise FieldProblem("effects.plasticity", why)
+        return self
+
+    @model_validator(mode="after")
     def _representable(self):
         if self.kind == "impact":
             check_representable(self)

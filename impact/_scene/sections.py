@@ -265,11 +265,21 @@ class Gravity(Section):
     )
 
 
+class Plasticity(Section):
+    """Thornton's (1997) elastic–perfectly plastic contact of a paraboloid: the contact
+    pressure is limited to p_y."""
+
+    yield_pressure: Annotated[Number, within(d.STRESS)] = Field(
+        description="limiting contact pressure p_y (Pa): the Hertzian peak pressure 2E*a/(πR) where the contact yields"
+    )
+
+
 class Effects(Section):
     """The effects the scene names; those left out are not simulated at all."""
 
     adhesion: Adhesion | None = None
     gravity: Gravity | None = None
+    plasticity: Plasticity | None = None
 
 
 class Contact(Section):

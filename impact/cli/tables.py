@@ -88,6 +88,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
+        *([("plastic work", quantity(result.plastic_work, "J"))] if result.scene.effects.plasticity else []),
         *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
@@ -122,6 +123,8 @@ def _effects(scene: Scene) -> str:
         effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
+    if scene.effects.plasticity is not None:
+        effects.append(f"plasticity (p_y = {scene.effects.plasticity.yield_pressure:.6g} Pa)")
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
 
 

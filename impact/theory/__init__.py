@@ -122,6 +122,10 @@ from ._maugis import maugis_range as maugis_range
 from ._maugis import power_law_dmt_pull_off as power_law_dmt_pull_off
 from ._maugis import tabor_criterion as tabor_criterion
 from ._maugis import tabor_parameter as tabor_parameter
+from ._plastic import thornton_restitution as thornton_restitution
+from ._plastic import thornton_yield_force as thornton_yield_force
+from ._plastic import thornton_yield_indentation as thornton_yield_indentation
+from ._plastic import thornton_yield_velocity as thornton_yield_velocity
 from ._special import constant_stress_profile as constant_stress_profile
 from ._special import constant_stress_pull_off as constant_stress_pull_off
 from ._special import constant_stress_uniform_state as constant_stress_uniform_state
@@ -210,4 +214,8 @@ __all__ = [
     "maugis_pull_off_force",
     "maugis_pull_off_large_tabor",
     "maugis_pull_off_force_large_tabor",
+    "thornton_yield_indentation",
+    "thornton_yield_force",
+    "thornton_yield_velocity",
+    "thornton_restitution",
 ]

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..._effects.adhesion import Adhesion
 from ..._effects.gravity import Gravity
+from ..._effects.plasticity import Plasticity
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.problem import Options, Physics
 from ..._scene.paths import with_values
@@ -87,7 +88,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
         _batched(np.asarray(new), np.shape(ref), size)
         for new, ref in zip(jax.tree.leaves(profile), reference, strict=True)
     ]
-    adhesion, gravity = batch.effects.adhesion, batch.effects.gravity
+    adhesion, gravity, plasticity = batch.effects.adhesion, batch.effects.gravity, batch.effects.plasticity
     stress = np.full((), np.nan)
     if adhesion is None:
         work = approach = np.zeros(())
@@ -112,6 +113,7 @@ def batch_physics(scene: Scene, params: Mapping[str, np.ndarray], size: int) -> 
             adhesive_stress=_batched(stress, (), size),
         ),
         gravity=Gravity(_batched(0.0 if gravity is None else gravity.g, (), size)),
+        plasticity=Plasticity(_batched(np.nan if plasticity is None else plasticity.yield_pressure, (), size)),
         time_limit=_batched(np.inf if duration is None else duration, (), size),
         spring_length=_batched(np.nan if length is None else length, (), size),
         spring_count=_batched(np.nan if isinstance(springs, str) else springs, (), size),

@@ -1,0 +1,177 @@
+"""Impacts of a paraboloid with Thornton's elastic–perfectly plastic contact (`_law.plastic`).
+
+Each contact phase is integrated with an adaptive diffrax solver. The force grows as
+(d − d_p)^(3/2) from the dent, which costs a solver in time its order at touch and separation;
+so the state is x = √(d − d_p) (∝ the contact radius), with a pseudo-time s:
+
+    x' = v·q,   v' = (g − F(x² + d_p))·2x·q,   t' = 2x·q,   q = 1/√(1 + 4x²),
+
+smooth through x = 0 (as `continuum` rides the contact radius). Loading (elastic up to the
+deepest indentation so far, then on the virgin curve) ends at its turnaround, where the plastic
+state (d_max, R_p, d_p) is updated; unloading (elastic with R_p about the dent d_p) ends at
+separation, x = 0, or — under gravity — at a turnaround, where the body can never leave again
+(the elastic oscillation below d_max conserves energy): a capture. The state is carried to the
+next contact, which starts at the dent d_p.
+"""
+
+import equinox as eqx
+import jax.numpy as jnp
+
+from .._core.pytree import replace, where
+from .._core.types import Parameter
+from .._law.plastic import PlasticLaw, PlasticState
+from .._law.scales import Scales, energy_scales
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .flight import land
+from .problem import Options, Physics, touch_velocity
+from .transitions import Next, next_phase
+from .work import ContactSummary
+
+# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
+_PHASE_HORIZON = 1.0e4
+
+
+class PlasticProblem(eqx.Module):
+    """The scaled impact: Thornton's law and the initial state."""
+
+    law: PlasticLaw
+    scales: Scales
+    gravity: Parameter
+    start_indentation: Parameter
+    start_velocity: Parameter
+    touch_speed: Parameter
+    bounded: Parameter
+    time_limit: Parameter
+
+    @property
+    def overflow(self):
+        return jnp.asarray(False)
+
+
+class Plastic(AbstractAdaptiveIntegrator):
+    """Impacts of a paraboloid with Thornton's limiting contact pressure (no adhesion)."""
+
+    def build(self, physics: Physics, options: Options) -> PlasticProblem:
+        """Scale with the Hertzian impact energy's units and state Thornton's law."""
+        speed = touch_velocity(physics, options)
+        scales = energy_scales(physics.profile, physics.E_star, physics.mass, speed)
+        radius = physics.profile.radius_scale()  # R: the scene takes paraboloids only
+        return PlasticProblem(
+            law=physics.plasticity.law(radius, physics.E_star, scales),
+            scales=scales,
+            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+            start_indentation=-physics.gap / scales.normal,
+            start_velocity=physics.velocity / scales.velocity,
+            touch_speed=speed / scales.velocity,
+            bounded=jnp.asarray(True),
+            time_limit=physics.time_limit / scales.time,
+        )
+
+    def integrate(self, problem: PlasticProblem, options: Options) -> Outcome:
+        def flight(c: Carry) -> Carry:
+            touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
+            return land(problem, options, c, c.memory.residual, touch, jnp.zeros(()), samples=True)
+
+        contact = lambda c: _contact(self, problem, options, c)  # noqa: E731
+        return run_phases(problem, options, flight, contact, memory=PlasticState.virgin())
+
+
+class _Args(eqx.Module):
+    law: PlasticLaw
+    state: PlasticState
+    gravity: Parameter
+    advancing: Parameter
+    time_limit: Parameter
+    speed_scale: Parameter
+
+
+def _depth(x, state: PlasticState):
+    """d = d_p + x²."""
+    return state.residual + x**2
+
+
+def _vector_field(s, y, args: _Args):
+    x, v = y[0], y[1]
+    pace = 1.0 / jnp.sqrt(1.0 + 4.0 * x**2)
+    slope = 2.0 * x * pace  # dt/ds
+    force = args.law.force(_depth(x, args.state), args.state)
+    return jnp.stack([v * pace, (args.gravity - force) * slope, slope])
+
+
+def _conditions(y, args: _Args):
+    """Turnaround, separation (x = 0, unloading only), time limit: each negative until its event."""
+    x, v = y[0], y[1]
+    separation = jnp.where(args.advancing, -1.0, -x)
+    return jnp.stack(
+        [
+            jnp.where(args.advancing, -v, v) / args.speed_scale,
+            separation,
+            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+        ]
+    )
+
+
+def _first_event(t, y, args: _Args, **kwargs):
+    return jnp.max(_conditions(y, args))
+
+
+def _after(advancing, turned) -> Next:
+    """Loading turns into unloading; unloading ends in separation, or in a capture where it turns."""
+    mode = jnp.where(advancing, RECEDE, jnp.where(turned, DONE, FLIGHT))
+    event = jnp.where(
+        advancing, EVENT_CODE["max_indentation"], jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"])
+    )
+    return Next(
+        mode=mode,
+        segment=jnp.zeros((), int),
+        radius=jnp.zeros(()),
+        event=event,
+        separated=~advancing & ~turned,
+        captured=~advancing & turned,
+        stop=jnp.asarray(-1),
+    )
+
+
+def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: Carry) -> Carry:
+    """One loading or unloading phase with diffrax, ended by its located event."""
+    law, state = problem.law, c.memory
+    in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
+    advancing = c.mode == ADVANCE
+    args = _Args(
+        law=law,
+        state=state,
+        gravity=problem.gravity,
+        advancing=advancing,
+        time_limit=problem.time_limit,
+        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+    )
+    solution = integrator.ride(
+        _vector_field,
+        _first_event,
+        jnp.stack([jnp.sqrt(jnp.maximum(c.d - state.residual, 0.0)), c.v, c.t]),
+        args,
+        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
+        dense=options.samples_per_phase > 0,
+    )
+    _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    # The located separation lies on the dent to round-off: the next flight starts there.
+    d_end = jnp.where(advancing | turned, _depth(x_end, state), state.residual)
+
+    if options.samples_per_phase:
+        x, v, t = dense_states(solution, options.samples_per_phase).T
+        d = _depth(jnp.maximum(x, 0.0), state)
+        rows = jnp.stack([t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
+        c = where(in_contact, store_samples(c, options, rows), c)
+
+    forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
+    summary = ContactSummary(
+        work=law.work(d_end, state) - law.work(c.d, state),
+        lowest_force=jnp.min(forces),
+        highest_force=jnp.max(forces),
+        deepest=jnp.maximum(c.d, d_end),
+    )
+    c = close_phase(c, in_contact, solution, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
+    turned_over = in_contact & advancing
+    return replace(c, memory=where(turned_over, law.after_turn(d_end, state), state))
