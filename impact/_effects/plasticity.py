@@ -5,6 +5,7 @@ exceed p_y; beyond, the contact yields (`impact._law.plastic`)."""
 import equinox as eqx
 import jax.numpy as jnp
 
+from .. import theory
 from .._core.types import Parameter
 from .._law.plastic import PlasticLaw
 from .._law.scales import Scales
@@ -25,6 +26,15 @@ class Plasticity(eqx.Module):
         depth δ_y = (πp_y/(2E*))²R."""
         yield_depth = (jnp.pi * self.yield_pressure / (2.0 * E_star)) ** 2 * radius
         return PlasticLaw(
+            stiffness=4.0 / 3.0 * E_star * jnp.sqrt(radius) * scales.normal**1.5 / scales.force,
             radius_unit=jnp.sqrt(radius * scales.normal) / scales.radial,
             yield_depth=yield_depth / scales.normal,
         )
+
+    def scales(self, radius, E_star, mass, touch_velocity) -> Scales:
+        """Units in which the impact is O(1) however far it yields: the deepest indentation
+        δ_max (Thornton's closed form), the contact radius √(Rδ_max), the time δ_max/v₀ and the
+        force m·v₀²/δ_max (scaled mass 1, touch speed 1)."""
+        depth = theory.thornton_max_indentation(touch_velocity, mass, radius, E_star, self.yield_pressure)
+        time = depth / touch_velocity
+        return Scales(radial=jnp.sqrt(radius * depth), normal=depth, force=mass * depth / time**2, time=time)

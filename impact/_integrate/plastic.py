@@ -20,7 +20,7 @@ import jax.numpy as jnp
 from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.plastic import PlasticLaw, PlasticState
-from .._law.scales import Scales, energy_scales
+from .._law.scales import Scales
 from .base import AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
@@ -54,12 +54,13 @@ class Plastic(AbstractAdaptiveIntegrator):
     """Impacts of a paraboloid with Thornton's limiting contact pressure (no adhesion)."""
 
     def build(self, physics: Physics, options: Options) -> PlasticProblem:
-        """Scale with the Hertzian impact energy's units and state Thornton's law."""
+        """Scale with the deepest indentation and the touch speed, and state Thornton's law."""
         speed = touch_velocity(physics, options)
-        scales = energy_scales(physics.profile, physics.E_star, physics.mass, speed)
         radius = physics.profile.radius_scale()  # R: the scene takes paraboloids only
+        plasticity = physics.plasticity
+        scales = plasticity.scales(radius, physics.E_star, physics.mass, speed)
         return PlasticProblem(
-            law=physics.plasticity.law(radius, physics.E_star, scales),
+            law=plasticity.law(radius, physics.E_star, scales),
             scales=scales,
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=-physics.gap / scales.normal,
@@ -83,6 +84,7 @@ class _Args(eqx.Module):
     state: PlasticState
     gravity: Parameter
     advancing: Parameter
+    flows: Parameter  # x where loading starts (or resumes) plastic flow; nan where it flows already
     time_limit: Parameter
     speed_scale: Parameter
 
@@ -101,9 +103,11 @@ def _vector_field(s, y, args: _Args):
 
 
 def _conditions(y, args: _Args):
-    """Turnaround, separation (x = 0, unloading only), time limit: each negative until its event."""
+    """Turnaround, the end of the branch (loading: the onset of flow, where the force's second
+    derivative jumps; unloading: separation at x = 0), time limit: each negative until its event."""
     x, v = y[0], y[1]
-    separation = jnp.where(args.advancing, -1.0, -x)
+    onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
+    separation = jnp.where(args.advancing, onset, -x)
     return jnp.stack(
         [
             jnp.where(args.advancing, -v, v) / args.speed_scale,
@@ -118,10 +122,13 @@ def _first_event(t, y, args: _Args, **kwargs):
 
 
 def _after(advancing, turned) -> Next:
-    """Loading turns into unloading; unloading ends in separation, or in a capture where it turns."""
-    mode = jnp.where(advancing, RECEDE, jnp.where(turned, DONE, FLIGHT))
+    """Loading turns into unloading or flows on; unloading ends in separation, or in a capture
+    where it turns."""
+    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
     event = jnp.where(
-        advancing, EVENT_CODE["max_indentation"], jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"])
+        advancing,
+        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
+        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
     )
     return Next(
         mode=mode,
@@ -139,11 +146,14 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
     law, state = problem.law, c.memory
     in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
     advancing = c.mode == ADVANCE
+    onset = jnp.maximum(law.yield_depth, state.deepest)
+    x_onset = jnp.sqrt(jnp.maximum(onset - state.residual, 0.0))
     args = _Args(
         law=law,
         state=state,
         gravity=problem.gravity,
         advancing=advancing,
+        flows=jnp.where(c.d < onset, x_onset, jnp.nan),
         time_limit=problem.time_limit,
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
     )
@@ -156,8 +166,8 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
         dense=options.samples_per_phase > 0,
     )
     _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    # The located separation lies on the dent to round-off: the next flight starts there.
-    d_end = jnp.where(advancing | turned, _depth(x_end, state), state.residual)
+    # Located ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
+    d_end = jnp.where(turned, _depth(x_end, state), jnp.where(advancing, onset, state.residual))
 
     if options.samples_per_phase:
         x, v, t = dense_states(solution, options.samples_per_phase).T

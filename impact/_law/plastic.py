@@ -8,7 +8,7 @@ beyond it loading continues on the virgin curve. At a turnaround deeper than bef
 radius a = √(R·d_max) is kept (Thornton's closure), so R_p = 4E*a³/(3F_max) and
 d_max − d_p = a²/R_p: R_p/R is the Hertzian force at d_max over the virgin one.
 
-Lengths in the units of `Scales` (d̂ = d/ℓz, â = a/ℓx), forces in E*·ℓx·ℓz.
+Lengths in the units of `Scales` (d̂ = d/ℓz, â = a/ℓx), forces in its force unit.
 """
 
 import equinox as eqx
@@ -32,12 +32,9 @@ class PlasticState(eqx.Module):
 class PlasticLaw(eqx.Module):
     """F(d) of Thornton's law given the state; the contact radius â = c·√(R_p/R·(d̂ − d̂_p))."""
 
-    radius_unit: jax.Array  # c = √(R·ℓz)/ℓx; the Hertz stiffness is (4/3)c: F̂ = (4/3)c·d̂^(3/2)
+    stiffness: jax.Array  # k of Hertz's F̂ = k·d̂^(3/2): (4/3)E*√R·ℓz^(3/2) over the force unit
+    radius_unit: jax.Array  # c = √(R·ℓz)/ℓx
     yield_depth: jax.Array  # d̂_y = (πp_y/(2E*))²R/ℓz
-
-    @property
-    def stiffness(self):
-        return 4.0 / 3.0 * self.radius_unit
 
     def virgin_force(self, d):
         """Force on first loading to d: Hertz, then linear beyond d_y."""

@@ -13,6 +13,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .. import theory
 from .._core.runtime import float64
 from .._core.search import log_sign_change
 from .._law.scales import Scales, adhesive_scales, energy_scales
@@ -80,7 +81,9 @@ def check_representable(scene) -> None:
     _check_units(values, float(units.velocity), float(units.energy))
     if adhesion is not None and adhesion.model == "jkr":
         _check_adhesion_resolved(adhesion, E_star, values)
-    if scene.contact_profile.shape in SIZE_FIELD:
+    if scene.effects.plasticity is not None:
+        _check_plastic_depth(scene, speed, fall)
+    elif scene.contact_profile.shape in SIZE_FIELD:
         _check_depth(scene, profile, float(energetic.normal), fall)
 
 
@@ -121,9 +124,30 @@ def _check_depth(scene, profile, energetic_depth: float, fall: float) -> None:
         f"the body would be pressed in about {energetic_depth:.3g} m, deeper than its size "
         f"body.profile.{size_field} = {size:g} m"
     )
-    E_star, mass = scene.material.effective_modulus, scene.reduced_mass
     # the impact energy: E*·x·g(x)² at g(x) = size is the most it may be
-    most_energy = E_star * float(_radius_at_height(*_traced((profile, size)))) * size**2
+    most_energy = scene.material.effective_modulus * float(_radius_at_height(*_traced((profile, size)))) * size**2
+    _refuse_deeper(scene, most_energy, fall, why)
+
+
+def _check_plastic_depth(scene, speed: float, fall: float) -> None:
+    """A yielding paraboloid must not be pressed in deeper than its radius: the deepest
+    indentation of Thornton's law (closed form) against R, the most energy its loading takes."""
+    R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
+    yield_pressure = scene.effects.plasticity.yield_pressure
+    depth = float(theory.thornton_max_indentation(speed, scene.reduced_mass, R, E_star, yield_pressure))
+    if depth <= R:
+        return
+    why = (
+        f"yielding at p_y = {yield_pressure:g} Pa, the body would be pressed in about {depth:.3g} m, deeper than "
+        f"its radius {R:g} m"
+    )
+    _refuse_deeper(scene, float(theory.thornton_loading_work(R, R, E_star, yield_pressure)), fall, why)
+
+
+def _refuse_deeper(scene, most_energy: float, fall: float, why: str) -> None:
+    """Refuse the initial velocity (or, for a body dropped from rest, the gap) that brings more
+    than `most_energy` (J) into the contact."""
+    mass = scene.reduced_mass
     if scene.start.velocity > 0 or fall == 0:
         most = math.sqrt(max(2.0 * most_energy / mass - fall, 0.0))
         raise FieldProblem("initial.velocity", outside(scene.start.velocity, Domain(0.0, most, "m/s"), why))

@@ -122,6 +122,8 @@ from ._maugis import maugis_range as maugis_range
 from ._maugis import power_law_dmt_pull_off as power_law_dmt_pull_off
 from ._maugis import tabor_criterion as tabor_criterion
 from ._maugis import tabor_parameter as tabor_parameter
+from ._plastic import thornton_loading_work as thornton_loading_work
+from ._plastic import thornton_max_indentation as thornton_max_indentation
 from ._plastic import thornton_restitution as thornton_restitution
 from ._plastic import thornton_yield_force as thornton_yield_force
 from ._plastic import thornton_yield_indentation as thornton_yield_indentation
@@ -218,4 +220,6 @@ __all__ = [
     "thornton_yield_force",
     "thornton_yield_velocity",
     "thornton_restitution",
+    "thornton_loading_work",
+    "thornton_max_indentation",
 ]

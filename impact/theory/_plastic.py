@@ -47,3 +47,25 @@ def thornton_restitution(velocity: Scalars, yield_velocity: Scalars):
     r = jnp.minimum(yield_velocity / velocity, 1.0)
     root = 2 * jnp.sqrt(6 / 5 - r**2 / 5)
     return jnp.sqrt(6 * jnp.sqrt(3.0) / 5) * jnp.sqrt(1 - r**2 / 6) * (r / (r + root)) ** 0.25
+
+
+@float64
+def thornton_loading_work(indentation: Scalars, R: Scalars, E_star: Scalars, yield_pressure: Scalars):
+    """∫₀^δ F dδ [J] on first loading to δ [m]: (2/5)(4/3)E*√R δ^(5/2) up to δ_y, then
+    (2/5)F_yδ_y + F_y(δ − δ_y) + (π/2)p_yR(δ − δ_y)²."""
+    depth = thornton_yield_indentation(R, E_star, yield_pressure)
+    force = thornton_yield_force(R, E_star, yield_pressure)
+    elastic = 2 / 5 * 4 / 3 * E_star * jnp.sqrt(R) * jnp.minimum(indentation, depth) ** 2.5
+    beyond = jnp.maximum(indentation - depth, 0.0)
+    return elastic + force * beyond + jnp.pi / 2 * yield_pressure * R * beyond**2
+
+
+@float64
+def thornton_max_indentation(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, yield_pressure: Scalars):
+    """δ_max [m] of an impact at v₀ [m/s]: Hertz's δ_y(v₀/v_y)^(4/5) up to v_y, else δ_y(1 + u)
+    with (15/8)u² + (5/2)u + 1 − (v₀/v_y)² = 0 (the loading work equals ½mv₀²)."""
+    depth = thornton_yield_indentation(R, E_star, yield_pressure)
+    ratio = velocity / thornton_yield_velocity(mass, R, E_star, yield_pressure)
+    excess = jnp.maximum(ratio**2 - 1.0, 0.0)
+    u = 2 * excess / (2.5 + jnp.sqrt(6.25 + 7.5 * excess))  # the root, free of cancellation
+    return jnp.where(ratio > 1.0, depth * (1.0 + u), depth * ratio**0.8)

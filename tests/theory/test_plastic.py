@@ -11,8 +11,8 @@ R, E_STAR, P_Y, DENSITY = 5e-3, 115e9, 1e9, 7850.0
 MASS = DENSITY * 4 / 3 * math.pi * R**3
 
 
-def restitution_by_energy(velocity: float) -> float:
-    """e from ½mv₀² = ∫F dd on loading (numerical quadrature, depth by bisection) and the elastic
+def by_energy(velocity: float) -> tuple[float, float]:
+    """(e, δ_max) from ½mv₀² = ∫F dd on loading (numerical quadrature, depth by bisection) and the elastic
     unloading energy (2/5)F_max(δ_max − δ_p) with a_max = √(Rδ_max), R_p = 4E*a³/(3F_max)."""
     d_y = (math.pi * P_Y / (2 * E_STAR)) ** 2 * R
 
@@ -33,7 +33,7 @@ def restitution_by_energy(velocity: float) -> float:
     radius = math.sqrt(R * deepest)
     enlarged = 4 * E_STAR * radius**3 / (3 * top)
     rebound = 0.4 * top * radius**2 / enlarged
-    return math.sqrt(rebound / (0.5 * MASS * velocity**2))
+    return math.sqrt(rebound / (0.5 * MASS * velocity**2)), deepest
 
 
 def test_yield_velocity_is_thorntons_with_the_exact_coefficient():
@@ -47,8 +47,9 @@ def test_yield_velocity_is_thorntons_with_the_exact_coefficient():
 def test_restitution_is_the_energy_balance_of_the_law(ratio):
     yield_velocity = float(theory.thornton_yield_velocity(MASS, R, E_STAR, P_Y))
     velocity = ratio * yield_velocity
-    closed_form = float(theory.thornton_restitution(velocity, yield_velocity))
-    assert closed_form == pytest.approx(restitution_by_energy(velocity), rel=1e-7)
+    restitution, deepest = by_energy(velocity)
+    assert float(theory.thornton_restitution(velocity, yield_velocity)) == pytest.approx(restitution, rel=1e-7)
+    assert float(theory.thornton_max_indentation(velocity, MASS, R, E_STAR, P_Y)) == pytest.approx(deepest, rel=1e-7)
 
 
 def test_restitution_is_one_up_to_the_yield_velocity_and_continuous_there():
