@@ -75,7 +75,9 @@ class Plastic(AbstractAdaptiveIntegrator):
             touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
             return land(problem, options, c, c.memory.residual, touch, jnp.zeros(()), samples=True)
 
-        contact = lambda c: _contact(self, problem, options, c)  # noqa: E731
+        def contact(c: Carry) -> Carry:
+            return _contact(self, problem, options, c)
+
         return run_phases(problem, options, flight, contact, memory=PlasticState.virgin())
 
 
@@ -107,11 +109,11 @@ def _conditions(y, args: _Args):
     derivative jumps; unloading: separation at x = 0), time limit: each negative until its event."""
     x, v = y[0], y[1]
     onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
-    separation = jnp.where(args.advancing, onset, -x)
+    branch_end = jnp.where(args.advancing, onset, -x)
     return jnp.stack(
         [
             jnp.where(args.advancing, -v, v) / args.speed_scale,
-            separation,
+            branch_end,
             (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
         ]
     )
@@ -166,8 +168,9 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
         dense=options.samples_per_phase > 0,
     )
     _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    # Located ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
-    d_end = jnp.where(turned, _depth(x_end, state), jnp.where(advancing, onset, state.residual))
+    # Branch ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
+    on_branch_end = ~turned & ~out_of_time
+    d_end = jnp.where(on_branch_end, jnp.where(advancing, onset, state.residual), _depth(x_end, state))
 
     if options.samples_per_phase:
         x, v, t = dense_states(solution, options.samples_per_phase).T
