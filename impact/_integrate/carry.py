@@ -2,6 +2,8 @@
 carry of the phase loop, its event log and trajectory buffer, and how a stretch of contact is
 booked."""
 
+from typing import Any
+
 import diffrax as dfx
 import equinox as eqx
 import jax
@@ -70,11 +72,13 @@ class Carry(eqx.Module):
     event_kinds: jax.Array
     event_count: jax.Array
     trajectory: jax.Array
+    memory: Any  # what the contact law carries between contacts (a plastic state); else a 0
 
 
-def initial_carry(problem, options: Options) -> Carry:
+def initial_carry(problem, options: Options, memory: Any = None) -> Carry:
     """The carry before the first flight (or already done: a branch overflow, an unbounded
-    contact). `problem` has `start_indentation`, `start_velocity`, `overflow` and `bounded`."""
+    contact). `problem` has `start_indentation`, `start_velocity`, `overflow` and `bounded`;
+    `memory` is the contact law's initial memory (None: a law without one)."""
     events = EVENTS_PER_PHASE * options.max_phases
     rows = options.samples_per_phase * options.max_phases
     zero, inf = jnp.zeros(()), jnp.asarray(jnp.inf)
@@ -109,6 +113,7 @@ def initial_carry(problem, options: Options) -> Carry:
         event_kinds=jnp.full(events, -1, int),
         event_count=jnp.zeros((), int),
         trajectory=jnp.full((rows, 5), jnp.nan),
+        memory=jnp.zeros(()) if memory is None else memory,
     )
 
 
@@ -174,9 +179,9 @@ def close_phase(
     return where(active, updated, c)
 
 
-def run_phases(problem, options: Options, flight, contact) -> Outcome:
+def run_phases(problem, options: Options, flight, contact, memory: Any = None) -> Outcome:
     """Chain flights and contact phases (`flight(carry)`, `contact(carry)`, each returning the
-    next carry) until the run is done or holds no more phases."""
+    next carry) until the run is done or holds no more phases; `memory` as `initial_carry`."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
@@ -184,7 +189,7 @@ def run_phases(problem, options: Options, flight, contact) -> Outcome:
     def advance(c: Carry):
         return jax.lax.cond(c.mode == FLIGHT, flight, contact, c)
 
-    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, options)))
+    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, options, memory)))
 
 
 def log_event(c: Carry, time, kind, valid=True) -> Carry:

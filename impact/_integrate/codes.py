@@ -20,6 +20,7 @@ EVENT_KINDS = (
     "limit",  # a bound on bounces, time or phases ended the run
     "contact_start",  # Maugis–Dugdale: the centre of the adhesive zone closes into a contact
     "contact_end",  # Maugis–Dugdale: the contact opens into an adhesive zone without contact
+    "yield",  # plasticity: loading reaches the depth where plastic flow starts (or resumes)
 )
 EVENT_CODE = {kind: code for code, kind in enumerate(EVENT_KINDS)}
 

@@ -10,6 +10,7 @@ import jax.numpy as jnp
 from .._core.types import Parameter
 from .._effects.adhesion import Adhesion
 from .._effects.gravity import Gravity
+from .._effects.plasticity import Plasticity
 from .._law.branches import Branch, Tabulation, build_branch
 from .._law.law import ContactLaw
 from .._law.reach import radius_bound
@@ -51,6 +52,7 @@ class Physics(eqx.Module):
     gap: Parameter  # initial separation (m)
     adhesion: Adhesion  # unused unless `Options.adhesive`
     gravity: Gravity  # unused unless `Options.gravity`
+    plasticity: Plasticity  # unused unless the scene names plasticity (the `Plastic` integrator)
     time_limit: Parameter  # s
     spring_length: Parameter  # radius covered by a spring array (m); nan: the default
     spring_count: Parameter  # N of a spring array (traced: one compilation serves every N); nan: continuum

@@ -11,8 +11,10 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
     observables/
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
-        bounces, touch_velocity, separation_velocity, dissipated_energy,
+        bounces, touch_velocity, separation_velocity, dissipated_energy, plastic_work,
         tabor_parameter   (scalars; Λ: Maugis–Dugdale on a paraboloid, Greenwood–Johnson; else nan)
+        centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
+                          (lab frame, along the body's approach; speeds above are relative)
         events/{time, kind}
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes
@@ -44,7 +46,11 @@ SCALAR_UNITS = {
     "touch_velocity": "m s-1",
     "separation_velocity": "m s-1",
     "dissipated_energy": "J",
+    "plastic_work": "J",
     "tabor_parameter": "",
+    "centre_of_mass_velocity": "m s-1",
+    "body_velocity_after": "m s-1",
+    "counterpart_velocity_after": "m s-1",
 }
 # Time series under observables/contact/: Result field → (unit, description).
 CONTACT_SERIES = {

@@ -92,7 +92,7 @@ def force_indentation_figure(result: Result) -> "Figure":
 def equilibrium_curve(scene: Scene, work_of_adhesion: float, largest_radius: float, points: int = 400):
     """(d, F) in SI along contact radii 0 ≤ a ≤ largest_radius (m) of the scene's profile:
     d = g(a) − √(2πaΔγ/E*), F = 2E*(a·d − G(a)); Δγ = 0 is the non-adhesive curve."""
-    profile = scene.body.profile.build()
+    profile = scene.contact_profile.build()
     modulus = scene.material.effective_modulus
     radius = np.linspace(0.0, min(largest_radius, float(profile.extent())), points)
     d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work_of_adhesion / modulus)
@@ -116,7 +116,7 @@ def _closed_form_curves(scene: Scene, largest_radius: float):
 def _curve_name(scene: Scene, work_of_adhesion: float) -> str:
     if work_of_adhesion > 0:
         return f"JKR, Δγ = {work_of_adhesion:.3g} J/m²"
-    return "Hertz" if scene.body.profile.shape == "paraboloid" else "non-adhesive MDR"
+    return "Hertz" if scene.contact_profile.shape == "paraboloid" else "non-adhesive MDR"
 
 
 def _in_contact(contact_radius: np.ndarray) -> np.ndarray:

@@ -19,7 +19,9 @@ class Result:
     """Outcome of one impact, in SI units.
 
     `restitution` and `contact_time` describe the first contact (rebound speed over touch
-    speed); `stuck` says whether the body ended captured. Trajectory arrays hold samples of
+    speed); `stuck` says whether the body ended captured. Speeds and the dissipated energy are
+    those of the relative motion (reduced mass) when the scene has a counterpart; the lab-frame
+    velocities after the first contact are positive along the body's approach. Trajectory arrays hold samples of
     every phase in time order (a jump of the contact shows as two samples at the same time).
     """
 
@@ -35,7 +37,11 @@ class Result:
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
     dissipated_energy: float  # J lost in the first contact: ∮F dd
+    plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
     tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
+    centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
+    body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
+    counterpart_velocity_after: float  # m/s, lab frame, after the first contact (0 for the flat)
     t: np.ndarray = field(repr=False)  # s
     indentation: np.ndarray = field(repr=False)  # m
     velocity: np.ndarray = field(repr=False)  # m/s, towards the surface positive
@@ -47,6 +53,16 @@ class Result:
     @property
     def success(self) -> bool:
         return self.status in ("separated", "captured")
+
+    @property
+    def body_velocity_after_cm(self) -> float:
+        """The body's velocity after the first contact in the centre-of-mass frame (m/s)."""
+        return self.body_velocity_after - self.centre_of_mass_velocity
+
+    @property
+    def counterpart_velocity_after_cm(self) -> float:
+        """The counterpart's velocity after the first contact in the centre-of-mass frame (m/s)."""
+        return self.counterpart_velocity_after - self.centre_of_mass_velocity
 
 
 def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
@@ -61,13 +77,25 @@ def tabor_parameter(scene: Scene) -> float:
     adhesion = scene.active_adhesion
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return float(theory.double_hertz_tabor_parameter(adhesion.double_hertz_factor))
-    if adhesion is None or adhesion.model != "maugis_dugdale" or scene.body.profile.shape != "paraboloid":
+    if adhesion is None or adhesion.model != "maugis_dugdale" or scene.contact_profile.shape != "paraboloid":
         return float("nan")
     return float(
         theory.tabor_parameter(
-            scene.body.profile.R, adhesion.adhesive_stress, adhesion.adhesion_range, scene.material.effective_modulus
+            scene.contact_profile.R, adhesion.adhesive_stress, adhesion.adhesion_range, scene.material.effective_modulus
         )
     )
+
+
+def velocities_after(scene: Scene, separation_velocity: float) -> tuple[float, float, float]:
+    """(centre-of-mass velocity, body's, counterpart's) in the lab frame (m/s, positive along the
+    body's approach) once the surfaces separate at the relative speed `separation_velocity`:
+    u₁ = V − m₂/(m₁ + m₂)·v_sep, u₂ = V + m₁/(m₁ + m₂)·v_sep, V = (m₁v₁ − m₂v₂)/(m₁ + m₂)."""
+    if scene.counterpart is None:
+        return 0.0, -separation_velocity, 0.0
+    mass, other = scene.body.resolved_mass, scene.counterpart.resolved_mass
+    total = mass + other
+    centre = (mass * scene.start.velocity - other * scene.counterpart.velocity) / total
+    return centre, centre - other / total * separation_velocity, centre + mass / total * separation_velocity
 
 
 def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any]) -> Result:
@@ -87,6 +115,9 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         contact_time = float("inf")  # captured, or stopped in contact
     else:
         contact_time = (let_go - touched) * time
+    dissipated = float(o["first_contact_work"]) * force * length
+    rebound = separation * speed if is_success(o["status"]) else float("nan")
+    centre, body_after, counterpart_after = velocities_after(scene, rebound)
     rows = o["trajectory"]
     rows = rows[np.isfinite(rows[:, 0])]
     repeated = np.zeros(len(rows), dtype=bool)
@@ -107,8 +138,12 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         bounces=int(o["contacts"]),
         touch_velocity=touch * speed,
         separation_velocity=separation * speed,
-        dissipated_energy=float(o["first_contact_work"]) * force * length,
+        dissipated_energy=dissipated,
+        plastic_work=dissipated if scene.effects.plasticity is not None else 0.0,
         tabor_parameter=tabor_parameter(scene),
+        centre_of_mass_velocity=centre,
+        body_velocity_after=body_after,
+        counterpart_velocity_after=counterpart_after,
         t=rows[:, 0] * time,
         indentation=rows[:, 1] * length,
         velocity=rows[:, 2] * speed,

@@ -7,10 +7,12 @@ import numpy as np
 
 from .._effects.adhesion import Adhesion
 from .._effects.gravity import Gravity
+from .._effects.plasticity import Plasticity
 from .._integrate.base import AbstractIntegrator
 from .._integrate.continuum import Continuum
 from .._integrate.double_hertz import GreenwoodJohnson
 from .._integrate.dugdale import MaugisDugdale
+from .._integrate.plastic import Plastic
 from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
 from .._integrate.verlet import Verlet
@@ -22,9 +24,12 @@ _SAMPLES_PER_PHASE = 64
 
 def integrator_for(scene: Scene) -> AbstractIntegrator:
     """The integrator a scene names: the continuum law with a diffrax solver, a spring array
-    (exact, or stepped with Verlet), or a finite-range law (Maugis–Dugdale, Greenwood–Johnson)."""
+    (exact, or stepped with Verlet), a finite-range law (Maugis–Dugdale, Greenwood–Johnson), or
+    Thornton's plastic law."""
     solver = scene.solver
     adhesion = scene.active_adhesion
+    if scene.effects.plasticity is not None:
+        return Plastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if adhesion is not None and adhesion.model == "greenwood_johnson":
@@ -48,12 +53,12 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
         # Only a partial approach work of adhesion puts the attach edge's turn decades below the
         # branch grid (Δγa = Δγ turns at the jump-in scale, Δγa = 0 does not turn).
         tabulation=Tabulation.for_profile(
-            scene.body.profile.build(),
+            scene.contact_profile.build(),
             tip_search=partial_approach,
         ),
         # Loading from a = 0 on a steep tip needs the timed path: no jump-in, or a power law
         # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
-        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.body.profile.shape == "power_law",
+        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.contact_profile.shape == "power_law",
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
     )
 
@@ -61,16 +66,17 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
 def physics_for(scene: Scene) -> Physics:
     """The traced SI parameters of a scene."""
     springs = scene.contact.springs
-    gravity = scene.effects.gravity
+    gravity, plasticity = scene.effects.gravity, scene.effects.plasticity
     duration = scene.limits.duration
     return Physics(
-        profile=scene.body.profile.build(),
+        profile=scene.contact_profile.build(),
         E_star=_float64(scene.material.effective_modulus),
-        mass=_float64(scene.body.resolved_mass),
-        velocity=_float64(scene.start.velocity),
+        mass=_float64(scene.reduced_mass),
+        velocity=_float64(scene.approach_velocity),
         gap=_float64(scene.start.gap),
         adhesion=adhesion_for(scene),
         gravity=Gravity(_float64(gravity.g)) if gravity else Gravity.none(),
+        plasticity=Plasticity(_float64(plasticity.yield_pressure)) if plasticity else Plasticity.none(),
         time_limit=_float64(np.inf if duration is None else duration),
         spring_length=_float64(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=_float64(np.nan if springs == "continuum" else springs),

@@ -16,6 +16,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from .. import theory
 from .._core.runtime import float64
 from .._core.search import log_sign_change
 from .._law.scales import Scales, adhesive_scales, energy_scales
@@ -72,12 +73,17 @@ def unit_inputs(scene, profile: Profile | None = None) -> UnitInputs:
     if adhesion is not None and adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
         approach = adhesion.work_of_adhesion
     return UnitInputs(
-        profile=scene.body.profile.build() if profile is None else profile,
+        profile=scene.contact_profile.build() if profile is None else profile,
         E_star=scene.material.effective_modulus,
         approach=approach,
-        mass=scene.body.resolved_mass,
-        speed=math.sqrt(scene.start.velocity**2 + _fall(scene)),
+        mass=scene.reduced_mass,
+        speed=_speed(scene),
     )
+
+
+def _speed(scene) -> float:
+    """The speed (m/s) at the touch: the approach speed, and what a fall adds."""
+    return math.sqrt(scene.approach_velocity**2 + _fall(scene))
 
 
 def _fall(scene) -> float:
@@ -145,7 +151,9 @@ def check_units(scene, units: Units) -> None:
     adhesion = scene.active_adhesion
     if adhesion is not None and adhesion.model == "jkr":
         _check_adhesion_resolved(adhesion, scene.material.effective_modulus, units.values)
-    if scene.body.profile.shape in SIZE_FIELD:
+    if scene.effects.plasticity is not None:
+        _check_plastic_depth(scene, _speed(scene), _fall(scene))
+    elif scene.contact_profile.shape in SIZE_FIELD:
         _check_depth(scene, units.energetic_depth, _fall(scene))
 
 
@@ -178,17 +186,38 @@ def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) 
 def _check_depth(scene, energetic_depth: float, fall: float) -> None:
     """The indentation the impact energy alone would reach (its unit ℓz, ~0.8 of Hertz's maximum)
     must not exceed the body's size."""
-    size_field = SIZE_FIELD[scene.body.profile.shape]
-    size = getattr(scene.body.profile, size_field)
+    size_field = SIZE_FIELD[scene.contact_profile.shape]
+    size = getattr(scene.contact_profile, size_field)
     if energetic_depth <= size:
         return  # a jump-in deeper than the body is left to run (configs/hard/15_huge_adhesion: 3.4 R)
     why = (
         f"the body would be pressed in about {energetic_depth:.3g} m, deeper than its size "
         f"body.profile.{size_field} = {size:g} m"
     )
-    E_star, mass = scene.material.effective_modulus, scene.body.resolved_mass
     # the impact energy: E*·x·g(x)² at g(x) = size is the most it may be
-    most_energy = E_star * _radius_at_height(scene.body.profile, size) * size**2
+    most_energy = scene.material.effective_modulus * _radius_at_height(scene.contact_profile, size) * size**2
+    _refuse_deeper(scene, most_energy, fall, why)
+
+
+def _check_plastic_depth(scene, speed: float, fall: float) -> None:
+    """A yielding paraboloid must not be pressed in deeper than its radius: the deepest
+    indentation of Thornton's law (closed form) against R, the most energy its loading takes."""
+    R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
+    yield_pressure = scene.effects.plasticity.yield_pressure
+    depth = float(theory.thornton_max_indentation(speed, scene.reduced_mass, R, E_star, yield_pressure))
+    if depth <= R:
+        return
+    why = (
+        f"yielding at p_y = {yield_pressure:g} Pa, the body would be pressed in about {depth:.3g} m, deeper than "
+        f"its radius {R:g} m"
+    )
+    _refuse_deeper(scene, float(theory.thornton_loading_work(R, R, E_star, yield_pressure)), fall, why)
+
+
+def _refuse_deeper(scene, most_energy: float, fall: float, why: str) -> None:
+    """Refuse the initial velocity (or, for a body dropped from rest, the gap) that brings more
+    than `most_energy` (J) into the contact."""
+    mass = scene.reduced_mass
     if scene.start.velocity > 0 or fall == 0:
         most = math.sqrt(max(2.0 * most_energy / mass - fall, 0.0))
         raise FieldProblem("initial.velocity", outside(scene.start.velocity, Domain(0.0, most, "m/s"), why))

@@ -12,6 +12,7 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .errors import FieldProblem, SceneError, problems_of
+from .profiles import ParaboloidSpec, ProfileSpec
 from .representable import check_representable
 from .sections import (
     DOUBLE_HERTZ_SHAPES,
@@ -21,6 +22,7 @@ from .sections import (
     Adhesion,
     Body,
     Contact,
+    Counterpart,
     Effects,
     Initial,
     Limits,
@@ -35,6 +37,7 @@ _IMPACT_ONLY = {
     "initial": "an indentation is quasi-static: it has no initial velocity or gap",
     "solver": "an indentation needs no ODE solver (its march along the branches is exact)",
     "limits": "an indentation ends at pull-off (no bounces or duration to limit)",
+    "counterpart": "an indentation presses the body into a fixed half-space",
 }
 
 
@@ -52,6 +55,9 @@ class Scene(Section):
     program: Program | None = Field(None, description="indentation only: the loading program")
     body: Body
     material: Material
+    counterpart: Counterpart | None = Field(
+        None, description="a second free body that the body hits; default: a rigid flat at rest"
+    )
     initial: Initial | None = None
     effects: Effects = Effects()
     contact: Contact = Contact()
@@ -87,8 +93,25 @@ class Scene(Section):
         if self.kind != "impact":
             return self
         falls = self.effects.gravity is not None and self.initial.gap > 0
-        if self.initial.velocity <= 0 and not falls:
+        if self.approach_velocity <= 0 and not falls:
             raise FieldProblem("initial.velocity", "must be > 0 (or name gravity and a gap > 0 to drop the body)")
+        return self
+
+    @model_validator(mode="after")
+    def _counterpart_fits(self):
+        if self.counterpart is None:
+            return self
+        if self.effects.gravity is not None:
+            raise FieldProblem(
+                "effects.gravity",
+                "not with a counterpart: gravity accelerates both free bodies alike and leaves their relative motion",
+            )
+        if self.counterpart.profile is not None and self.body.profile.shape != "paraboloid":
+            raise FieldProblem(
+                "body.profile.shape",
+                f"a paraboloid counterpart needs a paraboloid body (only two paraboloids sum to a paraboloid, "
+                f"1/R = 1/R₁ + 1/R₂), not {self.body.profile.shape!r}; a flat counterpart takes any body",
+            )
         return self
 
     @model_validator(mode="after")
@@ -144,10 +167,66 @@ class Scene(Section):
         return self
 
     @model_validator(mode="after")
+    def _plasticity_supported(self):
+        if self.effects.plasticity is None:
+            return self
+        why = None
+        if self.kind != "impact":
+            why = "simulated in impacts only (kind 'impact')"
+        elif self.contact_profile.shape != "paraboloid":
+            why = (
+                f"Thornton's limiting contact pressure is a law of the paraboloid (the Hertzian peak pressure "
+                f"2E*a/(πR)), not of {self.contact_profile.shape!r}"
+            )
+        elif self.effects.adhesion is not None:
+            why = (
+                "not with effects.adhesion: the adhesive elastic–plastic law (Thornton & Ning 1998) is not "
+                "simulated yet"
+            )
+        elif self.contact.springs != "continuum":
+            why = "runs on the continuum law only (contact.springs: continuum)"
+        if why is not None:
+            raise FieldProblem("effects.plasticity", why)
+        return self
+
+    @model_validator(mode="after")
     def _representable(self):
         if self.kind == "impact":
             check_representable(self)
         return self
+
+    @property
+    def contact_profile(self) -> ProfileSpec:
+        """The profile of the gap between the two surfaces: the body's against a flat, else the
+        paraboloid of the effective radius R₁R₂/(R₁ + R₂) (Hertz)."""
+        radius = self.effective_radius
+        return self.body.profile if radius is None else ParaboloidSpec.model_construct(R=radius)
+
+    @property
+    def effective_radius(self) -> float | None:
+        """R₁R₂/(R₁ + R₂) (m) of a paraboloid body and a paraboloid counterpart; None otherwise."""
+        other = None if self.counterpart is None else self.counterpart.radius
+        if other is None:
+            return None
+        body = self.body.profile
+        assert isinstance(body, ParaboloidSpec), "validated: a paraboloid counterpart needs a paraboloid body"
+        return body.R * other / (body.R + other)
+
+    @property
+    def reduced_mass(self) -> float:
+        """The mass (kg) of the relative motion: m₁m₂/(m₁ + m₂), the body's against a rigid flat."""
+        mass = self.body.resolved_mass
+        if self.counterpart is None:
+            return mass
+        other = self.counterpart.resolved_mass
+        return mass * other / (mass + other)
+
+    @property
+    def approach_velocity(self) -> float:
+        """Speed (m/s) at which the two surfaces approach at the start: the body's, plus the
+        counterpart's towards it."""
+        speed = self.start.velocity
+        return speed if self.counterpart is None else speed + self.counterpart.velocity
 
     @property
     def active_adhesion(self) -> Adhesion | None:

@@ -13,7 +13,7 @@ from .._integrate.base import SOLVERS
 from . import domains as d
 from .domains import within
 from .errors import FieldProblem
-from .profiles import Number, ProfileSpec
+from .profiles import Number, ParaboloidSpec, ProfileSpec
 
 # Adaptive diffrax methods of the continuum law (and of a spring array), by their scene names.
 SOLVER_METHODS = tuple(SOLVERS)
@@ -79,12 +79,66 @@ def body_volume(profile) -> float | None:
     return None
 
 
+class Counterpart(Section):
+    """A second free body the first one hits, instead of the rigid flat of infinite mass: its
+    profile (a paraboloid, or flat when left out), its mass (or density) and its speed. Its
+    material is the scene's `material.E`, `material.nu` (the half-space's), the first body's is
+    `material.E_body`, `material.nu_body`; the contact takes the effective radius
+    1/R = 1/R₁ + 1/R₂, E* and the reduced mass m₁m₂/(m₁ + m₂)."""
+
+    profile: ProfileSpec | None = Field(
+        None, description="shape of the counterpart's surface: a paraboloid (R); default: flat"
+    )
+    mass: Annotated[Number, within(d.MASS)] | None = Field(None, description="mass of the counterpart (kg)")
+    density: Annotated[Number, within(d.DENSITY)] | None = Field(
+        None, description="density of the counterpart (kg/m³); mass = density × volume of its sphere"
+    )
+    velocity: Annotated[Number, within(d.VELOCITY)] = Field(
+        0.0, description="speed of the counterpart towards the body (m/s); default: at rest"
+    )
+
+    @model_validator(mode="after")
+    def _a_paraboloid_of_one_mass(self):
+        if self.profile is not None and self.profile.shape not in COUNTERPART_SHAPES:
+            raise FieldProblem(
+                "profile.shape",
+                f"a counterpart is a paraboloid or flat (leave out profile), not {self.profile.shape!r}: "
+                "only two paraboloids sum to a profile of the same kind (1/R = 1/R₁ + 1/R₂)",
+            )
+        if (self.mass is None) == (self.density is None):
+            raise ValueError(MASS_OR_DENSITY)
+        if self.density is not None and self.profile is None:
+            raise FieldProblem("density", "a flat counterpart has no volume; give its mass instead")
+        return self
+
+    @property
+    def radius(self) -> float | None:
+        """The paraboloid's R (m); None for a flat."""
+        if self.profile is None:
+            return None
+        assert isinstance(self.profile, ParaboloidSpec), "validated: a counterpart is a paraboloid or flat"
+        return self.profile.R
+
+    @property
+    def resolved_mass(self) -> float:
+        """Mass in kg (from density and the volume of the sphere of radius R if needed)."""
+        if self.mass is not None:
+            return self.mass
+        assert self.density is not None and self.radius is not None, "validated: mass, or density of a paraboloid"
+        return self.density * 4.0 / 3.0 * math.pi * self.radius**3
+
+
+# Counterpart profiles: their gap adds to a paraboloid body's into a paraboloid.
+COUNTERPART_SHAPES = ("paraboloid",)
+
+
 class Material(Section):
-    """The elastic half-space (and body): E* directly, or Young's moduli and Poisson's ratios."""
+    """The elastic half-space (or counterpart) and body: E* directly, or Young's moduli and
+    Poisson's ratios."""
 
     E_star: Modulus | None = Field(None, description="effective modulus E* (Pa)")
-    E: Modulus | None = Field(None, description="Young's modulus of the half-space (Pa)")
-    nu: Poisson | None = _poisson("the half-space")
+    E: Modulus | None = Field(None, description="Young's modulus of the half-space or counterpart (Pa)")
+    nu: Poisson | None = _poisson("the half-space or counterpart")
     E_body: Modulus | None = Field(None, description="Young's modulus of the body (Pa); omit for a rigid body")
     nu_body: Poisson | None = _poisson("the body")
 
@@ -257,11 +311,21 @@ class Gravity(Section):
     )
 
 
+class Plasticity(Section):
+    """Thornton's (1997) elastic–perfectly plastic contact of a paraboloid: the contact
+    pressure is limited to p_y."""
+
+    yield_pressure: Annotated[Number, within(d.STRESS)] = Field(
+        description="limiting contact pressure p_y (Pa): the Hertzian peak pressure 2E*a/(πR) where the contact yields"
+    )
+
+
 class Effects(Section):
     """The effects the scene names; those left out are not simulated at all."""
 
     adhesion: Adhesion | None = None
     gravity: Gravity | None = None
+    plasticity: Plasticity | None = None
 
 
 class Contact(Section):

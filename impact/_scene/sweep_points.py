@@ -53,8 +53,8 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
     point = spec.scene.model_copy(deep=True)
     owners = [resolve_field(point, path) for path in spec.paths]
     models = [(prefix, section_at(point, prefix)) for prefix, _ in chains]
-    profile_swept = any(path.startswith("body.profile.") for path in spec.paths)
-    base_profile = None if profile_swept else spec.scene.body.profile.build()
+    profile_swept = any(path.startswith(("body.profile.", "counterpart.profile.")) for path in spec.paths)
+    base_profile = None if profile_swept else spec.scene.contact_profile.build()
 
     def set_point(index: int) -> None:
         for (owner, name), column in zip(owners, columns, strict=True):

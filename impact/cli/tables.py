@@ -88,11 +88,26 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
+        *([("plastic work", quantity(result.plastic_work, "J"))] if result.scene.effects.plasticity else []),
+        *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
         _wall_time(wall_time),
     ]
     return key_value_table(f"{result.scene.name}", rows)
+
+
+def _two_body_rows(result: Result) -> list[tuple[str, str]]:
+    """The velocities after the impact of a scene with a counterpart (lab and centre-of-mass frame)."""
+    if result.scene.counterpart is None:
+        return []
+    return [
+        ("body after (lab, cm)", f"{result.body_velocity_after:.6g} m/s, {result.body_velocity_after_cm:.6g} m/s"),
+        (
+            "counterpart after (lab, cm)",
+            f"{result.counterpart_velocity_after:.6g} m/s, {result.counterpart_velocity_after_cm:.6g} m/s",
+        ),
+    ]
 
 
 def _effects(scene: Scene) -> str:
@@ -112,6 +127,8 @@ def _effects(scene: Scene) -> str:
         effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
+    if scene.effects.plasticity is not None:
+        effects.append(f"plasticity (p_y = {scene.effects.plasticity.yield_pressure:.6g} Pa)")
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
 
 
@@ -149,12 +166,28 @@ def facts_table(scene: Scene) -> Table:
     rows = [
         shape,
         ("mass", f"{body.resolved_mass:.6g} kg{density}"),
+        *_counterpart_rows(scene),
         modulus,
         ("initial", f"velocity {scene.start.velocity:g} m/s, gap {scene.start.gap:g} m"),
         *effect_rows,
         ("solver", f"{solver.method}, {steps}"),
     ]
     return key_value_table(f"{scene.name} (SI units)", rows)
+
+
+def _counterpart_rows(scene: Scene) -> list[tuple[str, str]]:
+    """The counterpart of a two-body scene and the effective radius and mass of the contact."""
+    counterpart = scene.counterpart
+    if counterpart is None:
+        return []
+    surface = "flat" if counterpart.radius is None else f"paraboloid (R = {counterpart.radius:g} m)"
+    rows = [
+        ("counterpart", f"{surface}, mass {counterpart.resolved_mass:.6g} kg, velocity {counterpart.velocity:g} m/s"),
+        ("reduced mass", f"{scene.reduced_mass:.6g} kg"),
+    ]
+    if scene.effective_radius is not None:
+        rows.append(("effective radius", f"{scene.effective_radius:.6g} m"))
+    return rows
 
 
 def outcome_counts(result: SweepResult) -> dict[str, int]:

@@ -134,6 +134,12 @@ from ._maugis import maugis_range as maugis_range
 from ._maugis import power_law_dmt_pull_off as power_law_dmt_pull_off
 from ._maugis import tabor_criterion as tabor_criterion
 from ._maugis import tabor_parameter as tabor_parameter
+from ._plastic import thornton_loading_work as thornton_loading_work
+from ._plastic import thornton_max_indentation as thornton_max_indentation
+from ._plastic import thornton_restitution as thornton_restitution
+from ._plastic import thornton_yield_force as thornton_yield_force
+from ._plastic import thornton_yield_indentation as thornton_yield_indentation
+from ._plastic import thornton_yield_velocity as thornton_yield_velocity
 from ._special import constant_stress_profile as constant_stress_profile
 from ._special import constant_stress_pull_off as constant_stress_pull_off
 from ._special import constant_stress_uniform_state as constant_stress_uniform_state
@@ -232,4 +238,10 @@ __all__ = [
     "double_hertz_range",
     "double_hertz_tabor_parameter",
     "double_hertz_factor",
+    "thornton_yield_indentation",
+    "thornton_yield_force",
+    "thornton_yield_velocity",
+    "thornton_restitution",
+    "thornton_loading_work",
+    "thornton_max_indentation",
 ]

@@ -42,8 +42,8 @@ class Compiles:
         jax.monitoring.unregister_event_duration_listener(self._listen)
 
 
-def changed(path: tuple[str, ...], value: float) -> dict:
-    scene = copy.deepcopy(read_yaml(THORNTON_NING))
+def changed(path: tuple[str, ...], value, source: Path = THORNTON_NING) -> dict:
+    scene = copy.deepcopy(read_yaml(source))
     section = scene
     for key in path[:-1]:
         section = section[key]
@@ -57,6 +57,7 @@ TRACED = {
     "E*": (("material", "E_star"), 2.0e9),
     "mass": (("body", "mass"), 2.0e-14),
     "paraboloid R": (("body", "profile", "R"), 2.0e-6),
+    "a counterpart": (("counterpart",), {"mass": 5.0e-14, "velocity": 0.2}),  # a flat: same program
 }
 
 
@@ -79,6 +80,16 @@ def test_new_double_hertz_factors_do_not_recompile():
         with Compiles() as compiles:
             result = impact.simulate(scene)
         assert compiles.count == 0, f"k = {k} recompiled ({compiles.count} compilations)"
+        assert result.success and result.restitution != reference.restitution
+
+
+def test_new_yield_pressures_and_velocities_do_not_recompile_a_plastic_impact():
+    plastic = ROOT / "configs" / "plastic_steel.yaml"
+    reference = impact.simulate(plastic)
+    for path, value in ((("effects", "plasticity", "yield_pressure"), 2.0e9), (("initial", "velocity"), 3.0)):
+        with Compiles() as compiles:
+            result = impact.simulate(changed(path, value, plastic))
+        assert compiles.count == 0, f"a new {path[-1]} recompiled ({compiles.count} compilations)"
         assert result.success and result.restitution != reference.restitution
 
 

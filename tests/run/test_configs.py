@@ -16,8 +16,8 @@ def thornton_ning(scene, velocity):
     return float(
         theory.thornton_ning_restitution(
             velocity,
-            scene.body.resolved_mass,
-            scene.body.profile.R,
+            scene.reduced_mass,
+            scene.contact_profile.R,
             scene.material.effective_modulus,
             scene.effects.adhesion.work_of_adhesion,
         )
@@ -115,6 +115,18 @@ def greenwood_johnson_pull_off(result):
     assert result.min_force == pytest.approx(pull_off, rel=1e-8)
 
 
+def thornton_plastic(result):
+    """Thornton's (1997) closed form of the elastic–perfectly plastic paraboloid."""
+    scene = result.scene
+    R, E_star = scene.contact_profile.R, scene.material.effective_modulus
+    yield_velocity = theory.thornton_yield_velocity(
+        scene.reduced_mass, R, E_star, scene.effects.plasticity.yield_pressure
+    )
+    closed_form = float(theory.thornton_restitution(result.touch_velocity, yield_velocity))
+    assert 0.4 < closed_form < 0.6  # well beyond the yield velocity
+    assert result.restitution == pytest.approx(closed_form, abs=1e-8)
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -128,6 +140,8 @@ CHECKS = {
     "indentation_wavy": displacement_controlled_wavy_pull_off,
     "maugis_dugdale": maugis_dugdale_pull_off,
     "greenwood_johnson": greenwood_johnson_pull_off,
+    "two_spheres": matches(thornton_ning, 1e-6),
+    "plastic_steel": thornton_plastic,
 }
 
 

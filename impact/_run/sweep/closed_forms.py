@@ -10,6 +10,7 @@ import numpy as np
 
 from ... import profiles, theory
 from ..._integrate.curve import AbstractCurveIntegrator
+from ..._integrate.plastic import Plastic
 from ..._integrate.problem import Physics, touch_velocity
 from ..._scene.scene import Scene
 
@@ -22,8 +23,16 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
     NaN elsewhere. Maugis–Dugdale and Greenwood–Johnson points get their JKR limit (Λ → ∞,
-    k → ∞): no closed form has a finite range."""
+    k → ∞): no closed form has a finite range. Thornton's (1997) closed form for plastic
+    paraboloids without gravity."""
     options = choices.options
+    if isinstance(choices.integrator, Plastic):
+        profile, v = physics.profile, touch_velocity(physics, options)
+        assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
+        yield_velocity = theory.thornton_yield_velocity(
+            physics.mass, profile.R, physics.E_star, physics.plasticity.yield_pressure
+        )
+        return jnp.where(options.gravity, jnp.nan, theory.thornton_restitution(v, yield_velocity))
     if not options.adhesive:
         return jnp.ones(())
     nan = jnp.full((), jnp.nan)
@@ -51,11 +60,13 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
 def closed_form_name(scene: Scene) -> str:
     """Which closed form `theory_restitution` holds for a scene (as the figure names it)."""
     adhesion = scene.effects.adhesion
+    if scene.effects.plasticity is not None:
+        return "no closed form (gravity)" if scene.effects.gravity is not None else "Thornton 1997 (plastic)"
     if adhesion is None or not adhesion.work_of_adhesion > 0:
         return "no adhesion: e = 1"
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
-    shape = scene.body.profile.shape
+    shape = scene.contact_profile.shape
     if adhesion.model == "maugis_dugdale":
         limit = {
             "paraboloid": "Thornton–Ning (3.50–51)",

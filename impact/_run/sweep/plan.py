@@ -11,6 +11,7 @@ import numpy as np
 
 from ..._effects.adhesion import Adhesion
 from ..._effects.gravity import Gravity
+from ..._effects.plasticity import Plasticity
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.problem import Options, Physics
 from ..._scene.paths import with_values
@@ -86,9 +87,11 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
     template = physics_for(scene)
     batch = with_values(scene, params)
     profile = (
-        batch.body.profile.build() if any(path.startswith("body.profile.") for path in params) else template.profile
+        batch.contact_profile.build()
+        if any(path.startswith(("body.profile.", "counterpart.profile.")) for path in params)
+        else template.profile
     )
-    adhesion, gravity = batch.effects.adhesion, batch.effects.gravity
+    adhesion, gravity, plasticity = batch.effects.adhesion, batch.effects.gravity, batch.effects.plasticity
     stress = factor = xp.full((), xp.nan)
     if adhesion is None:
         work = approach = xp.zeros(())
@@ -111,8 +114,8 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
     return Physics(
         profile=jax.tree.map(value, profile),
         E_star=value(batch.material.effective_modulus),
-        mass=value(batch.body.resolved_mass),
-        velocity=value(batch.start.velocity),
+        mass=value(batch.reduced_mass),
+        velocity=value(batch.approach_velocity),
         gap=value(batch.start.gap),
         adhesion=Adhesion(
             work_of_adhesion=value(work),
@@ -121,6 +124,7 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
             double_hertz_factor=value(factor),
         ),
         gravity=Gravity(value(0.0 if gravity is None else gravity.g)),
+        plasticity=Plasticity(value(xp.nan if plasticity is None else plasticity.yield_pressure)),
         time_limit=value(xp.inf if duration is None else duration),
         spring_length=value(xp.nan if length is None else length),
         spring_count=value(xp.nan if isinstance(springs, str) else springs),

@@ -1,0 +1,190 @@
+"""Impacts of a paraboloid with Thornton's elastic–perfectly plastic contact (`_law.plastic`).
+
+Each contact phase is integrated with an adaptive diffrax solver. The force grows as
+(d − d_p)^(3/2) from the dent, which costs a solver in time its order at touch and separation;
+so the state is x = √(d − d_p) (∝ the contact radius), with a pseudo-time s:
+
+    x' = v·q,   v' = (g − F(x² + d_p))·2x·q,   t' = 2x·q,   q = 1/√(1 + 4x²),
+
+smooth through x = 0 (as `continuum` rides the contact radius). Loading (elastic up to the
+deepest indentation so far, then on the virgin curve) ends at its turnaround, where the plastic
+state (d_max, R_p, d_p) is updated; unloading (elastic with R_p about the dent d_p) ends at
+separation, x = 0, or — under gravity — at a turnaround, where the body can never leave again
+(the elastic oscillation below d_max conserves energy): a capture. The state is carried to the
+next contact, which starts at the dent d_p.
+"""
+
+import equinox as eqx
+import jax.numpy as jnp
+
+from .._core.pytree import replace, where
+from .._core.types import Parameter
+from .._law.plastic import PlasticLaw, PlasticState
+from .._law.scales import Scales
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .flight import land
+from .problem import Options, Physics, touch_velocity
+from .transitions import Next, next_phase
+from .work import ContactSummary
+
+# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
+_PHASE_HORIZON = 1.0e4
+
+
+class PlasticProblem(eqx.Module):
+    """The scaled impact: Thornton's law and the initial state."""
+
+    law: PlasticLaw
+    scales: Scales
+    gravity: Parameter
+    start_indentation: Parameter
+    start_velocity: Parameter
+    touch_speed: Parameter
+    bounded: Parameter
+    time_limit: Parameter
+
+    @property
+    def overflow(self):
+        return jnp.asarray(False)
+
+
+class Plastic(AbstractAdaptiveIntegrator):
+    """Impacts of a paraboloid with Thornton's limiting contact pressure (no adhesion)."""
+
+    def build(self, physics: Physics, options: Options) -> PlasticProblem:
+        """Scale with the deepest indentation and the touch speed, and state Thornton's law."""
+        speed = touch_velocity(physics, options)
+        radius = physics.profile.radius_scale()  # R: the scene takes paraboloids only
+        plasticity = physics.plasticity
+        scales = plasticity.scales(radius, physics.E_star, physics.mass, speed)
+        return PlasticProblem(
+            law=plasticity.law(radius, physics.E_star, scales),
+            scales=scales,
+            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+            start_indentation=-physics.gap / scales.normal,
+            start_velocity=physics.velocity / scales.velocity,
+            touch_speed=speed / scales.velocity,
+            bounded=jnp.asarray(True),
+            time_limit=physics.time_limit / scales.time,
+        )
+
+    def integrate(self, problem: PlasticProblem, options: Options) -> Outcome:
+        def flight(c: Carry) -> Carry:
+            touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
+            return land(problem, options, c, c.memory.residual, touch, jnp.zeros(()), samples=True)
+
+        def contact(c: Carry) -> Carry:
+            return _contact(self, problem, options, c)
+
+        return run_phases(problem, options, flight, contact, memory=PlasticState.virgin())
+
+
+class _Args(eqx.Module):
+    law: PlasticLaw
+    state: PlasticState
+    gravity: Parameter
+    advancing: Parameter
+    flows: Parameter  # x where loading starts (or resumes) plastic flow; nan where it flows already
+    time_limit: Parameter
+    speed_scale: Parameter
+
+
+def _depth(x, state: PlasticState):
+    """d = d_p + x²."""
+    return state.residual + x**2
+
+
+def _vector_field(s, y, args: _Args):
+    x, v = y[0], y[1]
+    pace = 1.0 / jnp.sqrt(1.0 + 4.0 * x**2)
+    slope = 2.0 * x * pace  # dt/ds
+    force = args.law.force(_depth(x, args.state), args.state)
+    return jnp.stack([v * pace, (args.gravity - force) * slope, slope])
+
+
+def _conditions(y, args: _Args):
+    """Turnaround, the end of the branch (loading: the onset of flow, where the force's second
+    derivative jumps; unloading: separation at x = 0), time limit: each negative until its event."""
+    x, v = y[0], y[1]
+    onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
+    branch_end = jnp.where(args.advancing, onset, -x)
+    return jnp.stack(
+        [
+            jnp.where(args.advancing, -v, v) / args.speed_scale,
+            branch_end,
+            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+        ]
+    )
+
+
+def _first_event(t, y, args: _Args, **kwargs):
+    return jnp.max(_conditions(y, args))
+
+
+def _after(advancing, turned) -> Next:
+    """Loading turns into unloading or flows on; unloading ends in separation, or in a capture
+    where it turns."""
+    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
+    event = jnp.where(
+        advancing,
+        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
+        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
+    )
+    return Next(
+        mode=mode,
+        segment=jnp.zeros((), int),
+        radius=jnp.zeros(()),
+        event=event,
+        separated=~advancing & ~turned,
+        captured=~advancing & turned,
+        stop=jnp.asarray(-1),
+    )
+
+
+def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: Carry) -> Carry:
+    """One loading or unloading phase with diffrax, ended by its located event."""
+    law, state = problem.law, c.memory
+    in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
+    advancing = c.mode == ADVANCE
+    onset = jnp.maximum(law.yield_depth, state.deepest)
+    x_onset = jnp.sqrt(jnp.maximum(onset - state.residual, 0.0))
+    args = _Args(
+        law=law,
+        state=state,
+        gravity=problem.gravity,
+        advancing=advancing,
+        flows=jnp.where(c.d < onset, x_onset, jnp.nan),
+        time_limit=problem.time_limit,
+        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+    )
+    solution = integrator.ride(
+        _vector_field,
+        _first_event,
+        jnp.stack([jnp.sqrt(jnp.maximum(c.d - state.residual, 0.0)), c.v, c.t]),
+        args,
+        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
+        dense=options.samples_per_phase > 0,
+    )
+    _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    # Branch ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
+    on_branch_end = ~turned & ~out_of_time
+    d_end = jnp.where(on_branch_end, jnp.where(advancing, onset, state.residual), _depth(x_end, state))
+
+    if options.samples_per_phase:
+        x, v, t = dense_states(solution, options.samples_per_phase).T
+        d = _depth(jnp.maximum(x, 0.0), state)
+        rows = jnp.stack([t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
+        c = where(in_contact, store_samples(c, options, rows), c)
+
+    forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
+    summary = ContactSummary(
+        work=law.work(d_end, state) - law.work(c.d, state),
+        lowest_force=jnp.min(forces),
+        highest_force=jnp.max(forces),
+        deepest=jnp.maximum(c.d, d_end),
+    )
+    c = close_phase(c, in_contact, solution, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
+    turned_over = in_contact & advancing
+    return replace(c, memory=where(turned_over, law.after_turn(d_end, state), state))

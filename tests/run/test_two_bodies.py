@@ -1,0 +1,121 @@
+"""Two free bodies: the contact takes the effective radius, E* and the reduced mass; momentum is
+conserved and the kinetic energy lost is the loop work; bad counterparts are refused."""
+
+import pytest
+
+import impact
+from impact import simulate
+from impact._scene.scene import load_scene
+
+R_BODY, R_OTHER = 10e-6, 20e-6
+DENSITY = 2500.0
+V_BODY, V_OTHER = 0.1, 0.05
+
+
+def two_spheres(**counterpart) -> dict:
+    """Glass spheres with JKR adhesion; the counterpart's fields override the defaults."""
+    return {
+        "body": {"profile": {"shape": "paraboloid", "R": R_BODY}, "density": DENSITY},
+        "counterpart": {
+            "profile": {"shape": "paraboloid", "R": R_OTHER},
+            "density": DENSITY,
+            "velocity": V_OTHER,
+            **counterpart,
+        },
+        "material": {"E": 63e9, "nu": 0.2, "E_body": 70e9, "nu_body": 0.22},
+        "initial": {"velocity": V_BODY},
+        "effects": {"adhesion": {"work_of_adhesion": 0.1}},
+    }
+
+
+@pytest.fixture(scope="module")
+def pair():
+    return simulate(two_spheres(), trajectory=False)
+
+
+def test_same_restitution_as_the_wall_impact_with_effective_parameters(pair):
+    scene = pair.scene
+    m1, m2 = scene.body.resolved_mass, scene.counterpart.resolved_mass
+    wall = simulate(
+        {
+            "body": {
+                "profile": {"shape": "paraboloid", "R": R_BODY * R_OTHER / (R_BODY + R_OTHER)},
+                "mass": m1 * m2 / (m1 + m2),
+            },
+            "material": {"E_star": 1.0 / ((1 - 0.2**2) / 63e9 + (1 - 0.22**2) / 70e9)},
+            "initial": {"velocity": V_BODY + V_OTHER},
+            "effects": {"adhesion": {"work_of_adhesion": 0.1}},
+        },
+        trajectory=False,
+    )
+    assert 0.5 < pair.restitution < 1.0
+    assert pair.restitution == pytest.approx(wall.restitution, abs=1e-10)
+
+
+def test_momentum_is_conserved(pair):
+    scene = pair.scene
+    m1, m2 = scene.body.resolved_mass, scene.counterpart.resolved_mass
+    before = m1 * V_BODY - m2 * V_OTHER
+    after = m1 * pair.body_velocity_after + m2 * pair.counterpart_velocity_after
+    assert after == pytest.approx(before, rel=1e-12)
+    assert pair.centre_of_mass_velocity == pytest.approx(before / (m1 + m2), rel=1e-12)
+    # in the centre-of-mass frame the momenta cancel and the bodies part at the separation speed
+    assert m1 * pair.body_velocity_after_cm == pytest.approx(-m2 * pair.counterpart_velocity_after_cm, rel=1e-12)
+    assert pair.counterpart_velocity_after - pair.body_velocity_after == pytest.approx(
+        pair.restitution * (V_BODY + V_OTHER), rel=1e-12
+    )
+
+
+def test_kinetic_energy_lost_is_the_loop_work(pair):
+    scene = pair.scene
+    m1, m2 = scene.body.resolved_mass, scene.counterpart.resolved_mass
+    before = 0.5 * (m1 * V_BODY**2 + m2 * V_OTHER**2)
+    after = 0.5 * (m1 * pair.body_velocity_after**2 + m2 * pair.counterpart_velocity_after**2)
+    assert pair.dissipated_energy > 0
+    assert before - after == pytest.approx(pair.dissipated_energy, rel=1e-7)
+
+
+def test_a_rigid_flat_at_rest_is_the_default():
+    wall = simulate({**two_spheres(), "counterpart": None}, trajectory=False)
+    assert wall.centre_of_mass_velocity == 0.0 and wall.counterpart_velocity_after == 0.0
+    assert wall.body_velocity_after == -wall.separation_velocity
+
+
+BAD = [
+    ({"mass": -1.0, "density": None}, "counterpart.mass: -1 kg is outside the allowed range [1e-30, 1e6] kg"),
+    (
+        {"profile": {"shape": "cone", "theta": 0.1}},
+        "counterpart.profile.shape: a counterpart is a paraboloid or flat (leave out profile), not 'cone': "
+        "only two paraboloids sum to a profile of the same kind (1/R = 1/R₁ + 1/R₂)",
+    ),
+    ({"profile": {"shape": "blob"}}, "counterpart.profile.shape: unknown shape 'blob'; known shapes: paraboloid,"),
+    ({"profile": None}, "counterpart.density: a flat counterpart has no volume; give its mass instead"),
+    ({"mass": 1e-9}, "counterpart: give exactly one of mass (kg) and density (kg/m³)"),
+]
+
+
+@pytest.mark.parametrize(("counterpart", "message"), BAD)
+def test_bad_counterparts_are_refused(counterpart, message):
+    with pytest.raises(impact.SceneError) as error:
+        load_scene(two_spheres(**counterpart))
+    assert str(error.value).startswith(message)
+
+
+def test_a_paraboloid_counterpart_needs_a_paraboloid_body():
+    scene = two_spheres()
+    scene["body"] = {"profile": {"shape": "cone", "theta": 0.1}, "mass": 1e-12}
+    with pytest.raises(impact.SceneError, match=r"^body\.profile\.shape: a paraboloid counterpart needs a paraboloid"):
+        load_scene(scene)
+
+
+def test_gravity_is_refused_with_a_counterpart():
+    scene = two_spheres()
+    scene["effects"]["gravity"] = {"g": 9.81}
+    with pytest.raises(impact.SceneError, match=r"^effects\.gravity: not with a counterpart: gravity accelerates"):
+        load_scene(scene)
+
+
+def test_a_sweep_over_the_counterpart_meets_thornton_ning_with_effective_parameters():
+    result = impact.sweep(two_spheres(), {"counterpart.velocity": [0.0, 0.2], "counterpart.profile.R": [1e-5, 4e-5]})
+    assert result.restitution.shape == (2, 2)
+    assert abs(result.restitution - result.theory_restitution).max() < 1e-8
