@@ -117,6 +117,7 @@ def _in_float64(
     (its programs compiled). With it off JAX holds no float64 value in a traced program, so f hands the
     solve and its Jacobian to the host (`jax.pure_callback`, where they run in float64, a
     batch point by point) and returns the dtype of its input; J·ẋ keeps it differentiable."""
+
     def compiled_jacobian(x: jax.Array) -> jax.Array:
         return jacobian(x)[1]
 
