@@ -20,6 +20,22 @@ from .branches import next_rising, previous_rising
 from .scales import Scales
 
 _INVERSION_STEPS = 100
+# A curve reaches this many times the contact radius where its loading work exceeds the energy.
+TOP_MARGIN = 4.0
+
+
+def top_of_reach(grid, depths, forces, radii, speed):
+    """The curve parameter (of `grid`, with the states `depths`, `forces`, `radii` along it,
+    scaled) at `TOP_MARGIN` times the contact radius where the work ∫F dd from the start exceeds
+    the impact energy v²/2 plus one unit and twice what the curve gave back on the way (the
+    last grid point if it never does)."""
+    steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
+    work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
+    given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
+    enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
+    reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
+    beyond = radii >= TOP_MARGIN * jnp.maximum(reach, 1.0)
+    return grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)]
 
 
 class CurveLaw(Protocol):

@@ -19,13 +19,12 @@ import jax
 import jax.numpy as jnp
 
 from ..profiles import Paraboloid, Profile, Sphere
-from .curve import AbstractCurve
+from .curve import AbstractCurve, top_of_reach
 from .scales import Scales
 
 # States searched for the reach of an impact: s from 0 to 40 (â up to ~e^80·û₀/3).
 _REACH_SPAN = 40.0
 _REACH_POINTS = 513
-_TOP_MARGIN = 4.0
 
 
 def tip_radius(profile: Profile) -> jax.Array:
@@ -98,7 +97,7 @@ class DoubleHertzCurve(AbstractCurve):
 
 
 def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
-    """The curve up to `_TOP_MARGIN` times the contact radius where the work ∫F dd from the onset
+    """The curve up to `TOP_MARGIN` times the contact radius where the work ∫F dd from the onset
     (trapezoids) first exceeds ½v² + 1 plus twice the largest work the adhesive pull gave back
     before (an impact at scaled speed v cannot reach further)."""
     turn = law.turning_point()
@@ -111,13 +110,7 @@ def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
     )
     grid = jnp.linspace(0.0, _REACH_SPAN, _REACH_POINTS)
     depths, forces, radii, _ = partial.state(law, grid)
-    steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
-    work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
-    given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
-    enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
-    reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
-    beyond = radii >= _TOP_MARGIN * jnp.maximum(reach, 1.0)
-    top = jnp.maximum(grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)], 2.0 * turn)
+    top = jnp.maximum(top_of_reach(grid, depths, forces, radii, speed), 2.0 * turn)
     nodes = jnp.stack([jnp.zeros(()), turn, top])
     return DoubleHertzCurve(
         junction=jnp.zeros(()),

@@ -32,7 +32,7 @@ from .._core.derivatives import implicit_root
 from .._core.quadrature import gauss_legendre
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import sign_changes
-from .curve import AbstractCurve
+from .curve import AbstractCurve, top_of_reach
 from .law import ContactLaw
 from .scales import Scales
 
@@ -42,8 +42,6 @@ _ZONE_POINTS = 192
 # Contact states searched for turning points: s − b_J = −ln p from 0 to this, evenly.
 _CONTACT_LOG_SPAN = 40.0
 _CONTACT_POINTS = 640
-# The curve reaches this many times the contact radius where its loading work exceeds the energy.
-_TOP_MARGIN = 4.0
 
 
 def degree_of(profile: Profile) -> jax.Array:
@@ -187,7 +185,7 @@ def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:
 
     The bound is where the work ∫F dd along the curve (trapezoids) first exceeds ½v² + 1 plus
     twice the largest work the adhesive pull gave back before (the jumps only lose energy);
-    the curve reaches `_TOP_MARGIN` times that contact radius.
+    the curve reaches `TOP_MARGIN` times that contact radius.
     """
     junction = law.zone_radius(jnp.ones(()))
     zone_grid = junction * jnp.sort(
@@ -204,13 +202,7 @@ def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:
     grid = jnp.concatenate([zone_grid, contact_grid])
     depths, forces, slopes = partial.riding(law, grid)
     radii = partial.state(law, grid)[2]
-    steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
-    work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
-    given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
-    enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
-    reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
-    beyond = radii >= _TOP_MARGIN * jnp.maximum(reach, 1.0)
-    top = grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)]
+    top = top_of_reach(grid, depths, forces, radii, speed)
 
     nodes, overflow = _turning_points(law, partial, jnp.minimum(grid, top), slopes > 0.0, junction, top, max_turns)
     middles = 0.5 * (nodes[:-1] + nodes[1:])
