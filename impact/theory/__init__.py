@@ -49,6 +49,14 @@ Greenwood–Johnson double-Hertz functions (§3.9, ``double_hertz_*``) are jax.n
 """
 
 from ..profiles import kappa as kappa
+from ._adhesive_plastic import adhesive_plastic_dent as adhesive_plastic_dent
+from ._adhesive_plastic import adhesive_plastic_losses as adhesive_plastic_losses
+from ._adhesive_plastic import adhesive_plastic_max_radius as adhesive_plastic_max_radius
+from ._adhesive_plastic import adhesive_plastic_restitution as adhesive_plastic_restitution
+from ._adhesive_plastic import adhesive_plastic_sticking_velocity as adhesive_plastic_sticking_velocity
+from ._adhesive_plastic import adhesive_plastic_touch_pressure as adhesive_plastic_touch_pressure
+from ._adhesive_plastic import adhesive_plastic_yield_radius as adhesive_plastic_yield_radius
+from ._adhesive_plastic import adhesive_plastic_yield_velocity as adhesive_plastic_yield_velocity
 from ._compound import capped_cone_beta as capped_cone_beta
 from ._compound import capped_cone_critical as capped_cone_critical
 from ._compound import capped_cone_pull_off as capped_cone_pull_off
@@ -149,6 +157,14 @@ from ._special import wavy_paraboloid_indentation as wavy_paraboloid_indentation
 from ._special import wavy_paraboloid_normalized as wavy_paraboloid_normalized
 
 __all__ = [
+    "adhesive_plastic_dent",
+    "adhesive_plastic_losses",
+    "adhesive_plastic_max_radius",
+    "adhesive_plastic_restitution",
+    "adhesive_plastic_sticking_velocity",
+    "adhesive_plastic_touch_pressure",
+    "adhesive_plastic_yield_radius",
+    "adhesive_plastic_yield_velocity",
     "kappa",
     "power_law_indentation",
     "power_law_force",
