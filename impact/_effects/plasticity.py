@@ -7,6 +7,7 @@ import jax.numpy as jnp
 
 from .. import theory
 from .._core.types import Parameter
+from .._law.adhesive_plastic import AdhesivePlasticLaw
 from .._law.plastic import PlasticLaw
 from .._law.scales import Scales
 
@@ -38,3 +39,15 @@ class Plasticity(eqx.Module):
         depth = theory.thornton_max_indentation(touch_velocity, mass, radius, E_star, self.yield_pressure)
         time = depth / touch_velocity
         return Scales(radial=jnp.sqrt(radius * depth), normal=depth, force=mass * depth / time**2, time=time)
+
+    def adhesive_law(self, radius, E_star, work_of_adhesion, scales: Scales) -> AdhesivePlasticLaw:
+        """Thornton & Ning's (1998) adhesive law of a paraboloid of radius R (m) in the units of
+        `scales`: ĝ = (ℓx²/(Rℓz))x̂², Δl̂ = √(2πℓxΔγ/E*)/ℓz·√x̂, yield where the JKR pressure at
+        the centre reaches p_y."""
+        yield_radius = theory.adhesive_plastic_yield_radius(radius, E_star, work_of_adhesion, self.yield_pressure)
+        return AdhesivePlasticLaw(
+            curvature=scales.radial**2 / (radius * scales.normal),
+            hess=jnp.sqrt(2.0 * jnp.pi * scales.radial * work_of_adhesion / E_star) / scales.normal,
+            yield_radius=yield_radius / scales.radial,
+            flow_pressure=jnp.pi * self.yield_pressure * scales.radial / (E_star * scales.normal),
+        )

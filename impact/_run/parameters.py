@@ -8,6 +8,7 @@ import numpy as np
 from .._effects.adhesion import Adhesion
 from .._effects.gravity import Gravity
 from .._effects.plasticity import Plasticity
+from .._integrate.adhesive_plastic import AdhesivePlastic
 from .._integrate.base import AbstractIntegrator
 from .._integrate.continuum import Continuum
 from .._integrate.double_hertz import GreenwoodJohnson
@@ -25,9 +26,11 @@ _SAMPLES_PER_PHASE = 64
 def integrator_for(scene: Scene) -> AbstractIntegrator:
     """The integrator a scene names: the continuum law with a diffrax solver, a spring array
     (exact, or stepped with Verlet), a finite-range law (Maugis–Dugdale, Greenwood–Johnson), or
-    Thornton's plastic law."""
+    Thornton's plastic law (with adhesion, Thornton & Ning's)."""
     solver = scene.solver
     adhesion = scene.active_adhesion
+    if scene.effects.plasticity is not None and adhesion is not None:
+        return AdhesivePlastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.effects.plasticity is not None:
         return Plastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if adhesion is not None and adhesion.model == "maugis_dugdale":

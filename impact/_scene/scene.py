@@ -11,6 +11,7 @@ from typing import Literal
 import yaml
 from pydantic import Field, ValidationError, model_validator
 
+from .. import theory
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, ProfileSpec
 from .representable import check_representable
@@ -178,16 +179,39 @@ class Scene(Section):
                 f"Thornton's limiting contact pressure is a law of the paraboloid (the Hertzian peak pressure "
                 f"2E*a/(πR)), not of {self.contact_profile.shape!r}"
             )
-        elif self.effects.adhesion is not None:
-            why = (
-                "not with effects.adhesion: the adhesive elastic–plastic law (Thornton & Ning 1998) is not "
-                "simulated yet"
-            )
-        elif self.contact.springs != "continuum":
+        elif self.active_adhesion is not None:
+            why = self._adhesive_plasticity_problem()
+        if why is None and self.contact.springs != "continuum":
             why = "runs on the continuum law only (contact.springs: continuum)"
         if why is not None:
             raise FieldProblem("effects.plasticity", why)
         return self
+
+    def _adhesive_plasticity_problem(self) -> str | None:
+        """Why Thornton & Ning's adhesive elastic–plastic law cannot run this scene, or None."""
+        adhesion, plasticity = self.effects.adhesion, self.effects.plasticity
+        assert adhesion is not None and plasticity is not None, "called with both named"
+        if adhesion.model != "jkr":
+            return f"with adhesion the law of Thornton & Ning (1998) is JKR's, not {adhesion.model!r}"
+        if adhesion.approach != adhesion.work_of_adhesion:
+            return (
+                "with adhesion the law of Thornton & Ning (1998) is the reversible JKR law: "
+                f"approach_work_of_adhesion must equal work_of_adhesion ({adhesion.work_of_adhesion:g} J/m²), "
+                f"not {adhesion.approach:g}"
+            )
+        touch = float(
+            theory.adhesive_plastic_touch_pressure(
+                self.contact_profile.build().radius_scale(), self.material.effective_modulus, adhesion.work_of_adhesion
+            )
+        )
+        yield_pressure = plasticity.yield_pressure
+        if yield_pressure <= touch:
+            return (
+                f"yield_pressure {yield_pressure:g} Pa is at or below the pressure at the centre of the JKR contact "
+                f"right after its jump-in, {touch:.6g} Pa: the contact would yield as it forms, where Thornton & "
+                "Ning's law is undefined"
+            )
+        return None
 
     @model_validator(mode="after")
     def _representable(self):

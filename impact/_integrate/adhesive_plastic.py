@@ -1,0 +1,227 @@
+"""Impacts of a paraboloid with Thornton & Ning's (1998) adhesive elastic–plastic contact
+(`_law.adhesive_plastic`), on the reversible JKR law (jump-in at the touch).
+
+An impact that never yields is the elastic adhesive impact: the `Continuum` integrator runs it
+in the same units, and its outcome is taken as it is (to the bit) unless its deepest indentation
+passes the yield depth. Otherwise the impact is integrated again with the plastic law, riding
+the contact radius â in a pseudo-time s as `continuum` does:
+
+    â' = v·q,   v' = (g − F̂(â))·h'(â)·q,   t' = h'(â)·q,   q = 1/√(1 + h'²),
+
+on the branch d̂ = h(â) of the phase: loading on the dent's elastic branch up to the onset of
+flow (event `yield`), then on plastic loading to its turnaround (event `max_indentation`, where
+the dent is fixed); unloading on the dent's branch down to its turning point (separation) or to
+a turnaround (a capture: below the largest radius the branches conserve energy). The dent is
+carried to the next contact, which starts with the jump-in at its depth.
+"""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._core.pytree import replace, where
+from .._core.types import Parameter
+from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
+from .._law.scales import Scales
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .continuum import Continuum
+from .flight import land
+from .problem import Options, Physics, Problem, build_problem
+from .transitions import Next, next_phase
+from .work import ContactSummary
+
+# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
+_PHASE_HORIZON = 1.0e4
+# Plastic loading rides segment 1 of ADVANCE; the dent's elastic branch segment 0.
+_ELASTIC, _FLOWING = 0, 1
+
+
+class AdhesivePlasticProblem(eqx.Module):
+    """The elastic adhesive problem (`Continuum`) and the plastic law in its units."""
+
+    elastic: Problem
+    law: AdhesivePlasticLaw
+
+    @property
+    def scales(self) -> Scales:
+        return self.elastic.scales
+
+    @property
+    def gravity(self):
+        return self.elastic.gravity
+
+    @property
+    def start_indentation(self):
+        return self.elastic.start_indentation
+
+    @property
+    def start_velocity(self):
+        return self.elastic.start_velocity
+
+    @property
+    def touch_speed(self):
+        return self.elastic.touch_speed
+
+    @property
+    def time_limit(self):
+        return self.elastic.time_limit
+
+    @property
+    def bounded(self):
+        return jnp.asarray(True)
+
+    @property
+    def overflow(self):
+        return jnp.asarray(False)
+
+
+class AdhesivePlastic(AbstractAdaptiveIntegrator):
+    """Impacts of an adhesive paraboloid with Thornton & Ning's limiting contact pressure."""
+
+    def build(self, physics: Physics, options: Options) -> AdhesivePlasticProblem:
+        """The elastic adhesive problem, and the plastic law in its units."""
+        elastic = build_problem(physics, options)
+        law = physics.plasticity.adhesive_law(
+            physics.profile.radius_scale(), physics.E_star, physics.adhesion.work_of_adhesion, elastic.scales
+        )
+        return AdhesivePlasticProblem(elastic=elastic, law=law)
+
+    def integrate(self, problem: AdhesivePlasticProblem, options: Options) -> Outcome:
+        continuum = Continuum(
+            method=self.method, rtol=self.rtol, atol=self.atol, max_steps=self.max_steps, adjoint=self.adjoint
+        )
+        elastic = continuum.integrate(problem.elastic, options)
+        law = problem.law
+        virgin = DentState.virgin(law.yield_radius)
+        yielded = elastic.max_indentation > law.depth(law.yield_radius, virgin, False)
+        return jax.lax.cond(yielded, lambda: self._plastic(problem, options), lambda: elastic)
+
+    def _plastic(self, problem: AdhesivePlasticProblem, options: Options) -> Outcome:
+        law = problem.law
+
+        def flight(c: Carry) -> Carry:
+            state = c.memory
+            radius = law.jump_in(state)
+            touch = next_phase(ADVANCE, _ELASTIC, radius, EVENT_CODE["touch"])
+            return land(problem, options, c, state.residual, touch, law.force(radius, state, False), samples=True)
+
+        def contact(c: Carry) -> Carry:
+            return _contact(self, problem, options, c)
+
+        return run_phases(problem, options, flight, contact, memory=DentState.virgin(law.yield_radius))
+
+
+class _Args(eqx.Module):
+    law: AdhesivePlasticLaw
+    state: DentState
+    flowing: jax.Array
+    advancing: jax.Array
+    end: jax.Array  # the radius ending the branch: the onset of flow, the snap-off; nan: none
+    gravity: Parameter
+    time_limit: Parameter
+    speed_scale: Parameter
+
+
+def _vector_field(s, y, args: _Args):
+    radius, v = jnp.maximum(y[0], 1e-300), y[1]
+    slope = args.law.slope(radius, args.state, args.flowing)
+    pace = 1.0 / jnp.sqrt(1.0 + slope**2)
+    force = args.law.force(radius, args.state, args.flowing)
+    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
+
+
+def _conditions(y, args: _Args):
+    """Turnaround, the end of the branch (the onset of flow outward, the snap-off inward), time
+    limit: each negative until its event."""
+    radius, v = y[0], y[1]
+    sign = jnp.where(args.advancing, 1.0, -1.0)
+    end = jnp.where(jnp.isnan(args.end), -1.0, sign * (radius - args.end) / (1.0 + args.end))
+    return jnp.stack(
+        [
+            -sign * v / args.speed_scale,
+            jnp.where(jnp.isnan(args.end), -1.0, end),
+            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+        ]
+    )
+
+
+def _first_event(t, y, args: _Args, **kwargs):
+    return jnp.max(_conditions(y, args))
+
+
+def _after(advancing, turned) -> Next:
+    """Loading turns into unloading or flows on; unloading separates, or is captured where it turns."""
+    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
+    event = jnp.where(
+        advancing,
+        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
+        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
+    )
+    return Next(
+        mode=mode,
+        segment=jnp.where(advancing & ~turned, _FLOWING, _ELASTIC),
+        radius=jnp.zeros(()),
+        event=event,
+        separated=~advancing & ~turned,
+        captured=~advancing & turned,
+        stop=jnp.asarray(-1),
+    )
+
+
+def _force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):
+    """(least, largest) force while the radius moves between `start` and `end` (F̂ has one minimum)."""
+    low, high = jnp.minimum(start, end), jnp.maximum(start, end)
+    weakest = jnp.clip(law.weakest(state, flowing), low, high)
+    forces = law.force(jnp.stack([start, end, weakest]), state, flowing)
+    return jnp.min(forces), jnp.max(forces[:2])
+
+
+def _contact(integrator: AdhesivePlastic, problem: AdhesivePlasticProblem, options: Options, c: Carry) -> Carry:
+    """One loading or unloading phase with diffrax, ended by its located event."""
+    law, state = problem.law, c.memory
+    in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
+    advancing = c.mode == ADVANCE
+    flowing = advancing & (c.segment == _FLOWING)
+    end = jnp.where(advancing, jnp.where(flowing, jnp.nan, state.onset), law.snap_off(state))
+    args = _Args(
+        law=law,
+        state=state,
+        flowing=flowing,
+        advancing=advancing,
+        end=end,
+        gravity=problem.gravity,
+        time_limit=problem.time_limit,
+        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+    )
+    solution = integrator.ride(
+        _vector_field,
+        _first_event,
+        jnp.stack([c.radius, c.v, c.t]),
+        args,
+        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
+        dense=options.samples_per_phase > 0,
+    )
+    _, (a_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    # A branch end lies on its radius to round-off: the next phase starts there.
+    a_end = jnp.where(~turned & ~out_of_time & ~jnp.isnan(end), end, a_end)
+    d_start, d_end = law.depth(jnp.stack([c.radius, a_end]), state, flowing)
+
+    if options.samples_per_phase:
+        a, v, t = dense_states(solution, options.samples_per_phase).T
+        a = jnp.maximum(a, 0.0)
+        rows = jnp.stack([t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
+        c = where(in_contact, store_samples(c, options, rows), c)
+
+    lowest, highest = _force_range(law, state, flowing, c.radius, a_end)
+    summary = ContactSummary(
+        work=law.work(c.radius, a_end, state, flowing),
+        lowest_force=lowest,
+        highest_force=highest,
+        deepest=jnp.maximum(d_start, d_end),
+    )
+    nxt = replace(_after(advancing, turned), radius=a_end)
+    c = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    turned_over = in_contact & advancing & turned
+    return replace(c, memory=where(turned_over, law.after_turn(a_end, state), state))
