@@ -38,6 +38,7 @@ class Result:
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
     dissipated_energy: float  # J lost in the first contact: ∮F dd
     plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
+    # (with adhesion the rest of dissipated_energy is the adhesion hysteresis: `adhesion_hysteresis`)
     tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
     centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
     body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
@@ -55,6 +56,12 @@ class Result:
         return self.status in ("separated", "captured")
 
     @property
+    def adhesion_hysteresis(self) -> float:
+        """J of the first contact's loss not dissipated by plastic flow: the jump-in and the
+        snap-off of the adhesive contact (0 without adhesion)."""
+        return self.dissipated_energy - self.plastic_work if self.scene.adhesive else 0.0
+
+    @property
     def body_velocity_after_cm(self) -> float:
         """The body's velocity after the first contact in the centre-of-mass frame (m/s)."""
         return self.body_velocity_after - self.centre_of_mass_velocity
@@ -69,6 +76,23 @@ def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
     """Run one scene of kind `impact`; `trajectory=False` skips the time series (faster)."""
     scales, outcome = solve_by_field(integrator_for(scene), physics_for(scene), options_for(scene, trajectory))
     return to_result(scene, scales, outcome)
+
+
+def plastic_work(scene: Scene, max_indentation: float, dissipated: float) -> float:
+    """The plastic work (J) of the first contact: all it dissipates without adhesion (Thornton
+    1997); with adhesion, Thornton & Ning's flow up to the deepest indentation (in closed form:
+    no later contact reaches that deep), the rest being the adhesion hysteresis; 0 without
+    plasticity."""
+    plasticity, adhesion = scene.effects.plasticity, scene.active_adhesion
+    if plasticity is None:
+        return 0.0
+    if adhesion is None:
+        return dissipated
+    R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
+    losses = theory.adhesive_plastic_losses(
+        max_indentation, R, E_star, adhesion.work_of_adhesion, plasticity.yield_pressure
+    )
+    return float(losses[1])
 
 
 def tabor_parameter(scene: Scene) -> float:
@@ -139,7 +163,7 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         touch_velocity=touch * speed,
         separation_velocity=separation * speed,
         dissipated_energy=dissipated,
-        plastic_work=dissipated if scene.effects.plasticity is not None else 0.0,
+        plastic_work=plastic_work(scene, float(o["max_indentation"]) * length, dissipated),
         tabor_parameter=tabor_parameter(scene),
         centre_of_mass_velocity=centre,
         body_velocity_after=body_after,

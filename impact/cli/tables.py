@@ -89,6 +89,11 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
         *([("plastic work", quantity(result.plastic_work, "J"))] if result.scene.effects.plasticity else []),
+        *(
+            [("adhesion hysteresis", quantity(result.adhesion_hysteresis, "J"))]
+            if result.scene.effects.plasticity and result.scene.adhesive
+            else []
+        ),
         *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),

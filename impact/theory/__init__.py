@@ -51,6 +51,7 @@ Greenwood–Johnson double-Hertz functions (§3.9, ``double_hertz_*``) are jax.n
 from ..profiles import kappa as kappa
 from ._adhesive_plastic import adhesive_plastic_dent as adhesive_plastic_dent
 from ._adhesive_plastic import adhesive_plastic_losses as adhesive_plastic_losses
+from ._adhesive_plastic import adhesive_plastic_max_indentation as adhesive_plastic_max_indentation
 from ._adhesive_plastic import adhesive_plastic_max_radius as adhesive_plastic_max_radius
 from ._adhesive_plastic import adhesive_plastic_restitution as adhesive_plastic_restitution
 from ._adhesive_plastic import adhesive_plastic_sticking_velocity as adhesive_plastic_sticking_velocity
@@ -159,6 +160,7 @@ from ._special import wavy_paraboloid_normalized as wavy_paraboloid_normalized
 __all__ = [
     "adhesive_plastic_dent",
     "adhesive_plastic_losses",
+    "adhesive_plastic_max_indentation",
     "adhesive_plastic_max_radius",
     "adhesive_plastic_restitution",
     "adhesive_plastic_sticking_velocity",

@@ -159,14 +159,27 @@ def adhesive_plastic_dent(
 
 
 @float64
-def adhesive_plastic_losses(
+def adhesive_plastic_max_indentation(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
-    """(adhesion hysteresis [J], plastic work [J]) of an impact at `velocity` [m/s] that
-    separates: −U(a0) at the jump-in plus U(a_c) at the snap-off, and the loading work past a_y
-    less the energy the dent stores, U(a_m) − U(a_y). Their sum is the kinetic energy lost."""
-    _, _, energy = _jkr_units(R, E_star, work_of_adhesion)
-    kinetic, a_m, a_y, P = _impact(velocity, mass, R, E_star, work_of_adhesion, yield_pressure)
+    """Deepest indentation δ_max [m] of an impact at `velocity` [m/s]: a_m²/R − Δl(a_m) (the
+    geometry of first loading, elastic or plastic)."""
+    _, depth, _ = _jkr_units(R, E_star, work_of_adhesion)
+    a_m = _impact(velocity, mass, R, E_star, work_of_adhesion, yield_pressure)[1]
+    return (a_m**2 - jnp.sqrt(a_m)) * depth
+
+
+@float64
+def adhesive_plastic_losses(
+    max_indentation: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
+):
+    """(adhesion hysteresis [J], plastic work [J]) of a contact that reached the depth δ_max [m]
+    and separated: −U(a0) at the jump-in plus U(a_c) at the snap-off, and the loading work past
+    a_y less the energy the dent stores, U(a_m) − U(a_y). Their sum is the kinetic energy lost."""
+    _, depth, energy = _jkr_units(R, E_star, work_of_adhesion)
+    P = _yield_pressure(R, E_star, work_of_adhesion, yield_pressure)
+    a_y = _yield_radius(P)
+    a_m = _search(lambda log_a: jnp.exp(2.0 * log_a) - jnp.exp(0.5 * log_a) < max_indentation / depth)
     ratio = _curvature_ratio(a_m, a_y, P)
     hysteresis = _stored_energy((4.0 * ratio) ** (-2.0 / 3.0), ratio) - _jkr_work(1.0)
     flow = _loading_work(a_m, a_y, P) - _loading_work(jnp.minimum(a_m, a_y), a_y, P)

@@ -110,9 +110,13 @@ BAD = [
         "(the Hertzian peak pressure 2E*a/(πR)), not of 'cone'",
     ),
     (
-        {"effects": {"plasticity": {"yield_pressure": P_Y}, "adhesion": {"work_of_adhesion": 0.1}}},
-        "effects.plasticity: not with effects.adhesion: the adhesive elastic–plastic law "
-        "(Thornton & Ning 1998) is not simulated yet",
+        {
+            "effects": {
+                "plasticity": {"yield_pressure": P_Y},
+                "adhesion": {"work_of_adhesion": 0.1, "model": "maugis_dugdale", "stress": 1e8},
+            }
+        },
+        "effects.plasticity: with adhesion the law of Thornton & Ning (1998) is JKR's, not 'maugis_dugdale'",
     ),
     (
         {"initial": {"velocity": 1.0}, "effects": {"plasticity": {"yield_pressure": 1.0}}},
