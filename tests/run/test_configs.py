@@ -127,6 +127,24 @@ def thornton_plastic(result):
     assert result.restitution == pytest.approx(closed_form, abs=1e-8)
 
 
+def thornton_ning_plastic(result):
+    """The Wall et al. particle: Thornton & Ning's adhesive plastic closed form, far below the
+    elastic adhesive restitution."""
+    scene = result.scene
+    closed_form = float(
+        theory.adhesive_plastic_restitution(
+            result.touch_velocity,
+            scene.reduced_mass,
+            scene.contact_profile.R,
+            scene.material.effective_modulus,
+            scene.effects.adhesion.work_of_adhesion,
+            scene.effects.plasticity.yield_pressure,
+        )
+    )
+    assert 0.1 < closed_form < 0.5 * thornton_ning(scene, result.touch_velocity)
+    assert result.restitution == pytest.approx(closed_form, abs=1e-8)
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -142,6 +160,7 @@ CHECKS = {
     "greenwood_johnson": greenwood_johnson_pull_off,
     "two_spheres": matches(thornton_ning, 1e-6),
     "plastic_steel": thornton_plastic,
+    "wall_particle": thornton_ning_plastic,
 }
 
 

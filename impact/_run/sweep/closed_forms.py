@@ -9,6 +9,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ... import profiles, theory
+from ..._integrate.adhesive_plastic import AdhesivePlastic
 from ..._integrate.curve import AbstractCurveIntegrator
 from ..._integrate.plastic import Plastic
 from ..._integrate.problem import Physics, touch_velocity
@@ -24,8 +25,21 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
     NaN elsewhere. Maugis–Dugdale and Greenwood–Johnson points get their JKR limit (Λ → ∞,
     k → ∞): no closed form has a finite range. Thornton's (1997) closed form for plastic
-    paraboloids without gravity."""
+    paraboloids without gravity, and Thornton & Ning's (1998) with adhesion
+    (`theory.adhesive_plastic_restitution`)."""
     options = choices.options
+    if isinstance(choices.integrator, AdhesivePlastic):
+        profile, v = physics.profile, touch_velocity(physics, options)
+        assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
+        adhesive = theory.adhesive_plastic_restitution(
+            v,
+            physics.mass,
+            profile.R,
+            physics.E_star,
+            physics.adhesion.work_of_adhesion,
+            physics.plasticity.yield_pressure,
+        )
+        return jnp.where(options.gravity, jnp.nan, adhesive)
     if isinstance(choices.integrator, Plastic):
         profile, v = physics.profile, touch_velocity(physics, options)
         assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
@@ -61,7 +75,9 @@ def closed_form_name(scene: Scene) -> str:
     """Which closed form `theory_restitution` holds for a scene (as the figure names it)."""
     adhesion = scene.effects.adhesion
     if scene.effects.plasticity is not None:
-        return "no closed form (gravity)" if scene.effects.gravity is not None else "Thornton 1997 (plastic)"
+        if scene.effects.gravity is not None:
+            return "no closed form (gravity)"
+        return "Thornton & Ning 1998 (adhesive plastic)" if scene.adhesive else "Thornton 1997 (plastic)"
     if adhesion is None or not adhesion.work_of_adhesion > 0:
         return "no adhesion: e = 1"
     if scene.effects.gravity is not None:
