@@ -28,6 +28,7 @@ hysteresis, −U(1) at the jump-in plus U(a_c) at the snap-off, and the plastic 
 work past a_y less the energy the dent stores.
 """
 
+import jax
 import jax.numpy as jnp
 
 from .._core.runtime import float64
@@ -117,6 +118,7 @@ def adhesive_plastic_touch_pressure(R: Scalars, E_star: Scalars, work_of_adhesio
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_yield_radius(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars):
     """Contact radius a_y [m] where the JKR pressure at the centre reaches p_y:
     2E*a/(πR) − √(2ΔγE*/(πa)) = p_y."""
@@ -125,6 +127,7 @@ def adhesive_plastic_yield_radius(R: Scalars, E_star: Scalars, work_of_adhesion:
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_yield_velocity(
     mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -137,6 +140,7 @@ def adhesive_plastic_yield_velocity(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_max_radius(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -146,6 +150,7 @@ def adhesive_plastic_max_radius(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_dent(
     max_radius: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -159,6 +164,7 @@ def adhesive_plastic_dent(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_max_indentation(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -170,6 +176,7 @@ def adhesive_plastic_max_indentation(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_losses(
     max_indentation: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -188,6 +195,7 @@ def adhesive_plastic_losses(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_restitution(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
@@ -199,6 +207,7 @@ def adhesive_plastic_restitution(
 
 
 @float64
+@jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_sticking_velocity(
     mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):

@@ -91,13 +91,13 @@ def by_quadrature(velocity: float) -> float:
         return np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(depth))])
 
     a0 = (2 * math.pi * WORK * R**2 / E_STAR) ** (1 / 3)
-    grid = np.geomspace(a0, 100 * a0, 2_000_001)
+    grid = np.geomspace(a0, 100 * a0, 400_001)
     loading = work_along(hertzian(grid) - 2 * E_STAR * grid * stretch(grid), grid**2 / R - stretch(grid))
     a_m = float(np.interp(0.5 * MASS * velocity**2, loading, grid))
     enlarged = 4 * E_STAR * a_m**3 / (3 * float(hertzian(np.array(a_m))))
     residual = a_m**2 / R - a_m**2 / enlarged
     a_c = (E_STAR * math.sqrt(2 * math.pi * WORK / E_STAR) * enlarged / (4 * E_STAR)) ** (2 / 3)
-    back = np.linspace(a_c, a_m, 1_000_001)
+    back = np.linspace(a_c, a_m, 200_001)
     rebound = work_along(
         4 * E_STAR * back**3 / (3 * enlarged) - 2 * E_STAR * back * stretch(back),
         residual + back**2 / enlarged - stretch(back),
