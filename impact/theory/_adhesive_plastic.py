@@ -191,7 +191,7 @@ def adhesive_plastic_losses(
     hysteresis = _stored_energy((4.0 * ratio) ** (-2.0 / 3.0), ratio) - _jkr_work(1.0)
     flow = _loading_work(a_m, a_y, P) - _loading_work(jnp.minimum(a_m, a_y), a_y, P)
     plastic = flow - (_stored_energy(a_m, ratio) - _jkr_work(jnp.minimum(a_m, a_y)))
-    return hysteresis * energy, plastic * energy
+    return hysteresis * energy, jnp.where(a_m > a_y, plastic, 0.0) * energy  # exactly 0 below yield
 
 
 @float64
