@@ -141,7 +141,7 @@ def _conditions(y, args: _Args):
     return jnp.stack(
         [
             -sign * v / args.speed_scale,
-            jnp.where(jnp.isnan(args.end), -1.0, end),
+            end,
             (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
         ]
     )
