@@ -36,8 +36,9 @@ class Result:
     bounces: int  # contacts simulated
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
-    dissipated_energy: float  # J lost in the first contact: ∮F dd
+    dissipated_energy: float  # J lost in the first contact: ∮F dd (elastic and viscous force)
     plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
+    viscous_work: float  # J of it dissipated by damping, ∫F_visc ḋ dt (effects.damping); 0 without
     tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
     centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
     body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
@@ -140,6 +141,7 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         separation_velocity=separation * speed,
         dissipated_energy=dissipated,
         plastic_work=dissipated if scene.effects.plasticity is not None else 0.0,
+        viscous_work=float(o["first_contact_viscous_work"]) * force * length,
         tabor_parameter=tabor_parameter(scene),
         centre_of_mass_velocity=centre,
         body_velocity_after=body_after,
