@@ -127,6 +127,20 @@ def thornton_plastic(result):
     assert result.restitution == pytest.approx(closed_form, abs=1e-8)
 
 
+def viscoelastic_first_order(result):
+    """Brilliantov's viscoelastic paraboloid: within (C1·βv₀^(1/5))² of Schwager & Pöschel's first
+    order 1 − C1·βv₀^(1/5) (the second-order coefficient is 0.8 < 1), and above it."""
+    scene = result.scene
+    beta = theory.viscoelastic_beta(
+        scene.effects.damping.dissipative_constant,
+        scene.reduced_mass,
+        scene.contact_profile.R,
+        scene.material.effective_modulus,
+    )
+    first_order = float(theory.viscoelastic_restitution_first_order(result.touch_velocity, beta))
+    assert first_order < result.restitution < first_order + (1 - first_order) ** 2
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -142,6 +156,7 @@ CHECKS = {
     "greenwood_johnson": greenwood_johnson_pull_off,
     "two_spheres": matches(thornton_ning, 1e-6),
     "plastic_steel": thornton_plastic,
+    "rubber_ball_viscoelastic": viscoelastic_first_order,
 }
 
 
