@@ -9,12 +9,16 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
+import yaml
+from typer.testing import CliRunner
 
 import impact
 from impact import simulate, theory
 from impact._integrate.continuum import Continuum
+from impact._io.run import read_run, write_run
 from impact._run.parameters import options_for, physics_for
 from impact._run.programs import solve_by_field
+from impact.cli import app
 
 R, MASS, E_STAR, SPEED = 1e-2, 1e-3, 1e7, 1.0  # a 1 g paraboloid on a soft polymer at 1 m/s
 PUNCH = 1e-3  # flat punch radius (m): stiffness k = 2E*a = 2e4 N/m
@@ -53,7 +57,7 @@ def test_first_order_coefficient_is_schwager_poeschels():
     ],
     ids=["linear", "viscoelastic", "overdamped"],
 )
-def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio):
+def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio, tmp_path):
     # A flat punch on the MDR foundation is a linear spring k = 2E*a; both models damp it
     # linearly (c, or 2E*a·A), and the contact ends where k·x + c·ẋ = 0.
     result = simulate(scene(damping, "flat_punch"), trajectory=False)
@@ -69,6 +73,8 @@ def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio):
     stored = 0.5 * stiffness * (coefficient * e * SPEED / stiffness) ** 2
     assert abs(kinetic_energy_lost(result) - result.dissipated_energy) <= 1e-10 * energy
     assert result.viscous_work == pytest.approx(energy * (1 - e**2) - stored, rel=1e-8)
+    # run.h5 keeps it beside the other energies
+    assert read_run(write_run(result, tmp_path / "run.h5")).viscous_work == result.viscous_work
 
 
 def test_viscoelastic_paraboloid_follows_schwager_poeschel():
@@ -200,3 +206,23 @@ def test_spring_arrays_refuse_damping():
         impact.load_scene(data)
     why = dict(error.value.problems)["effects.damping"]
     assert why == "runs on the continuum law only (contact.springs: continuum)"
+
+
+def test_validate_names_the_damping(tmp_path):
+    path = tmp_path / "damped.yaml"
+    path.write_text(yaml.safe_dump({"name": "damped", **scene(viscoelastic(1e-4))}))
+    result = CliRunner().invoke(app, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "viscoelastic damping (A = 0.0001 s)" in " ".join(result.output.split())
+
+
+def test_dashpot_closed_form_limits():
+    # light damping: e = 1 − πζ + O(ζ²); continuous through critical damping (e = exp(−2))
+    assert float(theory.dashpot_restitution(1e-6)) == pytest.approx(1 - math.pi * 1e-6, abs=1e-11)
+    near = theory.dashpot_restitution(jnp.array([1 - 1e-5, 1 - 1e-7, 1.0, 1 + 1e-7, 1 + 1e-5]))
+    assert np.allclose(near, math.exp(-2.0), rtol=1e-4)
+    assert np.all(np.diff(np.asarray(near)) < 0)
+    # heavy damping: e = exp(−2ζ·arcosh ζ/√(ζ² − 1)) → 1/(4ζ²)
+    assert 4 * 100.0**2 * float(theory.dashpot_restitution(100.0)) == pytest.approx(1.0, abs=1e-3)
+    time = theory.dashpot_contact_time(jnp.array([0.0, 1.0]), 4.0, 1.0)  # ω₀ = 2
+    assert np.allclose(time, [math.pi / 2, 1.0], rtol=1e-12)
