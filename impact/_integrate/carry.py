@@ -31,7 +31,8 @@ class Outcome(eqx.Module):
     max_indentation: jax.Array
     max_force: jax.Array
     min_force: jax.Array
-    first_contact_work: jax.Array  # ∮F dd over the first contact
+    first_contact_work: jax.Array  # ∮F dd over the first contact (elastic and viscous)
+    first_contact_viscous_work: jax.Array  # ∫F_visc ḋ dt over the first contact (damping)
     end_time: jax.Array
     end_indentation: jax.Array
     end_velocity: jax.Array
@@ -63,8 +64,10 @@ class Carry(eqx.Module):
     max_indentation: jax.Array
     max_force: jax.Array
     min_force: jax.Array
-    contact_work: jax.Array  # ∫F dd of the contact under way
+    contact_work: jax.Array  # ∫F dd of the contact under way (elastic and viscous)
+    contact_viscous_work: jax.Array  # ∫F_visc ḋ dt of the contact under way
     first_contact_work: jax.Array
+    first_contact_viscous_work: jax.Array
     steps: jax.Array
     accepted: jax.Array
     rejected: jax.Array
@@ -105,7 +108,9 @@ def initial_carry(problem, options: Options, memory: Any = None) -> Carry:
         max_force=-inf,
         min_force=inf,
         contact_work=zero,
+        contact_viscous_work=zero,
         first_contact_work=zero,
+        first_contact_viscous_work=zero,
         steps=jnp.zeros((), int),
         accepted=jnp.zeros((), int),
         rejected=jnp.zeros((), int),
@@ -122,8 +127,10 @@ def record_contact(c: Carry, end, summary: ContactSummary, separated, captured) 
     it did (`summary`); whether the body separated or was captured there (the first contact's
     speed and work are kept once it ends)."""
     t_end, d_end, v_end = end
-    contact_work = c.contact_work + summary.work
+    contact_work = c.contact_work + summary.work + summary.viscous_work
+    viscous_work = c.contact_viscous_work + summary.viscous_work
     first = c.contacts == 1
+    ended = first & (separated | captured)
     return replace(
         c,
         t=t_end,
@@ -136,7 +143,9 @@ def record_contact(c: Carry, end, summary: ContactSummary, separated, captured) 
         max_force=jnp.maximum(c.max_force, summary.highest_force),
         min_force=jnp.minimum(c.min_force, summary.lowest_force),
         contact_work=contact_work,
-        first_contact_work=jnp.where(first & (separated | captured), contact_work, c.first_contact_work),
+        contact_viscous_work=viscous_work,
+        first_contact_work=jnp.where(ended, contact_work, c.first_contact_work),
+        first_contact_viscous_work=jnp.where(ended, viscous_work, c.first_contact_viscous_work),
     )
 
 
@@ -223,6 +232,7 @@ def finish(c: Carry) -> Outcome:
         max_force=c.max_force,
         min_force=c.min_force,
         first_contact_work=c.first_contact_work,
+        first_contact_viscous_work=c.first_contact_viscous_work,
         end_time=c.t,
         end_indentation=c.d,
         end_velocity=c.v,

@@ -35,6 +35,7 @@ RESULT_CODES = (
     "unbounded_contact",  # the contact grows without limit on an unbounded body (e.g. n ≤ 1/2, (3.79–80))
     "phase_limit",  # more phases than the run holds
     "branch_overflow",  # the edge functions turn more often than the branch tables hold
+    "overdamped",  # damping holds the body in contact: it creeps towards rest, never turning or let go
 )
 RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
 

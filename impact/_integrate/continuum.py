@@ -14,28 +14,40 @@ smooth through turnarounds (v = 0) and critical points (h' = 0) alike, and free 
 solve: d = h(a) is explicit. Only a hold (a fixed, F linear in d) and loading that starts from
 a = 0 on a steep tip (h' → ∞ as a → 0, power laws n < 1, no jump-in) are integrated in time
 with d as state.
+
+With damping (`impact._effects.damping`) the viscous force F_v = (η_a·a + η_0)·v of the springs
+in contact adds to F, and a fourth state integrates its work, w' = F_v·v·t'. Without adhesion the
+contact then ends where the total force returns to zero while unloading (the body leaves faster
+than the surface recovers; Schwager & Pöschel, Phys. Rev. E 78, 051304 (2008)); with adhesion
+the rule of Heß still decides detachment from the elastic state.
 """
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .._core.pytree import where
+from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
 from .base import AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, HOLD, RECEDE
+from .codes import ADVANCE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land
 from .problem import Options, Physics, Problem, build_problem
-from .work import active_branch, phase_summary
+from .transitions import Next
+from .work import ContactSummary, active_branch, extremes, phase_summary
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
 # Radii (scaled) at which the edge slope is compared to tell a steep tip.
 _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
+# A damped phase that ends without an event (max_steps, or the horizon) at a speed below this
+# fraction of the phase's speed scale creeps towards rest (overdamped): a named outcome, not a
+# solver failure. Such a creep is stiff: tsit5 uses up max_steps near 1e-4 of the touch speed,
+# an implicit method (kvaerno5) gets to rest.
+_CREEP = 1e-3
 
 
 class Continuum(AbstractAdaptiveIntegrator):
@@ -67,6 +79,8 @@ class PhaseArgs(eqx.Module):
     level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
     time_limit: Parameter
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
+    damping: tuple[Parameter, Parameter]  # (η_a, η_0) of the viscous force (η_a·a + η_0)·v
+    releases: jax.Array  # the contact ends where the total force returns to zero (damped, no adhesion)
 
 
 def timed_radius(d, args: PhaseArgs):
@@ -75,7 +89,13 @@ def timed_radius(d, args: PhaseArgs):
     return jnp.where(args.mode == HOLD, args.radius, riding)
 
 
-def _make_vector_field(timed_loading: bool):
+def viscous_force(radius, velocity, args: PhaseArgs):
+    """F_v = (η_a·a + η_0)·v of the springs in contact (scaled)."""
+    per_radius, constant = args.damping
+    return (per_radius * radius + constant) * velocity
+
+
+def _make_vector_field(timed_loading: bool, damped: bool):
     def vector_field(s, y, args: PhaseArgs):
         x, v = y[0], y[1]
         law, branch = args.law, args.branch
@@ -83,14 +103,30 @@ def _make_vector_field(timed_loading: bool):
         slope = law.edge_slope(radius, branch.coefficient)
         pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         force = law.force(radius, branch.level(law, radius))
-        riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-        held = law.force(args.radius, x)
-        if timed_loading:
-            held = law.force(timed_radius(x, args), x)
-        timed = jnp.stack([v, args.gravity - held, jnp.ones_like(v)])
+        held_radius = timed_radius(x, args) if timed_loading else args.radius
+        held = law.force(held_radius, x)
+        if not damped:
+            riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
+            timed = jnp.stack([v, args.gravity - held, jnp.ones_like(v)])
+            return jnp.where(args.riding, riding, timed)
+        viscous = viscous_force(radius, v, args)
+        held_viscous = viscous_force(held_radius, v, args)
+        riding = jnp.stack(
+            [v * pace, (args.gravity - force - viscous) * slope * pace, slope * pace, viscous * v * slope * pace]
+        )
+        timed = jnp.stack([v, args.gravity - held - held_viscous, jnp.ones_like(v), held_viscous * v])
         return jnp.where(args.riding, riding, timed)
 
     return vector_field
+
+
+def total_force(y, args: PhaseArgs):
+    """The elastic and the viscous force of the state y (riding: y[0] = a; timed: y[0] = d)."""
+    x, v = y[0], y[1]
+    law, branch = args.law, args.branch
+    radius = jnp.where(args.riding, jnp.maximum(x, 0.0), timed_radius(x, args))
+    depth = jnp.where(args.riding, branch.level(law, radius), x)
+    return law.force(radius, depth) + viscous_force(radius, v, args)
 
 
 def _distance_to_end(y, args: PhaseArgs):
@@ -111,14 +147,15 @@ def _distance_to_end(y, args: PhaseArgs):
 
 def _conditions(y, args: PhaseArgs):
     """The phase's event conditions, each negative until its event and of relative size:
-    turnaround (sign·v), phase end and time limit (t − t_max)."""
-    return jnp.stack(
-        [
-            args.velocity_sign * y[1] / args.speed_scale,
-            _distance_to_end(y, args),
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
+    turnaround (sign·v), phase end, time limit (t − t_max) and, damped, the release (−F)."""
+    conditions = [
+        args.velocity_sign * y[1] / args.speed_scale,
+        _distance_to_end(y, args),
+        (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+    ]
+    if y.shape[0] > 3:
+        conditions.append(jnp.where(args.releases, -total_force(y, args), -1.0))
+    return jnp.stack(conditions)
 
 
 def _first_event(t, y, args: PhaseArgs, **kwargs):
@@ -157,6 +194,8 @@ def _phase_args(problem: Problem, c: Carry) -> PhaseArgs:
         level=level,
         time_limit=problem.time_limit,
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+        damping=(problem.damping_per_radius, problem.damping_constant),
+        releases=(c.mode != ADVANCE) & ~law.adhesive,
     )
 
 
@@ -166,27 +205,60 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     args = _phase_args(problem, c)
     riding, branch = args.riding, args.branch
+    start = [jnp.where(riding, c.radius, c.d), c.v, c.t] + ([jnp.zeros(())] if options.damped else [])
     solution = integrator.ride(
-        _make_vector_field(options.timed_loading),
+        _make_vector_field(options.timed_loading, options.damped),
         _first_event,
-        jnp.stack([jnp.where(riding, c.radius, c.d), c.v, c.t]),
+        jnp.stack(start),
         args,
         horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
+        dense=options.samples_per_phase > 0 or options.damped,
     )
-    _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    event_found, y_end, turned, out_of_time = located_end(solution, _conditions, args)
+    x_end, v_end, t_end = y_end[0], y_end[1], y_end[2]
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment)))
 
     if options.samples_per_phase:
-        x, v, t = dense_states(solution, options.samples_per_phase).T
+        states = dense_states(solution, options.samples_per_phase)
+        x, v, t = states[:, 0], states[:, 1], states[:, 2]
         radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
         d = jnp.where(riding, branch.level(law, x), x)
-        rows = jnp.stack([t, d, v, law.force(radii, d), radii], axis=1)
+        rows = jnp.stack([t, d, v, law.force(radii, d) + viscous_force(radii, v, args), radii], axis=1)
         c = where(in_contact, store_samples(c, options, rows), c)
 
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    if not options.damped:
+        return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    summary, nxt = _damped(problem, solution, args, summary, nxt, y_end, d_end)
+    closed = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    # A phase that found no event while the body all but stopped: overdamped creep towards rest.
+    creeping = in_contact & ~event_found & (jnp.abs(v_end) <= _CREEP * args.speed_scale)
+    return replace(closed, status=jnp.where(creeping, RESULT_CODE["overdamped"], closed.status))
+
+
+def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end):
+    """What damping changes at a phase's end: its viscous work, the range of the total force
+    (scanned along the dense solution) and, where the total force returned to zero, the release.
+
+    Under gravity a body released at depth d with v² < 2g·d turns before it clears the
+    undeformed surface: it cannot leave, and is counted as captured.
+    """
+    released = jnp.argmax(_conditions(y_end, args)) == 3
+    lowest, highest = extremes(
+        jnp.vectorize(lambda s: total_force(solution.evaluate(s), args)), jnp.zeros(()), solution.ts[-1]
+    )
+    summary = replace(
+        summary,
+        viscous_work=y_end[3],
+        lowest_force=jnp.minimum(lowest, summary.lowest_force),
+        highest_force=jnp.maximum(highest, summary.highest_force),
+    )
+    leaves = y_end[1] ** 2 >= 2.0 * problem.gravity * d_end
+    release = where(
+        leaves, transitions.next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True), transitions.capture()
+    )
+    return summary, where(released, release, nxt)

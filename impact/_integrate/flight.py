@@ -50,6 +50,7 @@ def land(problem, options: Options, c: Carry, surface, landing: Next, landing_fo
         touch_velocity=jnp.where(lands & first, speed, c.touch_velocity),
         touch_time=jnp.where(lands & first, touch_time, c.touch_time),
         contact_work=jnp.zeros(()),
+        contact_viscous_work=jnp.zeros(()),
         max_force=jnp.where(lands, jnp.maximum(c.max_force, landing_force), c.max_force),
         min_force=jnp.where(lands, jnp.minimum(c.min_force, landing_force), c.min_force),
     )

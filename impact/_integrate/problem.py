@@ -9,6 +9,7 @@ import jax.numpy as jnp
 
 from .._core.types import Parameter
 from .._effects.adhesion import Adhesion
+from .._effects.damping import Damping
 from .._effects.gravity import Gravity
 from .._effects.plasticity import Plasticity
 from .._law.branches import Branch, Tabulation, build_branch
@@ -34,6 +35,7 @@ class Options:
     max_bounces: int = 64
     tabulation: Tabulation = field(default_factory=Tabulation)
     timed_loading: bool = True  # loading may start at a = 0 (no jump-in): compile its time path
+    damped: bool = False  # damping compiles: a viscous force and its work (a fourth state)
     samples_per_phase: int = 0  # trajectory samples per phase; 0 keeps no trajectory
 
     @property
@@ -53,6 +55,7 @@ class Physics(eqx.Module):
     adhesion: Adhesion  # unused unless `Options.adhesive`
     gravity: Gravity  # unused unless `Options.gravity`
     plasticity: Plasticity  # unused unless the scene names plasticity (the `Plastic` integrator)
+    damping: Damping  # unused unless `Options.damped`
     time_limit: Parameter  # s
     spring_length: Parameter  # radius covered by a spring array (m); nan: the default
     spring_count: Parameter  # N of a spring array (traced: one compilation serves every N); nan: continuum
@@ -85,10 +88,16 @@ class Problem(eqx.Module):
     touch_speed: Parameter  # scaled speed at the first touch
     bounded: Parameter  # loading stores the impact energy at a finite contact radius (or a wall)
     time_limit: Parameter  # scaled
+    damping_per_radius: Parameter  # η_a of the scaled viscous force (η_a·â + η_0)·v̂ (`Damping.scaled`)
+    damping_constant: Parameter  # η_0
 
     @property
     def scales(self) -> Scales:
         return self.law.scales
+
+    def viscous_force(self, radius, velocity):
+        """F̂_visc = (η_a·â + η_0)·v̂ while in contact (scaled)."""
+        return (self.damping_per_radius * radius + self.damping_constant) * velocity
 
     @property
     def overflow(self):
@@ -110,6 +119,7 @@ def build_problem(physics: Physics, options: Options) -> Problem:
     law = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
 
     gravity = physics.gravity.scaled(scales) if options.gravity else jnp.zeros(())
+    per_radius, constant = physics.damping.scaled(scales) if options.damped else (jnp.zeros(()), jnp.zeros(()))
     touch_speed = speed / scales.velocity
     reach, bounded = radius_bound(law, attach_coefficient, touch_speed)
     top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
@@ -131,4 +141,6 @@ def build_problem(physics: Physics, options: Options) -> Problem:
         touch_speed=touch_speed,
         bounded=bounded | jnp.isfinite(law.extent()),
         time_limit=scaled_time_limit(physics, scales),
+        damping_per_radius=per_radius,
+        damping_constant=constant,
     )

@@ -16,10 +16,11 @@ from .codes import ADVANCE
 class ContactSummary(eqx.Module):
     """What a stretch of contact did, in scaled units."""
 
-    work: jax.Array  # ∫F dd along the stretch
+    work: jax.Array  # ∫F dd of the elastic force along the stretch
     lowest_force: jax.Array
     highest_force: jax.Array
     deepest: jax.Array  # the largest indentation reached
+    viscous_work: jax.Array | float = 0.0  # ∫F_visc ḋ dt: dissipated by damping (`_effects.damping`)
 
 
 _QUADRATURE_NODES = 48

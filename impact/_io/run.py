@@ -11,7 +11,7 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
     observables/
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
-        bounces, touch_velocity, separation_velocity, dissipated_energy, plastic_work,
+        bounces, touch_velocity, separation_velocity, dissipated_energy, plastic_work, viscous_work,
         tabor_parameter   (scalars; Λ: Maugis–Dugdale on a paraboloid, Greenwood–Johnson; else nan)
         centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
                           (lab frame, along the body's approach; speeds above are relative)
@@ -47,6 +47,7 @@ SCALAR_UNITS = {
     "separation_velocity": "m s-1",
     "dissipated_energy": "J",
     "plastic_work": "J",
+    "viscous_work": "J",
     "tabor_parameter": "",
     "centre_of_mass_velocity": "m s-1",
     "body_velocity_after": "m s-1",
@@ -83,7 +84,8 @@ def read_run(path: str | Path) -> Result:
         position = file["particles/body/position"]
         events = observables["events"]
         stats = file["parameters/solver_stats"]
-        scalars = {name: _scalar(observables[name]) for name in SCALAR_UNITS}
+        scalars = {name: _scalar(observables[name]) for name in SCALAR_UNITS if name in observables}
+        scalars.setdefault("viscous_work", 0.0)  # files written before damping existed
         return Result(
             scene=read_scene(file),
             **scalars,

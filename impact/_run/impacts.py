@@ -36,8 +36,9 @@ class Result:
     bounces: int  # contacts simulated
     touch_velocity: float  # m/s at the first touch
     separation_velocity: float  # m/s when the first contact let go (0 if captured)
-    dissipated_energy: float  # J lost in the first contact: ∮F dd
+    dissipated_energy: float  # J lost in the first contact: ∮F dd (elastic and viscous force)
     plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
+    viscous_work: float  # J of it dissipated by damping, ∫F_visc ḋ dt (effects.damping); 0 without
     # (with adhesion the rest of dissipated_energy is the adhesion hysteresis: `adhesion_hysteresis`)
     tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
     centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
@@ -57,9 +58,11 @@ class Result:
 
     @property
     def adhesion_hysteresis(self) -> float:
-        """J of the first contact's loss not dissipated by plastic flow: the jump-in and the
-        snap-off of the adhesive contact (0 without adhesion)."""
-        return self.dissipated_energy - self.plastic_work if self.scene.adhesive else 0.0
+        """J of the first contact's loss dissipated neither by plastic flow nor by damping: the
+        jump-in and the snap-off of the adhesive contact (0 without adhesion)."""
+        if not self.scene.adhesive:
+            return 0.0
+        return self.dissipated_energy - self.plastic_work - self.viscous_work
 
     @property
     def body_velocity_after_cm(self) -> float:
@@ -164,6 +167,7 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         separation_velocity=separation * speed,
         dissipated_energy=dissipated,
         plastic_work=plastic_work(scene, float(o["max_indentation"]) * length, dissipated),
+        viscous_work=float(o["first_contact_viscous_work"]) * force * length,
         tabor_parameter=tabor_parameter(scene),
         centre_of_mass_velocity=centre,
         body_velocity_after=body_after,

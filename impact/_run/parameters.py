@@ -6,6 +6,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._effects.adhesion import Adhesion
+from .._effects.damping import Damping
 from .._effects.gravity import Gravity
 from .._effects.plasticity import Plasticity
 from .._integrate.adhesive_plastic import AdhesivePlastic
@@ -63,6 +64,7 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
         # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
         timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.contact_profile.shape == "power_law",
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
+        damped=scene.effects.damping is not None,
     )
 
 
@@ -80,6 +82,7 @@ def physics_for(scene: Scene) -> Physics:
         adhesion=adhesion_for(scene),
         gravity=Gravity(_float64(gravity.g)) if gravity else Gravity.none(),
         plasticity=Plasticity(_float64(plasticity.yield_pressure)) if plasticity else Plasticity.none(),
+        damping=damping_for(scene),
         time_limit=_float64(np.inf if duration is None else duration),
         spring_length=_float64(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=_float64(np.nan if springs == "continuum" else springs),
@@ -98,6 +101,14 @@ def adhesion_for(scene: Scene) -> Adhesion:
         adhesive_stress=_float64(adhesion.adhesive_stress if dugdale else np.nan),
         double_hertz_factor=_float64(np.nan if adhesion.k is None else adhesion.k),
     )
+
+
+def damping_for(scene: Scene) -> Damping:
+    """The damping parameters of a scene (zero where it names none)."""
+    damping = scene.effects.damping
+    if damping is None:
+        return Damping.none()
+    return Damping(_float64(damping.viscoelastic_constant), _float64(damping.linear_coefficient))
 
 
 def _float64(value) -> jax.Array:

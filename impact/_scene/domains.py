@@ -95,6 +95,9 @@ VELOCITY = Domain(
     reason="0 for a body dropped by gravity; above 10 km/s an impact is no elastic contact",
 )
 WORK_OF_ADHESION = Domain(0.0, 1e4, "J/m²", reason="measured works of adhesion lie below 10 J/m²")
+# Brilliantov's dissipative constant A is a relaxation time: 1 s is far beyond any solid's.
+DISSIPATIVE_CONSTANT = Domain(0.0, 1.0, "s", reason="a relaxation time of at most a second")
+DAMPING_COEFFICIENT = Domain(0.0, 1e12, "N s/m", reason="from none to far beyond overdamping any contact")
 GRAVITY = Domain(1e-6, 1e4, "m/s²", reason="up to a thousand g")
 SPRINGS = Domain(1, 1e9, "", reason="a spring count float64 holds exactly, with room")
 RTOL = Domain(1e-16, 0.5, "", reason="from float64's resolution to a loose 50 %")

@@ -214,6 +214,24 @@ class Scene(Section):
         return None
 
     @model_validator(mode="after")
+    def _damping_supported(self):
+        if self.effects.damping is None:
+            return self
+        adhesion = self.active_adhesion
+        why = None
+        if self.kind != "impact":
+            why = "simulated in impacts only (kind 'impact')"
+        elif self.effects.plasticity is not None:
+            why = "not with effects.plasticity: Thornton's plastic law is simulated undamped only"
+        elif adhesion is not None and adhesion.model != "jkr":
+            why = f"not with adhesion model {adhesion.model!r}: damping acts on the JKR (zero-range) law only"
+        elif self.contact.springs != "continuum":
+            why = "runs on the continuum law only (contact.springs: continuum)"
+        if why is not None:
+            raise FieldProblem("effects.damping", why)
+        return self
+
+    @model_validator(mode="after")
     def _representable(self):
         if self.kind == "impact":
             check_representable(self)

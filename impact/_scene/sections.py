@@ -320,12 +320,53 @@ class Plasticity(Section):
     )
 
 
+class Damping(Section):
+    """A viscous force on the springs in contact: viscoelastic (Brilliantov et al. 1996),
+    F_visc = 2E*·a·A·ḋ, or linear (DEM-style), F_visc = c·ḋ."""
+
+    model: Literal["viscoelastic", "linear"] = Field(
+        description="'viscoelastic' (dissipative_constant A) or 'linear' (coefficient c)"
+    )
+    dissipative_constant: Annotated[Number, within(d.DISSIPATIVE_CONSTANT)] | None = Field(
+        None, description="A (s) of model 'viscoelastic': F = (4/3)E*√R(δ^(3/2) + (3/2)A·δ^(1/2)·δ̇) for a paraboloid"
+    )
+    coefficient: Annotated[Number, within(d.DAMPING_COEFFICIENT)] | None = Field(
+        None, description="c (N·s/m) of model 'linear': F_visc = c·δ̇ while in contact"
+    )
+
+    @model_validator(mode="after")
+    def _parameter_of_the_model(self):
+        given, other = ("dissipative_constant", "coefficient")[:: 1 if self.model == "viscoelastic" else -1]
+        if getattr(self, other) is not None:
+            raise FieldProblem(other, f"not for model {self.model!r}, which takes {given}")
+        if getattr(self, given) is None:
+            raise FieldProblem(given, f"missing (required for model {self.model!r})")
+        return self
+
+    @property
+    def viscoelastic_constant(self) -> float:
+        """A (s); 0 for the linear model."""
+        if self.model != "viscoelastic":
+            return 0.0
+        assert self.dissipative_constant is not None, "validated: model 'viscoelastic' takes dissipative_constant"
+        return self.dissipative_constant
+
+    @property
+    def linear_coefficient(self) -> float:
+        """c (N·s/m); 0 for the viscoelastic model."""
+        if self.model != "linear":
+            return 0.0
+        assert self.coefficient is not None, "validated: model 'linear' takes coefficient"
+        return self.coefficient
+
+
 class Effects(Section):
     """The effects the scene names; those left out are not simulated at all."""
 
     adhesion: Adhesion | None = None
     gravity: Gravity | None = None
     plasticity: Plasticity | None = None
+    damping: Damping | None = None
 
 
 class Contact(Section):

@@ -94,6 +94,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
             if result.scene.effects.plasticity and result.scene.adhesive
             else []
         ),
+        *([("viscous work", quantity(result.viscous_work, "J"))] if result.scene.effects.damping else []),
         *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
@@ -134,6 +135,11 @@ def _effects(scene: Scene) -> str:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
     if scene.effects.plasticity is not None:
         effects.append(f"plasticity (p_y = {scene.effects.plasticity.yield_pressure:.6g} Pa)")
+    damping = scene.effects.damping
+    if damping is not None and damping.model == "viscoelastic":
+        effects.append(f"viscoelastic damping (A = {damping.viscoelastic_constant:.6g} s)")
+    elif damping is not None:
+        effects.append(f"linear damping (c = {damping.linear_coefficient:.6g} N·s/m)")
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
 
 

@@ -90,6 +90,10 @@ from ._critical import power_law_critical as power_law_critical
 from ._critical import power_law_half_threshold as power_law_half_threshold
 from ._critical import power_law_jump_in as power_law_jump_in
 from ._critical import sphere_critical as sphere_critical
+from ._damping import dashpot_contact_time as dashpot_contact_time
+from ._damping import dashpot_restitution as dashpot_restitution
+from ._damping import viscoelastic_beta as viscoelastic_beta
+from ._damping import viscoelastic_restitution_first_order as viscoelastic_restitution_first_order
 from ._double_hertz import double_hertz_adhesive_stress as double_hertz_adhesive_stress
 from ._double_hertz import double_hertz_factor as double_hertz_factor
 from ._double_hertz import double_hertz_force as double_hertz_force

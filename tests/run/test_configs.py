@@ -143,6 +143,18 @@ def thornton_ning_plastic(result):
     )
     assert 0.1 < closed_form < 0.5 * thornton_ning(scene, result.touch_velocity)
     assert result.restitution == pytest.approx(closed_form, abs=1e-8)
+def viscoelastic_first_order(result):
+    """Brilliantov's viscoelastic paraboloid: within (C1·βv₀^(1/5))² of Schwager & Pöschel's first
+    order 1 − C1·βv₀^(1/5) (the second-order coefficient is 0.8 < 1), and above it."""
+    scene = result.scene
+    beta = theory.viscoelastic_beta(
+        scene.effects.damping.dissipative_constant,
+        scene.reduced_mass,
+        scene.contact_profile.R,
+        scene.material.effective_modulus,
+    )
+    first_order = float(theory.viscoelastic_restitution_first_order(result.touch_velocity, beta))
+    assert first_order < result.restitution < first_order + (1 - first_order) ** 2
 
 
 CHECKS = {
@@ -161,6 +173,7 @@ CHECKS = {
     "two_spheres": matches(thornton_ning, 1e-6),
     "plastic_steel": thornton_plastic,
     "wall_particle": thornton_ning_plastic,
+    "rubber_ball_viscoelastic": viscoelastic_first_order,
 }
 
 

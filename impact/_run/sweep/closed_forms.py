@@ -47,9 +47,11 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
             physics.mass, profile.R, physics.E_star, physics.plasticity.yield_pressure
         )
         return jnp.where(options.gravity, jnp.nan, theory.thornton_restitution(v, yield_velocity))
+    nan = jnp.full((), jnp.nan)
+    if options.damped:
+        return nan if options.adhesive or options.gravity else _damped_restitution(physics, options)
     if not options.adhesive:
         return jnp.ones(())
-    nan = jnp.full((), jnp.nan)
     if options.gravity:
         return nan
     profile = physics.profile
@@ -71,9 +73,40 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     return nan
 
 
+def _damped_restitution(physics: Physics, options):
+    """Damped, without adhesion and gravity: the exact linear spring–dashpot of a flat punch
+    (k = 2E*a, c = 2E*a·A + c_linear), and Schwager–Pöschel's first order in βv₀^(1/5) for the
+    viscoelastic paraboloid (its asymptote for small A, not a closed form); NaN elsewhere."""
+    profile, damping, v = physics.profile, physics.damping, touch_velocity(physics, options)
+    if type(profile) is profiles.FlatPunch:
+        stiffness = 2.0 * physics.E_star * profile.radius
+        coefficient = stiffness * damping.dissipative_constant + damping.coefficient
+        return theory.dashpot_restitution(coefficient / (2.0 * jnp.sqrt(stiffness * physics.mass)))
+    if type(profile) is profiles.Paraboloid:
+        beta = theory.viscoelastic_beta(damping.dissipative_constant, physics.mass, profile.R, physics.E_star)
+        first_order = theory.viscoelastic_restitution_first_order(v, beta)
+        return jnp.where(damping.coefficient == 0.0, first_order, jnp.nan)
+    return jnp.full((), jnp.nan)
+
+
+def _damped_name(scene: Scene) -> str:
+    damping = scene.effects.damping
+    assert damping is not None
+    if scene.active_adhesion is not None or scene.effects.gravity is not None:
+        return "no closed form (damping with adhesion or gravity)"
+    shape = scene.contact_profile.shape
+    if shape == "flat_punch":
+        return "linear spring–dashpot (theory.dashpot_restitution)"
+    if shape == "paraboloid" and damping.model == "viscoelastic":
+        return "Schwager–Pöschel first order 1 − 1.1534βv₀^(1/5) (small A)"
+    return "no closed form (damping)"
+
+
 def closed_form_name(scene: Scene) -> str:
     """Which closed form `theory_restitution` holds for a scene (as the figure names it)."""
     adhesion = scene.effects.adhesion
+    if scene.effects.damping is not None:
+        return _damped_name(scene)
     if scene.effects.plasticity is not None:
         if scene.effects.gravity is not None:
             return "no closed form (gravity)"

@@ -10,6 +10,7 @@ import jax
 import numpy as np
 
 from ..._effects.adhesion import Adhesion
+from ..._effects.damping import Damping
 from ..._effects.gravity import Gravity
 from ..._effects.plasticity import Plasticity
 from ..._integrate.base import AbstractIntegrator
@@ -92,6 +93,7 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
         else template.profile
     )
     adhesion, gravity, plasticity = batch.effects.adhesion, batch.effects.gravity, batch.effects.plasticity
+    damping = batch.effects.damping
     stress = factor = xp.full((), xp.nan)
     if adhesion is None:
         work = approach = xp.zeros(())
@@ -125,6 +127,10 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
         ),
         gravity=Gravity(value(0.0 if gravity is None else gravity.g)),
         plasticity=Plasticity(value(xp.nan if plasticity is None else plasticity.yield_pressure)),
+        damping=Damping(
+            value(0.0 if damping is None else damping.viscoelastic_constant),
+            value(0.0 if damping is None else damping.linear_coefficient),
+        ),
         time_limit=value(xp.inf if duration is None else duration),
         spring_length=value(xp.nan if length is None else length),
         spring_count=value(xp.nan if isinstance(springs, str) else springs),
