@@ -29,7 +29,13 @@ def jkr_curve_force(indentation: float, retract: bool, radius=RADIUS, E_star=E_S
     a_c, d_c, _ = (float(value) for value in theory.paraboloid_critical(radius, E_star, work, 1))
     if indentation < (d_c if retract else 0.0):
         return 0.0
-    a = brentq(lambda x: float(theory.jkr_indentation(x, radius, E_star, work)) - indentation, a_c, 1e3 * a_c, xtol=1e-30, rtol=1e-15)
+    a = brentq(
+        lambda x: float(theory.jkr_indentation(x, radius, E_star, work)) - indentation,
+        a_c,
+        1e3 * a_c,
+        xtol=1e-30,
+        rtol=1e-15,
+    )
     return float(theory.jkr_force(a, radius, E_star, work))
 
 
@@ -50,9 +56,10 @@ def afm_data(seed: int = SEED) -> dict[str, np.ndarray]:
 def main() -> None:
     columns = afm_data()
     header = (
-        f"# Synthetic AFM curve of afm_curve.yaml made by make_afm_data.py (seed {SEED}): the quasi-static JKR\n"
-        f"# curve of a paraboloid, R = {RADIUS:g} m, at E_star = {E_STAR:g} Pa, work_of_adhesion = {WORK_OF_ADHESION} J/m²,\n"
-        f"# displacement control; Gaussian noise sigma {FORCE_SIGMA:g} N on the force. indentation in m, force in N.\n"
+        f"# Synthetic AFM curve of afm_curve.yaml made by make_afm_data.py (seed {SEED}): the quasi-static\n"
+        f"# JKR curve of a paraboloid, R = {RADIUS:g} m, at E_star = {E_STAR:g} Pa, work_of_adhesion =\n"
+        f"# {WORK_OF_ADHESION} J/m², displacement control; Gaussian noise sigma {FORCE_SIGMA:g} N on the force.\n"
+        "# indentation in m, force in N.\n"
     )
     rows = [",".join(columns)] + [
         f"{d:.10g},{force:.10g},{branch}"

@@ -23,7 +23,7 @@ NOT_DIFFERENTIABLE = (
 
 def control_column(scene: Scene) -> str | None:
     """The data column of the controlled value of an indentation scene (None for an impact)."""
-    return CONTROL_COLUMNS[scene.control] if scene.kind == "indentation" else None
+    return CONTROL_COLUMNS[scene.control] if scene.kind == "indentation" and scene.control else None
 
 
 def curve_observables(scene: Scene) -> tuple[str, ...]:
@@ -59,7 +59,9 @@ def _label_problems(branch: str, columns: dict[str, np.ndarray]) -> list[tuple[s
     for row, label in enumerate(columns[branch], start=1):
         if str(label) not in BRANCHES:
             expected = " or ".join(BRANCHES)
-            return [("branch", f"column {branch!r}, data row {row}: {str(label)!r} is not a branch; expected {expected}")]
+            return [
+                ("branch", f"column {branch!r}, data row {row}: {str(label)!r} is not a branch; expected {expected}")
+            ]
     return []
 
 

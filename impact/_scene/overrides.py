@@ -1,5 +1,6 @@
 """`--set dotted.path=value`: overrides of a scene file's or a fit file's values on the command
-line, applied to the mapping before it is validated (the value is read as YAML).
+line, applied to the mapping before it is validated (the value is read as YAML, and a number
+such as 2e9, which YAML 1.1 reads as a string, as a number).
 
 In a fit file the keys of `parameters` and `observables` are themselves dotted (scene paths,
 result names): `parameters.material.E_star.start=2.0e9` sets the `start` of the parameter
@@ -9,6 +10,8 @@ the fit file is read and the fit then holds it inline).
 """
 
 import copy
+import re
+from collections.abc import Mapping
 from pathlib import Path
 
 import yaml
@@ -18,6 +21,9 @@ from .errors import SceneError
 from .paths import NoField, NotASection, assign, check_path
 from .scene import read_yaml
 
+# A number in exponent notation that YAML 1.1 (PyYAML) reads as a string: 2e9, 1.0e-3.
+EXPONENT_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+")
+
 
 def _split(assignment: str) -> tuple[list[str], object]:
     """(keys, value) of `dotted.path=value`; SceneError for a malformed one."""
@@ -26,9 +32,12 @@ def _split(assignment: str) -> tuple[list[str], object]:
     if not separator or not all(keys):
         raise SceneError([("--set", f"expected dotted.path=value, got {assignment!r}")])
     try:
-        return keys, yaml.safe_load(text)
+        value = yaml.safe_load(text)
     except yaml.YAMLError:
         raise SceneError([(f"--set {path}", f"value {text!r} is not valid YAML")]) from None
+    if isinstance(value, str) and EXPONENT_NUMBER.fullmatch(value):
+        value = float(value)
+    return keys, value
 
 
 def apply_overrides(data: dict, assignments: list[str]) -> dict:
@@ -53,7 +62,7 @@ def _assign_scene(data: dict, keys: list[str], value) -> None:
 
 
 def apply_fit_overrides(
-    data: dict, assignments: list[str], folder: Path, entries: dict[str, type[BaseModel]], keys: tuple[str, ...]
+    data: dict, assignments: list[str], folder: Path, entries: Mapping[str, type[BaseModel]], keys: tuple[str, ...]
 ) -> dict:
     """A copy of the fit mapping with each `dotted.path=value` applied: `scene.<path>` in the
     scene (read from its file, relative to `folder`, where the fit names one), `<section>.<key>`
@@ -92,5 +101,9 @@ def _assign_entry(data: dict, section: str, keys: list[str], value, entry: type[
         if current is not None and not isinstance(current, dict):
             raise SceneError([(f"{section}.{name}", f"must be a mapping to --set {section}.{'.'.join(keys)}")])
         data[section][name] = {**(current or {}), keys[-1]: value}
-    else:
+    elif isinstance(value, dict):
         data[section][".".join(keys)] = value
+    else:
+        fields = ", ".join(entry.model_fields)
+        message = f"no field {keys[-1]!r} of an entry of {section} ({fields}); set one, or the whole entry to a mapping"
+        raise SceneError([(f"{section}.{'.'.join(keys)}", message)])
