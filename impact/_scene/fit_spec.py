@@ -167,7 +167,7 @@ def load_fit(path: str | Path, assignments: Sequence[str] = ()) -> FitSpec:
     if not isinstance(data, dict):
         raise FitError([("", f"{path} must hold a mapping with the keys {', '.join(FitFile.model_fields)}")])
     if assignments:
-        entries = {"parameters": ParameterSpec, "observables": ObservableSpec}
+        entries: dict[str, type[Section]] = {"parameters": ParameterSpec, "observables": ObservableSpec}
         plain = tuple(name for name in FitFile.model_fields if name not in (*entries, "scene"))
         try:
             data = apply_fit_overrides(data, list(assignments), path.parent, entries, plain)
