@@ -1,9 +1,10 @@
 """The model of a fit: a differentiable function of one vector, the fitted parameters then the
 row's inputs (in the order of the fit), to the vector of the observables.
 
-`simulation_model` is the simulation itself (`impact.as_function`); `theory_model` the closed
-form of the Thornton–Ning impact (3.50)–(3.51) and its largest force (`thornton_ning_max_force`),
-a fast model for scenes it describes; any other such function may be passed to `impact.fit`.
+`simulation_model` is the simulation itself (`impact.as_function`; impacts only); `theory_model`
+the closed form of the Thornton–Ning impact (3.50)–(3.51) and its largest force
+(`thornton_ning_max_force`), or of an indentation scene its quasi-static JKR curve (`curve`), a
+fast model for scenes it describes; any other such function may be passed to `impact.fit`.
 """
 
 import functools
