@@ -1,7 +1,12 @@
-"""Coverage of the drop test's error bars: fit 100 synthetic drop tests (make_drop_data.py, seeds
-0–99, model 'theory') and count how often the true work of adhesion and modulus both lie within
-3 (and 1) standard errors of the fit. Expected for Gaussian errors: 99.7 % per parameter at 3σ,
-68 % at 1σ. Run: python configs/fits/coverage.py [repetitions]
+"""Coverage of the error bars of the example fits: fit 100 synthetic data sets (seeds 0–99, model
+'theory') and count how often the true values all lie within 3 (and 1) standard errors of the
+fit. Expected for Gaussian errors: 99.7 % per parameter at 3σ, 68 % at 1σ.
+
+    python configs/fits/coverage.py [drop_test|afm_curve] [repetitions]
+
+drop_test: the drop test of make_drop_data.py (work of adhesion and modulus from restitution
+and largest force); afm_curve: the AFM curve of make_afm_data.py (modulus and work of adhesion
+from the force on approach and retract).
 """
 
 import sys
@@ -14,32 +19,58 @@ import yaml
 import impact
 
 sys.path.insert(0, str(Path(__file__).parent))
-from make_drop_data import E_STAR, WORK_OF_ADHESION, drop_data  # noqa: E402
+import make_afm_data  # noqa: E402
+import make_drop_data  # noqa: E402
 
-TRUE = {"effects.adhesion.work_of_adhesion": WORK_OF_ADHESION, "material.E_star": E_STAR}
+ADHESION, MODULUS = "effects.adhesion.work_of_adhesion", "material.E_star"
+EXAMPLES = {  # fit file, data of a seed, true values
+    "drop_test": (
+        "drop_test.yaml",
+        make_drop_data.drop_data,
+        {ADHESION: make_drop_data.WORK_OF_ADHESION, MODULUS: make_drop_data.E_STAR},
+    ),
+    "afm_curve": (
+        "afm_curve.yaml",
+        make_afm_data.afm_data,
+        {ADHESION: make_afm_data.WORK_OF_ADHESION, MODULUS: make_afm_data.E_STAR},
+    ),
+}
 
 
-def main(repetitions: int = 100) -> None:
-    impact.configure()
+def pulls(example: str, seeds) -> tuple[np.ndarray, list[int]]:
+    """(fitted − true)/standard error of every parameter [seeds, p], and the steps of each fit."""
+    name, data_of, true = EXAMPLES[example]
     folder = Path(__file__).parent
-    spec = yaml.safe_load((folder / "drop_test.yaml").read_text())
-    scene = impact.load_scene(folder / spec["scene"])
-    pulls, steps, start = [], [], time.perf_counter()
-    for seed in range(repetitions):
+    spec = yaml.safe_load((folder / name).read_text())
+    scene = impact.load_scene(spec["scene"] if isinstance(spec["scene"], dict) else folder / spec["scene"])
+    found, steps = [], []
+    for seed in seeds:
         result = impact.fit(
-            scene, drop_data(seed), spec["parameters"], spec["observables"], spec["inputs"], model="theory"
+            scene,
+            data_of(seed),
+            spec["parameters"],
+            spec["observables"],
+            spec.get("inputs", []),
+            model="theory",
+            branch=spec.get("branch"),
         )
-        pulls.append([(result.values[path] - true) / result.standard_errors[path] for path, true in TRUE.items()])
+        found.append([(result.values[path] - value) / result.standard_errors[path] for path, value in true.items()])
         steps.append(result.iterations)
-    pulls_array = np.abs(np.array(pulls))
-    both = np.all(pulls_array < 3, axis=1).mean()
+    return np.array(found), steps
+
+
+def main(example: str = "drop_test", repetitions: int = 100) -> None:
+    impact.configure()
+    start = time.perf_counter()
+    found, steps = pulls(example, range(repetitions))
     seconds = time.perf_counter() - start
-    print(f"{repetitions} fits in {seconds:.1f} s; steps: median {np.median(steps):.0f}, max {max(steps)}")
-    print(f"both parameters within 3 standard errors: {both:.0%}")
-    for index, path in enumerate(TRUE):
-        within = (pulls_array[:, index] < 3).mean(), (pulls_array[:, index] < 1).mean()
+    magnitude = np.abs(found)
+    print(f"{example}: {repetitions} fits in {seconds:.1f} s; steps: median {np.median(steps):.0f}, max {max(steps)}")
+    print(f"all parameters within 3 standard errors: {np.all(magnitude < 3, axis=1).mean():.0%}")
+    for index, path in enumerate(EXAMPLES[example][2]):
+        within = (magnitude[:, index] < 3).mean(), (magnitude[:, index] < 1).mean()
         print(f"{path}: within 3σ {within[0]:.0%}, within 1σ {within[1]:.0%}")
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 100)
+    main(sys.argv[1] if len(sys.argv) > 1 else "drop_test", int(sys.argv[2]) if len(sys.argv) > 2 else 100)

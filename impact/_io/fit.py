@@ -8,13 +8,14 @@ fit.h5 layout (SI units; parameters and observables in the order of the fit file
         parameters/{name[p], value[p], standard_error[p]}   nan: not determined by the data
         covariance[p, p], correlation[p, p]
         jacobian[rows·observables, p]    ∂r/∂p of the weighted residuals r = (model − data)/σ
-        data/<column>[rows]              the columns the fit read (inputs, observables, σ)
+        data/<column>[rows]              the columns the fit read (inputs, observables, σ; an
+                                         indentation curve's controlled value and branch, 0 approach)
         model/<observable>[rows]         the model at the fit
         sigma/<observable>[rows]         σ as weighted (1 where σ is unknown)
         attributes: chi2, dof, converged, iterations, sigma_source, model, unidentifiable
     parameters/
         config.yaml                      the resolved scene; provenance attributes
-        fit.yaml                         the fit file as given (where there was one)
+        fit.yaml                         the fit file as given, --set overrides applied (where there was one)
 """
 
 import math

@@ -12,6 +12,7 @@ import numpy as np
 
 from .._run.fit import FitResult, theory_applies, theory_model
 from .figures import si_prefix, write_figures
+from .fit_curve import draw_curve
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -29,11 +30,27 @@ def fit_figure(result: FitResult) -> "Figure":
 
     spec = result.spec
     names = list(spec.observables)
-    figure = Figure(figsize=(5.0 * len(names), 6.0), layout="constrained")
+    figure = Figure(figsize=(max(8.0, 5.0 * len(names)), 6.0), layout="constrained")
     axes = figure.subplots(2, len(names), sharex="col", height_ratios=(3, 1.2), squeeze=False)
+    if spec.control is not None:
+        for index in range(len(names)):
+            draw_curve(axes[0, index], axes[1, index], result, index)
+            axes[1, index].set_ylabel("(model − data)/σ")
+            axes[0, index].legend(fontsize="small")
+    else:
+        _draw_impacts(axes, result)
+    figure.suptitle(
+        f"{spec.scene.name}: fit of {', '.join(spec.parameters)} (χ² = {result.chi2:.3g}, dof {result.dof})"
+    )
+    return figure
+
+
+def _draw_impacts(axes, result: FitResult) -> None:
+    """Each observable of a fit of impacts against the input column."""
+    spec = result.spec
     x, label = _abscissa(result)
     curve = _theory_curve(result, x)
-    for index, name in enumerate(names):
+    for index, name in enumerate(spec.observables):
         _draw_observable(axes[0, index], axes[1, index], result, index, x, curve)
         _, prefix = si_prefix(float(np.max(np.abs(spec.data[name]))))
         unit = UNITS.get(name)
@@ -41,10 +58,6 @@ def fit_figure(result: FitResult) -> "Figure":
         axes[1, index].set_xlabel(label)
         axes[1, index].set_ylabel("(model − data)/σ")
         axes[0, index].legend(fontsize="small")
-    figure.suptitle(
-        f"{spec.scene.name}: fit of {', '.join(spec.parameters)} (χ² = {result.chi2:.3g}, dof {result.dof})"
-    )
-    return figure
 
 
 def _abscissa(result: FitResult) -> tuple[np.ndarray, str]:

@@ -13,6 +13,10 @@ A fit file is a YAML mapping::
       material.E_star: {start: 5.0e8, scale: log}
     model: simulation                   # or theory: the closed form instead of the simulation
 
+A fit of a quasi-static indentation curve (a scene of kind indentation) takes the controlled
+value (`indentation` or `force`) of each row as its input and may name a column of branch
+labels (`branch: <column>`, approach or retract): see `fit_curve`.
+
 Every problem is a `FitError` (a `SceneError`) naming the field by its dotted path
 (`parameters.<path>.start`, `inputs.<path>`, `observables.<name>.sigma`, `data`, …).
 """
@@ -21,7 +25,7 @@ import csv
 import dataclasses
 import io
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -31,6 +35,8 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .errors import FieldProblem, SceneError, problems_of
+from .fit_curve import BRANCH, branch_codes, control_column, curve_observables, curve_problems
+from .overrides import apply_fit_overrides
 from .paths import AbsentSection, NoField, resolve_field
 from .profiles import Number
 from .scene import Scene, load_scene, read_text, read_yaml
@@ -101,6 +107,11 @@ class FitFile(Section):
     model: Literal["simulation", "theory"] = Field(
         "simulation", description="'simulation', or 'theory': the closed form instead of the simulation"
     )
+    branch: str | None = Field(
+        None,
+        description="indentation curves: the column of branch labels (approach, retract); default: "
+        "approach up to the row of the largest control value, retract after it",
+    )
 
 
 @dataclass(frozen=True)
@@ -113,11 +124,23 @@ class FitSpec:
     observables: dict[str, ObservableSpec]
     parameters: dict[str, ParameterSpec]
     model: str = "simulation"
+    branch: str | None = None  # the column of branch labels the data were read with
     source: str | None = field(default=None, repr=False, compare=False)  # verbatim fit file
 
     @property
     def rows(self) -> int:
         return len(next(iter(self.data.values())))
+
+    @property
+    def control(self) -> str | None:
+        """The column of the controlled value of an indentation curve (None for impacts)."""
+        return control_column(self.scene)
+
+    @property
+    def row_columns(self) -> tuple[str, ...]:
+        """The columns a row hands the model after the parameters: the inputs, then for an
+        indentation curve the controlled value and the branch code (0 approach, 1 retract)."""
+        return self.inputs if self.control is None else (*self.inputs, self.control, BRANCH)
 
     def sigmas(self) -> np.ndarray | None:
         """σ of every row and observable, [rows, observables]; None where σ is unknown."""
@@ -130,8 +153,9 @@ class FitSpec:
         return np.stack(columns, axis=1)
 
 
-def load_fit(path: str | Path) -> FitSpec:
-    """A validated fit from a fit file (its scene and data paths relative to the file)."""
+def load_fit(path: str | Path, assignments: Sequence[str] = ()) -> FitSpec:
+    """A validated fit from a fit file (its scene and data paths relative to the file), with the
+    `dotted.path=value` overrides of `impact fit --set` applied (see `overrides`)."""
     path = Path(path)
     try:
         text = read_text(path)
@@ -142,13 +166,21 @@ def load_fit(path: str | Path) -> FitSpec:
         raise FitError([("", f"invalid YAML in {path}: {error}")]) from None
     if not isinstance(data, dict):
         raise FitError([("", f"{path} must hold a mapping with the keys {', '.join(FitFile.model_fields)}")])
+    if assignments:
+        entries: dict[str, type[Section]] = {"parameters": ParameterSpec, "observables": ObservableSpec}
+        plain = tuple(name for name in FitFile.model_fields if name not in (*entries, "scene"))
+        try:
+            data = apply_fit_overrides(data, list(assignments), path.parent, entries, plain)
+        except SceneError as error:
+            raise FitError(error.problems) from None
+        text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
     try:
         file = FitFile.model_validate(data)
     except ValidationError as error:
         raise FitError(problems_of(error)) from None
     scene = _scene(file.scene, path.parent)
     table = read_table(path.parent / file.data)
-    spec = make_fit_spec(scene, table, file.parameters, file.observables, file.inputs, file.model)
+    spec = make_fit_spec(scene, table, file.parameters, file.observables, file.inputs, file.model, file.branch)
     return dataclasses.replace(spec, source=text)
 
 
@@ -164,7 +196,8 @@ def _scene(entry, folder: Path) -> Scene:
 
 
 def read_table(path: Path) -> dict[str, np.ndarray]:
-    """The columns of a CSV file (a header row, then numbers; lines starting with '#' skipped)."""
+    """The columns of a CSV file (a header row, then one row per measurement; lines starting
+    with '#' skipped): float64 where every entry is a number, else the entries as text."""
     try:
         text = read_text(path)
     except SceneError as error:
@@ -174,17 +207,19 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
     if len(rows) < 2:
         raise FitError([("data", f"{path} holds no header row and data rows")])
     header = [name.strip() for name in rows[0]]
-    values = np.full((len(rows) - 1, len(header)), np.nan)
     for number, row in enumerate(rows[1:], start=1):
         if len(row) != len(header):
             raise FitError([("data", f"{path}, data row {number}: {len(row)} values for {len(header)} columns")])
-        for column, entry in enumerate(row):
-            try:
-                values[number - 1, column] = float(entry)
-            except ValueError:
-                message = f"{path}, data row {number}, column {header[column]}: {entry.strip()!r} is not a number"
-                raise FitError([("data", message)]) from None
-    return {name: values[:, column] for column, name in enumerate(header)}
+    return {name: as_column([row[column] for row in rows[1:]]) for column, name in enumerate(header)}
+
+
+def as_column(values) -> np.ndarray:
+    """A data column: float64 where every entry is a number, else its entries as text."""
+    entries = np.asarray(values).reshape(-1)
+    try:
+        return entries.astype(np.float64)
+    except (TypeError, ValueError):
+        return np.array([str(entry).strip() for entry in entries])
 
 
 def make_fit_spec(
@@ -194,9 +229,11 @@ def make_fit_spec(
     observables: Mapping,
     inputs=(),
     model: str = "simulation",
+    branch: str | None = None,
 ) -> FitSpec:
     """Validate a fit given in Python (scene, data columns by name or a CSV file, parameter and
-    observable specs by name) into a FitSpec; the fit file's checks, each naming its field."""
+    observable specs by name, for an indentation curve the column of branch labels) into a
+    FitSpec; the fit file's checks, each naming its field."""
     if isinstance(data, (str, Path)):
         data = read_table(Path(data))
     try:
@@ -208,17 +245,21 @@ def make_fit_spec(
         raise FitError([(f"scene.{path}" if path else "scene", message) for path, message in error.problems]) from None
     except ValidationError as error:
         raise FitError(problems_of(error)) from None
-    columns = {str(name): np.asarray(values, dtype=np.float64).reshape(-1) for name, values in data.items()}
+    columns = {str(name): as_column(values) for name, values in data.items()}
     if model not in (*MODELS, FUNCTION):
         raise FitError([("model", f"expected one of {', '.join(MODELS)}, got {model!r}")])
     problems = [problem for path in file.parameters for problem in _path_problems(scene, "parameters", path)]
     problems += [problem for path in file.inputs for problem in _path_problems(scene, "inputs", path)]
     problems += [(f"inputs.{path}", "is also a fitted parameter") for path in file.inputs if path in file.parameters]
-    problems += _column_problems(file, columns)
+    problems += curve_problems(scene, branch, model, columns)
+    problems += _column_problems(file, columns, scene)
     if problems:
         raise FitError(problems)
-    used = {name: columns[name] for name in _used_columns(file)}
-    return FitSpec(scene, used, tuple(file.inputs), file.observables, file.parameters, model)
+    used = {name: columns[name] for name in _used_columns(file, scene)}
+    control = control_column(scene)
+    if control is not None:
+        used[BRANCH] = branch_codes(branch, used[control], columns)
+    return FitSpec(scene, used, tuple(file.inputs), file.observables, file.parameters, model, branch)
 
 
 def _path_problems(scene: Scene, key: str, path: str) -> list[tuple[str, str]]:
@@ -235,17 +276,18 @@ def _path_problems(scene: Scene, key: str, path: str) -> list[tuple[str, str]]:
     return []
 
 
-def _column_problems(file: FitFile, columns: dict[str, np.ndarray]) -> list[tuple[str, str]]:
-    """Missing columns, unknown observables, bad σ and non-finite values."""
+def _column_problems(file: FitFile, columns: dict[str, np.ndarray], scene: Scene) -> list[tuple[str, str]]:
+    """Missing columns, unknown observables, bad σ, text and non-finite values."""
     known = ", ".join(columns) or "none"
+    observables = OBSERVABLES if scene.kind == "impact" else curve_observables(scene)
     problems = [
         (f"inputs.{path}", f"no column {path!r} in the data; its columns: {known}")
         for path in file.inputs
         if path not in columns
     ]
     for name, spec in file.observables.items():
-        if name not in OBSERVABLES:
-            problems.append((f"observables.{name}", f"unknown observable; known: {', '.join(OBSERVABLES)}"))
+        if name not in observables:
+            problems.append((f"observables.{name}", f"unknown observable; known: {', '.join(observables)}"))
         elif name not in columns:
             problems.append((f"observables.{name}", f"no column {name!r} in the data; its columns: {known}"))
         problems += _sigma_problems(f"observables.{name}.sigma", spec.sigma, columns)
@@ -253,10 +295,15 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray]) -> list[tupl
         problems.append(("observables", "give sigma for every observable or for none (then it is estimated)"))
     if problems:
         return problems
-    sizes = {len(columns[name]) for name in _used_columns(file)}
+    used = [name for name in _used_columns(file, scene) if name in columns]  # else refused above
+    sizes = {len(columns[name]) for name in used}
     if len(sizes) > 1:
         return [("data", "the columns differ in length")]
-    for name in _used_columns(file):
+    for name in used:
+        if columns[name].dtype.kind != "f":
+            row = next(row for row, entry in enumerate(columns[name]) if not _is_number(entry))
+            problems.append(("data", f"column {name!r}, data row {row + 1}: {columns[name][row]!r} is not a number"))
+            continue
         bad = np.flatnonzero(~np.isfinite(columns[name]))
         if bad.size:
             problems.append(("data", f"column {name!r} holds {columns[name][bad[0]]} in row {bad[0] + 1}"))
@@ -276,12 +323,25 @@ def _sigma_problems(where: str, sigma, columns: dict[str, np.ndarray]) -> list[t
         return []
     if sigma not in columns:
         return [(where, f"no column {sigma!r} in the data; its columns: {', '.join(columns)}")]
+    if columns[sigma].dtype.kind != "f":
+        return []  # named by the check of every used column
     bad = np.flatnonzero(~(columns[sigma] > 0))
     if bad.size:
         return [(where, f"column {sigma!r} must be > 0, got {columns[sigma][bad[0]]:g} in row {bad[0] + 1}")]
     return []
 
 
-def _used_columns(file: FitFile) -> list[str]:
+def _is_number(entry) -> bool:
+    try:
+        float(entry)
+    except ValueError:
+        return False
+    return True
+
+
+def _used_columns(file: FitFile, scene: Scene) -> list[str]:
+    """The numeric columns a fit reads: inputs (and an indentation's controlled value),
+    observables and σ."""
     sigmas = [spec.sigma for spec in file.observables.values() if isinstance(spec.sigma, str)]
-    return list(dict.fromkeys([*file.inputs, *file.observables, *sigmas]))
+    control = control_column(scene)
+    return list(dict.fromkeys([*file.inputs, *([control] if control else []), *file.observables, *sigmas]))

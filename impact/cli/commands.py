@@ -174,12 +174,30 @@ FitFolder = Annotated[
 ]
 
 
-def fit_command(ctx: typer.Context, fit_file: FitFile, output: FitFolder = None, overwrite: Overwrite = False) -> None:
+FitSetOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--set",
+        metavar="PATH=VALUE",
+        help="override a value of the fit file by its dotted path, e.g. --set parameters.material.E_star.start=2e9 "
+        "or --set scene.body.profile.R=2e-8 (repeatable)",
+        show_default=False,
+    ),
+]
+
+
+def fit_command(
+    ctx: typer.Context,
+    fit_file: FitFile,
+    output: FitFolder = None,
+    assignments: FitSetOption = None,
+    overwrite: Overwrite = False,
+) -> None:
     """Fit scene values to measurements (weighted least squares); write fit.yaml, fit.h5 and fit.png."""
     configured(ctx)
     from .fit import run_fit
 
-    run_fit(fit_file, output, overwrite)
+    run_fit(fit_file, output, assignments or [], overwrite)
 
 
 # --- benchmarks -----------------------------------------------------------------------------

@@ -1,8 +1,11 @@
 """`impact fit`: calibrate scene values against measurements (declared in `commands`).
 
-    impact fit FIT.yaml [-o DIR] [--overwrite]
+    impact fit FIT.yaml [-o DIR] [--set PATH=VALUE ...] [--overwrite]
 
-Bad input (the fit file, its scene or data, the output folder) exits with code 2, names the
+`--set dotted.path=value` overrides a value of the fit file before it is read (its scene's
+values under `scene.`, a parameter's start under `parameters.<path>.start`: see
+`impact._scene.overrides`); fit.h5 then stores the fit file as overridden. Bad input (the fit
+file, its scene or data, an override, the output folder) exits with code 2, names the
 field, prints no traceback and writes nothing. Each Levenberg–Marquardt step prints its χ² and
 parameters; DIR then receives fit.yaml, fit.h5 and fit.png, each written atomically (a folder
 created here is removed again if a write fails).
@@ -21,10 +24,11 @@ from .console import refuse, say, warn
 from .folders import check_output
 
 
-def run_fit(fit_file: Path, output: Path | None, overwrite: bool) -> None:
-    """`impact fit`: fit the parameters of a fit file; write fit.yaml, fit.h5 and fit.png."""
+def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwrite: bool) -> None:
+    """`impact fit`: fit the parameters of a fit file (with its `--set` overrides); write
+    fit.yaml, fit.h5 and fit.png."""
     try:
-        spec = load_fit(fit_file)
+        spec = load_fit(fit_file, assignments)
     except SceneError as error:
         refuse(f"{fit_file} is not a valid fit", error.problems)
     folder = output or Path("runs") / "fits" / fit_file.stem

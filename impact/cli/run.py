@@ -7,14 +7,12 @@ without a physical outcome (status other than separated or captured) is still wr
 `impact run` exits with code 1.
 """
 
-import copy
 import shutil
 import time
 from datetime import datetime
 from pathlib import Path
 
 import typer
-import yaml
 from rich.text import Text
 
 from .._io.files import write_text
@@ -27,7 +25,7 @@ from .._run.impacts import Result
 from .._run.indentation import IndentationResult
 from .._run.simulate import simulate
 from .._scene.errors import SceneError
-from .._scene.paths import NoField, NotASection, assign, check_path
+from .._scene.overrides import apply_overrides
 from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
 from .console import out, refuse, say, warn
 from .folders import check_output
@@ -80,30 +78,6 @@ def scene_of(scene_file: Path, assignments: list[str] | None) -> Scene:
         return load_scene(apply_overrides(read_yaml(scene_file), assignments or []))
     except SceneError as error:
         refuse(f"{scene_file} is not a valid scene", error.problems)
-
-
-def apply_overrides(data: dict, assignments: list[str]) -> dict:
-    """A copy of the scene mapping with each `dotted.path=value` applied (value read as YAML).
-
-    Raises SceneError for a malformed assignment or a path that is no field of the schema."""
-    data = copy.deepcopy(data)
-    for assignment in assignments:
-        path, separator, text = assignment.partition("=")
-        keys = path.strip().split(".")
-        if not separator or not all(keys):
-            raise SceneError([("--set", f"expected dotted.path=value, got {assignment!r}")])
-        try:
-            value = yaml.safe_load(text)
-        except yaml.YAMLError:
-            raise SceneError([(f"--set {path}", f"value {text!r} is not valid YAML")]) from None
-        try:
-            check_path(data, keys)
-            assign(data, keys, value)
-        except NoField as error:
-            raise SceneError([("--set", str(error))]) from None
-        except NotASection as error:
-            raise SceneError([(error.section, f"must be a mapping to --set {'.'.join(keys)}")]) from None
-    return data
 
 
 # --- output ---------------------------------------------------------------------------------

@@ -141,3 +141,108 @@ def test_bad_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, chang
     assert f"{field}: {message}" in " ".join(result.output.split()), result.output
     assert "Traceback" not in result.output
     assert not folder.exists()
+
+
+# --- indentation curves (the AFM use) and --set ----------------------------------------------
+
+AFM_CURVE = FITS / "afm_curve.yaml"
+
+
+def _bad_afm_fit(tmp_path: Path, change=None, csv=None) -> Path:
+    data = yaml.safe_load(AFM_CURVE.read_text())
+    text = (FITS / "afm_curve.csv").read_text()
+    (tmp_path / "afm_curve.csv").write_text(csv(text) if csv else text)
+    data.update(change or {})
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+def _without_indentation(text: str) -> str:
+    return "\n".join(line.partition(",")[2] if not line.startswith("#") else line for line in text.splitlines())
+
+
+def _misspelt_retract(text: str) -> str:
+    return text.replace("retract", "retrat", 1)
+
+
+@pytest.mark.parametrize(
+    ("change", "csv", "field", "message"),
+    [
+        (
+            {},
+            _without_indentation,
+            "data",
+            "no column 'indentation': the controlled value of a displacement-controlled scene, the input of each "
+            "row; its columns: force, branch",
+        ),
+        (
+            {},
+            _misspelt_retract,
+            "branch",
+            "column 'branch', data row 41: 'retrat' is not a branch; expected approach or retract",
+        ),
+        ({"branch": "direction"}, None, "branch", "no column 'direction' in the data"),
+        (
+            {"observables": {"max_force": {"sigma": 1.0e-9}}},
+            None,
+            "observables.max_force",
+            "unknown observable; known: force, contact_radius",
+        ),
+        (
+            {"model": "simulation"},
+            None,
+            "model",
+            "the quasi-static march of an indentation scene is not differentiable",
+        ),
+    ],
+    ids=["missing control column", "unknown branch label", "missing branch column", "impact observable", "simulation"],
+)
+def test_bad_indentation_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, change, csv, field, message):
+    path = _bad_afm_fit(tmp_path, change, csv)
+    folder = tmp_path / "out"
+    result = invoke("fit", path, "-o", folder)
+    assert result.exit_code == 2, result.output
+    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
+    assert "Traceback" not in result.output
+    assert not folder.exists()
+
+
+def test_the_afm_example_fits_with_set_overrides(tmp_path):
+    """`--set` changes a start and a σ of the fit file; the fit finds the true values of
+    make_afm_data.py and fit.h5 stores the fit file as overridden."""
+    folder = tmp_path / "afm"
+    start, sigma = "parameters.material.E_star.start=2.0e9", "observables.force.sigma=1.0e-9"
+    result = invoke("fit", AFM_CURVE, "-o", folder, "--set", start, "--set", sigma)
+    assert result.exit_code == 0, result.output
+    assert "step   0  χ² = " in result.output and "material.E_star = 2e+09" in result.output
+    summary = yaml.safe_load((folder / "fit.yaml").read_text())
+    stored = yaml.safe_load(read_fit(folder / "fit.h5")["source"])
+    assert stored["parameters"]["material.E_star"] == {"start": 2.0e9, "scale": "log"}
+    assert stored["observables"]["force"] == {"sigma": 1.0e-9}
+    for path, true in (("material.E_star", 0.8e9), ("effects.adhesion.work_of_adhesion", 0.1)):
+        entry = summary["parameters"][path]
+        assert abs(entry["value"] - true) < 3 * entry["standard_error"]
+    assert summary["converged"] and summary["iterations"] <= 15
+
+
+@pytest.mark.parametrize(
+    ("assignment", "field", "message"),
+    [
+        ("foo=1", "--set", "no field 'foo' in a fit file; it takes: branch, data, inputs, model, observables"),
+        (
+            "parameters.material.E_star.strat=1",
+            "parameters.material.E_star.strat",
+            "no field 'strat' of an entry of parameters (start, min, max, scale); set one, or the whole entry to a "
+            "mapping",
+        ),
+        ("scene.body.profile.Q=1", "--set", "no field 'body.profile.Q' in the scene; body.profile takes: R, shape"),
+        ("model", "--set", "expected dotted.path=value, got 'model'"),
+    ],
+)
+def test_bad_set_exits_2_naming_the_field_and_writes_nothing(tmp_path, assignment, field, message):
+    folder = tmp_path / "out"
+    result = invoke("fit", AFM_CURVE, "-o", folder, "--set", assignment)
+    assert result.exit_code == 2, result.output
+    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
+    assert not folder.exists()

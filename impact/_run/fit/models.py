@@ -1,9 +1,10 @@
 """The model of a fit: a differentiable function of one vector, the fitted parameters then the
 row's inputs (in the order of the fit), to the vector of the observables.
 
-`simulation_model` is the simulation itself (`impact.as_function`); `theory_model` the closed
-form of the Thornton–Ning impact (3.50)–(3.51) and its largest force (`thornton_ning_max_force`),
-a fast model for scenes it describes; any other such function may be passed to `impact.fit`.
+`simulation_model` is the simulation itself (`impact.as_function`; impacts only); `theory_model`
+the closed form of the Thornton–Ning impact (3.50)–(3.51) and its largest force
+(`thornton_ning_max_force`), or of an indentation scene its quasi-static JKR curve (`curve`), a
+fast model for scenes it describes; any other such function may be passed to `impact.fit`.
 """
 
 import functools
@@ -15,10 +16,12 @@ import jax.numpy as jnp
 import yaml
 
 from ... import theory
+from ..._scene.fit_curve import NOT_DIFFERENTIABLE
 from ..._scene.fit_spec import FitError, FitSpec
 from ..._scene.profiles import ParaboloidSpec
 from ..._scene.scene import scene_yaml
 from ..differentiable import as_function
+from .curve import curve_model, curve_problems
 
 Model = Callable[[jax.Array], jax.Array]
 
@@ -41,6 +44,8 @@ def simulation_model(spec: FitSpec) -> Model:
     the input columns as inputs and the observables as its (vector) output. Kept per scene,
     paths and observables: a later fit of the same model (other data, starts or bounds)
     reuses its compiled programs instead of tracing them again (about a minute)."""
+    if spec.scene.kind == "indentation":
+        raise FitError([("model", NOT_DIFFERENTIABLE)])
     return _simulation(scene_yaml(spec.scene), (*spec.parameters, *spec.inputs), tuple(spec.observables))
 
 
@@ -64,9 +69,12 @@ class ClosedForm:
 
 
 def theory_model(spec: FitSpec) -> Model:
-    """The Thornton–Ning closed form of the scene as a model (a paraboloid with reversible JKR
-    adhesion and no gravity); FitError naming the field it cannot describe."""
+    """The closed form of the scene as a model: of an impact, Thornton–Ning (a paraboloid with
+    reversible JKR adhesion and no gravity); of an indentation, the quasi-static JKR curve
+    (`curve`). FitError naming the field it cannot describe."""
     _check_theory(spec)
+    if spec.scene.kind == "indentation":
+        return curve_model(spec)
     scene = spec.scene
     adhesion = scene.active_adhesion
     assert isinstance(scene.body.profile, ParaboloidSpec) and adhesion is not None, "checked"
@@ -84,6 +92,10 @@ def theory_model(spec: FitSpec) -> Model:
 
 def _check_theory(spec: FitSpec) -> None:
     scene = spec.scene
+    if scene.kind == "indentation":
+        if problems := curve_problems(spec):
+            raise FitError(problems)
+        return
     adhesion = scene.active_adhesion
     problems = []
     if scene.kind != "impact" or scene.body.profile.shape != "paraboloid":

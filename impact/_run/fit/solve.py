@@ -120,6 +120,7 @@ def fit(
     inputs: Sequence[str] = (),
     *,
     model: "Model | str" = "simulation",
+    branch: str | None = None,
     progress: Progress | None = None,
     max_steps: int = MAX_STEPS,
 ) -> FitResult:
@@ -131,10 +132,15 @@ def fit(
     `observables`: result name → {sigma: number or column name (leave out when unknown),
     relative: bool}. `model`: "simulation" (the default), "theory" (a closed form instead of
     the simulation: Thornton–Ning, restitution and max_force), or any differentiable function
-    of the vector [parameters, inputs] to the vector of the observables. `progress(step, chi2,
+    of the vector [parameters, inputs] to the vector of the observables. An indentation scene
+    fits its quasi-static curve: the data hold the controlled value of each row (`indentation`
+    under displacement control, `force` under force control), appended to the model's vector
+    with the row's branch code (0 approach, 1 retract) from the column of labels `branch`
+    (approach, retract; default: approach up to the largest control value). `progress(step, chi2,
     values)` is called at every step. Raises `FitError` (a `SceneError`) naming a bad field."""
     kind = model if isinstance(model, str) else FUNCTION
-    return fit_spec(make_fit_spec(scene, data, parameters, observables, inputs, kind), model, progress, max_steps)
+    spec = make_fit_spec(scene, data, parameters, observables, inputs, kind, branch)
+    return fit_spec(spec, model, progress, max_steps)
 
 
 @float64
@@ -147,7 +153,7 @@ def fit_spec(
     given = spec.sigmas()
     measured = np.stack([spec.data[name] for name in spec.observables], axis=1)
     sigma = np.ones(measured.shape) if given is None else given
-    rows = np.stack([spec.data[path] for path in spec.inputs], axis=1).reshape(spec.rows, -1)
+    rows = np.stack([spec.data[column] for column in spec.row_columns], axis=1).reshape(spec.rows, -1)
     data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, 1.0)))
     start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
     data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(_optimum(residuals, start, data)[1] ** 2)))

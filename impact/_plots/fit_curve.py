@@ -1,0 +1,69 @@
+"""The panels of a fit of a quasi-static indentation curve (fit.png): the data of each branch
+with error bars against the controlled value, the closed-form curve of each branch at the
+fitted values (its jumps drawn as they happen), and the normalised residuals below."""
+
+from typing import TYPE_CHECKING
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .._run.fit import FitResult, theory_applies, theory_model
+from .._scene.fit_curve import BRANCH, BRANCHES
+from .figures import si_prefix
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+UNITS = {"indentation": "m", "force": "N", "contact_radius": "m"}
+STYLES = {"approach": ("o", "C0"), "retract": ("s", "C3")}
+DENSE = 400  # points of each branch's closed-form curve
+
+
+def draw_curve(top: "Axes", bottom: "Axes", result: FitResult, index: int) -> None:
+    """One observable of an indentation fit against the controlled value (gids as `fit_figure`)."""
+    spec = result.spec
+    assert spec.control is not None, "an indentation curve"
+    name = list(spec.observables)[index]
+    control, data = spec.data[spec.control], spec.data[name]
+    model, sigma = result.model[:, index], result.sigma[:, index]
+    x_factor, x_prefix = si_prefix(float(np.max(np.abs(control))))
+    y_factor, y_prefix = si_prefix(float(np.max(np.abs(data))))
+    curves = _closed_form(result, control)
+    for label, code in BRANCHES.items():
+        rows = spec.data[BRANCH] == code
+        marker, color = STYLES[label]
+        x = control[rows] * x_factor
+        top.errorbar(
+            x, data[rows] * y_factor, yerr=sigma[rows] * y_factor, fmt=marker, ms=3, color=color,
+            label=f"{label} ± σ", gid="data",
+        )  # fmt: skip
+        if curves is None:
+            top.plot(x, model[rows] * y_factor, "x", color=color, label=f"{label}: model at the fit", gid="model")
+        else:
+            dense, values = curves[label]
+            top.plot(dense * x_factor, values[:, index] * y_factor, "-", color=color, lw=1.2, gid="model",
+                     label=f"{label}: closed form at the fit")  # fmt: skip
+        bottom.plot(x, (model[rows] - data[rows]) / sigma[rows], marker, ms=3, color=color, gid="residuals")
+    bottom.axhline(0.0, color="0.6", lw=0.8)
+    top.set_ylabel(f"{name} ({y_prefix}{UNITS[name]})")
+    bottom.set_xlabel(f"{spec.control} ({x_prefix}{UNITS[spec.control]})")
+
+
+def _closed_form(result: FitResult, control: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]] | None:
+    """Per branch, the closed-form curve at the fitted values on a dense grid of the control
+    (in the order of the test: approach rising, retract falling), or None where none applies."""
+    spec = result.spec
+    if spec.inputs or not theory_applies(spec):
+        return None
+    model = theory_model(spec)
+    rising = np.linspace(control.min(), control.max(), DENSE)
+    curves = {}
+    with jax.enable_x64(True):
+        values = jnp.asarray(list(result.values.values()))
+        evaluate = jax.jit(jax.vmap(lambda point: model(jnp.concatenate([values, point]))))
+        for label, code in BRANCHES.items():
+            grid = rising if code == 0 else rising[::-1]
+            points = jnp.stack([jnp.asarray(grid), jnp.full(DENSE, code)], axis=1)
+            curves[label] = (grid, np.asarray(evaluate(points)))
+    return curves
