@@ -147,24 +147,26 @@ def test_maugis_displacement_loop_dissipates_the_area_of_its_jumps():
     assert up == pytest.approx(down, rel=1e-3)  # linear between the 33 samples of a piece
 
 
-def test_cone_tends_to_its_jkr_and_dmt_limits():
-    """A cone (n = 1): at σ0 = 1e11 Pa the JKR critical state of (3.40–3.41) to 1e-6 under force
-    control (the error falls as 1/σ0²: 100 times per decade); at σ0 = 1e5 Pa the DMT pull-off
-    πΔγ·h/tan²θ (3.195) to 2e-3."""
-    theta = 0.3
-    cone = dict(shape="cone", theta=theta)
-    a_c, d_c, F_c = (float(v) for v in th.cone_critical(theta, E_STAR, WORK, 3))
-    errors = []
-    for stress in (1e10, 1e11):
+@pytest.mark.parametrize("n, c", [(1.0, math.tan(0.3)), (1.5, 1e3)])
+def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
+    """f = c·rⁿ, the cone (n = 1, c = tan θ) and n = 1.5, one compilation: at σ0 = 1e11 Pa the
+    force-controlled pull-off force of JKR (3.74)–(3.76) to 1e-6 (the error falls as 1/σ0²: 100
+    times per decade); at σ0 = 1e5 Pa the DMT pull-off πΔγ·h^((2−n)/n)/c^(2/n) (3.195) to 2e-3;
+    two cycles, the first unloaded to F = 0."""
+    power_law = dict(shape="power_law", n=n, c=c)
+    a_c, d_c, F_c = (float(v) for v in th.power_law_critical(n, c, E_STAR, WORK, 3))
+
+    def pull_off(stress):
         adhesion = dict(model="maugis_dugdale", work_of_adhesion=WORK, stress=stress)
-        result = impact.simulate(scene(adhesion, "force", 4 * abs(F_c), profile=cone))
-        errors.append(abs(result.pull_off.force / F_c - 1.0))
+        result = impact.simulate(scene(adhesion, "force", 4 * abs(F_c), profile=power_law, cycles=2, unload_to=0.0))
+        assert [kind for _, kind in result.events][-1] == "pull_off"
+        return result.pull_off.force
+
+    errors = [abs(pull_off(stress) / F_c - 1.0) for stress in (1e10, 1e11)]
     assert errors[1] < 1e-6 and 80 < errors[0] / errors[1] < 120
     stress = 1e5
-    adhesion = dict(model="maugis_dugdale", work_of_adhesion=WORK, stress=stress)
-    result = impact.simulate(scene(adhesion, "force", 4 * abs(F_c), profile=cone))
-    dmt = float(th.power_law_dmt_pull_off(1.0, math.tan(theta), WORK, WORK / stress))
-    assert -result.pull_off.force == pytest.approx(dmt, rel=2e-3)
+    dmt = float(th.power_law_dmt_pull_off(n, c, WORK, WORK / stress))
+    assert -pull_off(stress) == pytest.approx(dmt, rel=2e-3)
 
 
 # ---------------------------------------------------------------- Greenwood–Johnson
