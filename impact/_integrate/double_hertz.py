@@ -3,8 +3,11 @@
 from 0 to F₀ = −2πRΔγ/(1 + k) (at fixed d: no work); the contact ends there again for k ≤ 1,
 at the minimum of d(a) for k > 1."""
 
+import functools
+
 import jax.numpy as jnp
 
+from .._law.curve import top_of_reach
 from .._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
@@ -26,7 +29,7 @@ class GreenwoodJohnson(AbstractCurveIntegrator):
         touch_speed = speed / scales.velocity
         return CurveProblem(
             law=law,
-            curve=build_double_hertz_curve(law, touch_speed),
+            curve=build_double_hertz_curve(law, functools.partial(top_of_reach, speed=touch_speed)),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=law.onset - physics.gap / scales.normal,
             start_velocity=physics.velocity / scales.velocity,

@@ -2,8 +2,11 @@
 `_law.dugdale` (`curve`). The tip comes within the range h of the surface at d = −h, where the
 adhesive zone snaps to its first stable radius."""
 
+import functools
+
 import jax.numpy as jnp
 
+from .._law.curve import top_of_reach
 from .._law.dugdale import DugdaleLaw, build_curve
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
@@ -23,7 +26,7 @@ class MaugisDugdale(AbstractCurveIntegrator):
         touch_speed = speed / scales.velocity
         return CurveProblem(
             law=law,
-            curve=build_curve(law, touch_speed, options.tabulation.max_turns),
+            curve=build_curve(law, options.tabulation.max_turns, functools.partial(top_of_reach, speed=touch_speed)),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=-(adhesion.adhesion_range + physics.gap) / scales.normal,
             start_velocity=physics.velocity / scales.velocity,

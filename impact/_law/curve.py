@@ -8,6 +8,7 @@ snap-out) or, with none left, lets go. Maugis–Dugdale (`dugdale`, §3.8) and G
 """
 
 import abc
+from collections.abc import Callable
 from typing import Protocol
 
 import equinox as eqx
@@ -16,12 +17,16 @@ import jax.numpy as jnp
 
 from .._core.derivatives import implicit_root
 from .._core.search import bisect
-from .branches import next_rising, previous_rising
+from .branches import next_rising, previous_rising, sign_changes
 from .scales import Scales
 
 _INVERSION_STEPS = 100
 # A curve reaches this many times the contact radius where its loading work exceeds the energy.
 TOP_MARGIN = 4.0
+
+
+# Where a curve ends: the parameter s_top from the search grid and the states (d, F, a) along it.
+Reach = Callable[[jax.Array, jax.Array, jax.Array, jax.Array], jax.Array]
 
 
 def top_of_reach(grid, depths, forces, radii, speed):
@@ -32,10 +37,34 @@ def top_of_reach(grid, depths, forces, radii, speed):
     steps = 0.5 * (forces[1:] + forces[:-1]) * (depths[1:] - depths[:-1])
     work = jnp.concatenate([jnp.zeros(1), jnp.cumsum(steps)])
     given_back = jnp.maximum(-jax.lax.cummin(work), 0.0)
-    enough = work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back
+    return _beyond(grid, radii, work >= 0.5 * speed**2 + 1.0 + 2.0 * given_back)
+
+
+def top_of_peak(grid, depths, forces, radii, peak, force_control):
+    """The curve parameter at `TOP_MARGIN` times the contact radius beyond which the controlled
+    value (F under force control, else d) stays above `peak` (scaled): a quasi-static program
+    loading to the peak stays below it."""
+    values = jnp.where(force_control, forces, depths)
+    return _beyond(grid, radii, jax.lax.cummin(jnp.where(jnp.isnan(values), -jnp.inf, values), reverse=True) > peak)
+
+
+def _beyond(grid, radii, enough):
+    """The first grid point at `TOP_MARGIN` times the radius where `enough` first holds (or the
+    unit radius, if larger; the last grid point where neither is reached)."""
     reach = radii[jnp.where(jnp.any(enough), jnp.argmax(enough), grid.shape[0] - 1)]
     beyond = radii >= TOP_MARGIN * jnp.maximum(reach, 1.0)
     return grid[jnp.where(jnp.any(beyond), jnp.argmax(beyond), grid.shape[0] - 1)]
+
+
+def force_turns(law, curve: "AbstractCurve", top, max_turns: int):
+    """The turning points of F(s) on the curve's `grid` up to `top`, other than its junction
+    (a kink, already a node): ([max_turns] padded with `top`, more than that many)."""
+    grid = jnp.minimum(curve.grid(law), top)
+    turns, valid, count = sign_changes(
+        lambda s: curve.slopes(law, s)[1], grid, curve.slopes(law, grid)[1] > 0.0, max_turns
+    )
+    kink = jnp.abs(turns - curve.junction) <= 1e-12 * curve.junction
+    return jnp.where(valid & ~kink, turns, top), count > max_turns
 
 
 class CurveLaw(Protocol):
@@ -63,10 +92,19 @@ class AbstractCurve(eqx.Module):
     def state(self, law, s):
         """(d, F, a, outer radius) at s, scaled."""
 
+    @abc.abstractmethod
+    def grid(self, law):
+        """The parameters searched for the curve's reach and turning points, sorted."""
+
     def riding(self, law, s):
         """(d, F, dd/ds) at s."""
         (depth, force), (slope, _) = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
         return depth, force, slope
+
+    def slopes(self, law, s):
+        """(dd/ds, dF/ds) at s."""
+        _, tangents = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
+        return tangents
 
     def depth(self, law, s):
         return self.state(law, s)[0]

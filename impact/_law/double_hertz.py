@@ -19,10 +19,10 @@ import jax
 import jax.numpy as jnp
 
 from ..profiles import Paraboloid, Profile, Sphere
-from .curve import AbstractCurve, top_of_reach
+from .curve import AbstractCurve, Reach
 from .scales import Scales
 
-# States searched for the reach of an impact: s from 0 to 40 (â up to ~e^80·û₀/3).
+# States searched for the reach of a curve: s from 0 to 40 (â up to ~e^80·û₀/3).
 _REACH_SPAN = 40.0
 _REACH_POINTS = 513
 
@@ -89,17 +89,28 @@ class DoubleHertzCurve(AbstractCurve):
         force = 4.0 / 3.0 * curvature * (a**3 - k * u * (3.0 * a**2 + 3.0 * a * u + u**2))
         return depth, force, a, a + u
 
+    def grid(self, law: DoubleHertzLaw):
+        """s from 0 to 40 (â up to ~e^80·û₀/3), evenly."""
+        return jnp.linspace(0.0, _REACH_SPAN, _REACH_POINTS)
+
     def riding(self, law: DoubleHertzLaw, s):
-        """(d̂, F̂, dd̂/ds) with dâ/ds = 2â + û: dd̂/ds = 2Ĉ·â·(2â − (k − 1)·û)."""
-        depth, force, a, outer = self.state(law, s)
-        u = outer - a
-        return depth, force, 2.0 * law.curvature * a * (2.0 * a - (law.factor - 1.0) * u)
+        """(d̂, F̂, dd̂/ds)."""
+        depth, force, _, _ = self.state(law, s)
+        return depth, force, self.slopes(law, s)[0]
+
+    def slopes(self, law: DoubleHertzLaw, s):
+        """(dd̂/ds, dF̂/ds) with dâ/ds = 2â + û, dĉ/ds = 2â: dd̂/ds = 2Ĉ·â·(2â − (k − 1)·û) and
+        dF̂/ds = 4Ĉ·â·((1 + k)·â·(2â + û) − 2k·ĉ²), both 0 at â = 0."""
+        a, u = law.radius(s)
+        k, curvature = law.factor, law.curvature
+        depth_slope = 2.0 * curvature * a * (2.0 * a - (k - 1.0) * u)
+        force_slope = 4.0 * curvature * a * ((1.0 + k) * a * (2.0 * a + u) - 2.0 * k * (a + u) ** 2)
+        return depth_slope, force_slope
 
 
-def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
-    """The curve up to `TOP_MARGIN` times the contact radius where the work ∫F dd from the onset
-    (trapezoids) first exceeds ½v² + 1 plus twice the largest work the adhesive pull gave back
-    before (an impact at scaled speed v cannot reach further)."""
+def build_double_hertz_curve(law: DoubleHertzLaw, reach: Reach) -> DoubleHertzCurve:
+    """The curve up to `reach` (`top_of_reach` for an impact, `top_of_peak` for a quasi-static
+    program), and at least twice beyond the turning point."""
     turn = law.turning_point()
     partial = DoubleHertzCurve(
         junction=jnp.zeros(()),
@@ -108,9 +119,9 @@ def build_double_hertz_curve(law: DoubleHertzLaw, speed) -> DoubleHertzCurve:
         increasing=jnp.zeros(0, bool),
         overflow=jnp.asarray(False),
     )
-    grid = jnp.linspace(0.0, _REACH_SPAN, _REACH_POINTS)
+    grid = partial.grid(law)
     depths, forces, radii, _ = partial.state(law, grid)
-    top = jnp.maximum(top_of_reach(grid, depths, forces, radii, speed), 2.0 * turn)
+    top = jnp.maximum(reach(grid, depths, forces, radii), 2.0 * turn)
     nodes = jnp.stack([jnp.zeros(()), turn, top])
     return DoubleHertzCurve(
         junction=jnp.zeros(()),

@@ -32,7 +32,7 @@ from .._core.derivatives import implicit_root
 from .._core.quadrature import gauss_legendre
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import sign_changes
-from .curve import AbstractCurve, top_of_reach
+from .curve import AbstractCurve, Reach
 from .law import ContactLaw
 from .scales import Scales
 
@@ -178,31 +178,26 @@ class DugdaleCurve(AbstractCurve):
             jnp.where(contact, contact_zone, zone),
         )
 
+    def grid(self, law: DugdaleLaw):
+        """Zones b/b_J from 1e-12 to 1 (log and even), then contacts with −ln p from 0 to 40."""
+        unit = jnp.concatenate([jnp.logspace(-12.0, 0.0, _ZONE_POINTS // 2), jnp.linspace(0.0, 1.0, _ZONE_POINTS // 2)])
+        contact = self.junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, _CONTACT_POINTS + 1)[1:]
+        return jnp.concatenate([self.junction * jnp.sort(unit), contact])
 
-def build_curve(law: DugdaleLaw, speed, max_turns: int) -> DugdaleCurve:
-    """Bound the contact an impact at scaled speed v can reach and split the curve there at
-    its turning points.
 
-    The bound is where the work ∫F dd along the curve (trapezoids) first exceeds ½v² + 1 plus
-    twice the largest work the adhesive pull gave back before (the jumps only lose energy);
-    the curve reaches `TOP_MARGIN` times that contact radius.
-    """
-    junction = law.zone_radius(jnp.ones(()))
-    zone_grid = junction * jnp.sort(
-        jnp.concatenate([jnp.logspace(-12.0, 0.0, _ZONE_POINTS // 2), jnp.linspace(0.0, 1.0, _ZONE_POINTS // 2)])
-    )
-    contact_grid = junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, _CONTACT_POINTS + 1)[1:]
+def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
+    """Bound the curve (`reach`: `top_of_reach` for an impact, `top_of_peak` for a quasi-static
+    program) and split it there at the turning points of d(s)."""
     partial = DugdaleCurve(
-        junction=junction,
+        junction=law.zone_radius(jnp.ones(())),
         nodes=jnp.zeros(1),
         levels=jnp.zeros(1),
         increasing=jnp.zeros(0, bool),
         overflow=jnp.asarray(False),
     )
-    grid = jnp.concatenate([zone_grid, contact_grid])
+    junction, grid = partial.junction, partial.grid(law)
     depths, forces, slopes = partial.riding(law, grid)
-    radii = partial.state(law, grid)[2]
-    top = top_of_reach(grid, depths, forces, radii, speed)
+    top = reach(grid, depths, forces, partial.state(law, grid)[2])
 
     nodes, overflow = _turning_points(law, partial, jnp.minimum(grid, top), slopes > 0.0, junction, top, max_turns)
     middles = 0.5 * (nodes[:-1] + nodes[1:])

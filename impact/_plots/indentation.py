@@ -2,7 +2,9 @@
 
 `force_indentation_figure`: the force–indentation curve in SI, the program's path (jumps as
 straight segments) over the whole equilibrium curve d(a) = g(a) − Δl(a), F(a) = 2E*(a·d − G(a)),
-with the pull-off marked.
+with the pull-off marked. For a finite-range law (Maugis–Dugdale, Greenwood–Johnson) that curve is
+its JKR limit, drawn with its DMT limit: the Hertz curve less the pull-off πσ0b², f(b) = h
+(3.180, 3.195; Bradley's 2πRΔγ for the double Hertz).
 `normalized_figure`: the chapter's normalized curves (Figs. 3.6–3.7, 3.10–3.11): F̂ and d̂
 against â, and F̂ against d̂, in units of the pull-off |F_c|, |d_c| and a_c of the run itself
 (for a paraboloid under force control these are (3.46) and the curves are (3.49)).
@@ -13,6 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._law.double_hertz import tip_radius
 from .._run.indentation import IndentationResult
 from .figures import si_prefix, write_figures
 
@@ -53,6 +56,43 @@ def equilibrium(result: IndentationResult, points: int = 800):
     return radius[finite], d[finite], force[finite]
 
 
+def dmt_limit(result: IndentationResult, points: int = 800):
+    """(a, d, F) in SI of the DMT limit of a finite-range law up to the largest radius of the
+    run: the Hertz curve d = g(a), F = 2E*(a·d − G(a)) less the DMT pull-off; None for JKR."""
+    scene = result.scene
+    adhesion = scene.active_adhesion
+    if adhesion is None or adhesion.model == "jkr":
+        return None
+    profile = scene.body.profile.build()
+    if adhesion.model == "greenwood_johnson":
+        pull_off = 2 * np.pi * float(tip_radius(profile)) * adhesion.work_of_adhesion  # (3.141)
+    else:
+        pull_off = np.pi * adhesion.adhesive_stress * _radius_at_height(profile, adhesion.adhesion_range) ** 2
+    modulus = scene.material.effective_modulus
+    radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
+    d = np.asarray(profile.g(radius))
+    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius))) - pull_off
+    shown = np.isfinite(d) & np.isfinite(force) & (d <= 1.02 * result.max_indentation)
+    return radius[shown], d[shown], force[shown]
+
+
+def _radius_at_height(profile, height: float, steps: int = 200) -> float:
+    """b with f(b) = h (m), by bisection in log b (f rises from f(0) = 0)."""
+    lower, upper = 1e-30, 1e30
+    for _ in range(steps):
+        middle = np.sqrt(lower * upper)
+        lower, upper = (middle, upper) if float(profile.f(middle)) < height else (lower, middle)
+    return np.sqrt(lower * upper)
+
+
+def _limits(result: IndentationResult):
+    """(label, line style, (a, d, F)) of the curves drawn under the program's path."""
+    dmt = dmt_limit(result)
+    if dmt is None:
+        return [("equilibrium curve", "--", equilibrium(result))]
+    return [("JKR limit", "--", equilibrium(result)), ("DMT limit", ":", dmt)]
+
+
 def force_indentation_figure(result: IndentationResult) -> "Figure":
     """F against d in SI: the equilibrium curve (dashed) and the program's path."""
     from matplotlib.figure import Figure
@@ -61,8 +101,8 @@ def force_indentation_figure(result: IndentationResult) -> "Figure":
     axes = figure.subplots()
     length_factor, length_prefix = si_prefix(np.max(np.abs(result.indentation), initial=0.0))
     force_factor, force_prefix = si_prefix(np.max(np.abs(result.force), initial=0.0))
-    _, d, F = equilibrium(result)
-    axes.plot(d * length_factor, F * force_factor, "--", color="0.45", lw=1.0, label="equilibrium curve")
+    for label, style, (_, d, F) in _limits(result):
+        axes.plot(d * length_factor, F * force_factor, style, color="0.45", lw=1.0, label=label)
     axes.plot(result.indentation * length_factor, result.force * force_factor, color="C0", lw=1.6, label="program")
     for kind, marker in _MARKERS.items():
         points = [index for index, event in result.events if event == kind]
@@ -99,14 +139,16 @@ def normalized_figure(result: IndentationResult) -> "Figure":
         a_c = result.max_contact_radius or 1.0
         d_c = np.max(np.abs(result.indentation), initial=0.0) or 1.0
         F_c = np.max(np.abs(result.force), initial=0.0) or 1.0
-    a_eq, d_eq, F_eq = equilibrium(result)
-    left.plot(a_eq / a_c, F_eq / F_c, ":", color="C3", lw=1.0)
-    left.plot(a_eq / a_c, d_eq / d_c, ":", color="C0", lw=1.0)
+    limits = _limits(result)
+    for _, style, (a_eq, d_eq, F_eq) in limits:
+        left.plot(a_eq / a_c, F_eq / F_c, style, color="C3", lw=1.0)
+        left.plot(a_eq / a_c, d_eq / d_c, style, color="C0", lw=1.0)
     left.plot(result.contact_radius / a_c, result.force / F_c, color="C3", lw=1.6, label="F̂ = F/|F_c|")
     left.plot(result.contact_radius / a_c, result.indentation / d_c, color="C0", lw=1.6, label="d̂ = d/|d_c|")
     left.set_xlabel("â = a/a_c")
     left.legend(loc="best", fontsize="small")
-    right.plot(d_eq / d_c, F_eq / F_c, ":", color="0.45", lw=1.0, label="equilibrium curve")
+    for label, style, (_, d_eq, F_eq) in limits:
+        right.plot(d_eq / d_c, F_eq / F_c, style, color="0.45", lw=1.0, label=label)
     right.plot(result.indentation / d_c, result.force / F_c, color="C0", lw=1.6, label="program")
     right.set_xlabel("d̂ = d/|d_c|")
     right.set_ylabel("F̂ = F/|F_c|")

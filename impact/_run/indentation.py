@@ -91,9 +91,11 @@ def legs(scene: Scene) -> tuple[np.ndarray, np.ndarray, int]:
 def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
     """The static choices of an indentation scene (changing them recompiles)."""
     springs = scene.contact.springs
+    adhesion = scene.active_adhesion
     return QuasiStaticNumerics(
         adhesive=scene.adhesive,
         springs=None if springs == "continuum" else spring_capacity(springs),
+        model="jkr" if adhesion is None else adhesion.model,
         tabulation=Tabulation.for_profile(scene.body.profile.build()),
     )
 

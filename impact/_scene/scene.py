@@ -130,8 +130,6 @@ class Scene(Section):
         adhesion = self.effects.adhesion
         if adhesion is None or adhesion.model != "maugis_dugdale":
             return self
-        if self.kind != "impact":
-            raise FieldProblem("effects.adhesion.model", "maugis_dugdale is simulated in impacts only (kind 'impact')")
         profile = self.body.profile
         if profile.shape not in DUGDALE_SHAPES:
             raise FieldProblem(
@@ -152,10 +150,6 @@ class Scene(Section):
         adhesion = self.effects.adhesion
         if adhesion is None or adhesion.model != "greenwood_johnson":
             return self
-        if self.kind != "impact":
-            raise FieldProblem(
-                "effects.adhesion.model", "greenwood_johnson is simulated in impacts only (kind 'impact')"
-            )
         shape = self.body.profile.shape
         if shape not in DOUBLE_HERTZ_SHAPES:
             raise FieldProblem(

@@ -132,6 +132,7 @@ from ._maugis import bradley_pull_off as bradley_pull_off
 from ._maugis import dmt_pull_off as dmt_pull_off
 from ._maugis import dmt_zone_radius as dmt_zone_radius
 from ._maugis import maugis_adhesive_stress as maugis_adhesive_stress
+from ._maugis import maugis_critical_state as maugis_critical_state
 from ._maugis import maugis_junction_zone_radius as maugis_junction_zone_radius
 from ._maugis import maugis_paraboloid as maugis_paraboloid
 from ._maugis import maugis_paraboloid_noncontact as maugis_paraboloid_noncontact
@@ -248,6 +249,7 @@ __all__ = [
     "maugis_junction_zone_radius",
     "maugis_paraboloid_noncontact",
     "maugis_pull_off",
+    "maugis_critical_state",
     "maugis_pull_off_force",
     "maugis_pull_off_large_tabor",
     "maugis_pull_off_force_large_tabor",

@@ -208,6 +208,41 @@ def maugis_pull_off(tabor: Scalars):
     return np.vectorize(_pull_off, otypes=[float])(tabor)[()]
 
 
+def _critical_state(tabor, xi):
+    """(ã, d̃, F̃) of ``maugis_critical_state`` for one Λ."""
+    from scipy.optimize import minimize_scalar  # imported here: scipy would add 0.2 s to every `impact run`
+
+    index = 2 if xi == 3 else 1  # force control: the lowest F̃; displacement control: the lowest d̃
+
+    def value(log_excess):
+        return _maugis_curve(np.exp(log_excess), tabor)[index]
+
+    values = value(_PULL_OFF_GRID)
+    i = int(np.argmin(values))
+    bracket = (_PULL_OFF_GRID[max(i - 1, 0)], _PULL_OFF_GRID[min(i + 1, _PULL_OFF_GRID.size - 1)])
+    best = minimize_scalar(value, bounds=bracket, method="bounded", options={"xatol": 1e-12})
+    contact = np.array(_maugis_curve(np.exp(best.x if best.fun < values[i] else _PULL_OFF_GRID[i]), tabor))
+    # Without contact: the junction, or (displacement control) the lowest d̃ of the zone,
+    # at b̃ = 8Λ/(3π) where that lies before the junction.
+    zone = min(maugis_junction_zone_radius(tabor), 8 * tabor / (3 * np.pi) if xi == 1 else np.inf)
+    depth, force = maugis_paraboloid_noncontact(zone, tabor)
+    zone_state = np.array([0.0, depth, force])
+    return tuple(contact if contact[index] < zone_state[index] else zone_state)
+
+
+@float64
+def maugis_critical_state(tabor: Scalars, xi: int = 3):
+    """Normalized state (ã, d̃, F̃) (3.169) that ends a quasi-static Maugis–Dugdale contact of the
+    paraboloid: under force control (ξ = 3) the lowest F̃ of the whole equilibrium curve (3.171)
+    with its zone without contact (3.176) (F̃ = −``maugis_pull_off``), under displacement control
+    (ξ = 1) its lowest d̃. The zone's lowest d̃ (3.176) lies at b̃ = 8Λ/(3π), before the junction
+    for Λ < 0.82: there the contact opens smoothly and the zone lets go at a tiny force
+    F̃ = −32Λ³/(9π). Minimized as ``maugis_pull_off``; ã and d̃ at a minimum of F̃ (and ã, F̃
+    at one of d̃) to about 1e-8 relative (the position of the extremum), the minimum itself to
+    round-off. Scalar Λ."""
+    return _critical_state(float(tabor), int(xi))
+
+
 @float64
 def maugis_pull_off_force(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Maugis–Dugdale pull-off force [N] of a paraboloid: F̃_A(Λ) (3/2)πRσ0h."""

@@ -103,6 +103,20 @@ def maugis_dugdale_pull_off(result):
     assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
 
 
+def maugis_dugdale_indentation_pull_off(result):
+    """Displacement control, Λ = 1: the tip snaps off at the lowest indentation of (3.171)."""
+    scene = result.scene
+    adhesion = scene.effects.adhesion
+    R, E_star, work = scene.body.profile.R, scene.material.effective_modulus, adhesion.work_of_adhesion
+    tabor = float(theory.tabor_parameter(R, adhesion.adhesive_stress, adhesion.adhesion_range, E_star))
+    a_c = (9 * math.pi * R**2 * work / (8 * E_star)) ** (1 / 3)  # the JKR units (3.170)
+    units = (a_c, a_c**2 / (3 * R), 1.5 * math.pi * R * work)
+    expected = [v * unit for v, unit in zip(theory.maugis_critical_state(tabor, 1), units, strict=True)]
+    pull_off = result.pull_off
+    found = [pull_off.contact_radius, pull_off.indentation, pull_off.force]
+    assert found == pytest.approx(expected, rel=1e-6)
+
+
 def greenwood_johnson_pull_off(result):
     """k = 10: e between Thornton–Ning and 1; the unloading passes the force-controlled pull-off of
     the double-Hertz curve (theory.double_hertz_pull_off, ξ = 3)."""
@@ -169,6 +183,7 @@ CHECKS = {
     "indentation_paraboloid": force_controlled_pull_off,
     "indentation_wavy": displacement_controlled_wavy_pull_off,
     "maugis_dugdale": maugis_dugdale_pull_off,
+    "indentation_maugis_dugdale": maugis_dugdale_indentation_pull_off,
     "greenwood_johnson": greenwood_johnson_pull_off,
     "two_spheres": matches(thornton_ning, 1e-6),
     "plastic_steel": thornton_plastic,

@@ -223,3 +223,22 @@ def test_pull_off_dmt_limit():
     assert np.isclose(gap[0], 4 / 3 * (np.pi - 2) * np.sqrt(8 / (3 * np.pi)) * tabors[0] ** 1.5, rtol=0.01, atol=0)
     sweep = theory.maugis_pull_off(np.logspace(-3, 3, 31))
     assert np.all(np.diff(sweep) < 0) and sweep[0] < 4 / 3 and sweep[-1] > 1
+
+
+@pytest.mark.parametrize("tabor", [0.05, 0.3, 1.0, 3.0, 10.0])
+def test_critical_states_of_both_controls(tabor):
+    """`maugis_critical_state`: under force control F̃ is −`maugis_pull_off`; under displacement
+    control d̃ is the lowest indentation: below the junction's and the contact branch's on a fine
+    scan, and (Λ < 0.82) the zone's closed form at b̃ = 8Λ/(3π) (3.176)."""
+    force = theory.maugis_critical_state(tabor, 3)
+    assert force[2] == pytest.approx(-theory.maugis_pull_off(tabor), rel=1e-15)
+    a, d, F = theory.maugis_critical_state(tabor, 1)
+    excess = np.exp(np.linspace(-30.0, 30.0, 200001))
+    _, depths, _ = theory.maugis_paraboloid(1.0 + excess, tabor)
+    assert d <= np.nanmin(depths) + 1e-12 * abs(d)
+    zone = 8 * tabor / (3 * np.pi)
+    if zone < theory.maugis_junction_zone_radius(tabor):
+        assert (a, d, F) == pytest.approx((0.0, *theory.maugis_paraboloid_noncontact(zone, tabor)), rel=1e-15)
+        assert F == pytest.approx(-32 * tabor**3 / (9 * np.pi), rel=1e-14)
+    else:
+        assert a > 0 and d == pytest.approx(np.nanmin(depths), rel=1e-8)  # the scan: 3e-4 apart in ln(κ − 1)

@@ -1,17 +1,50 @@
-"""One quasi-static test: the continuum or the spring-array march of a loading."""
+"""One quasi-static test: the continuum or the spring-array march of a loading, or the march
+along the equilibrium curve of a finite-range law."""
+
+import functools
 
 import equinox as eqx
+import jax.numpy as jnp
 
+from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
+from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
+from ..._law.dugdale import DugdaleLaw, build_curve
 from .continuum import march_continuum
+from .curve import march_curve
 from .loading import Loading, QuasiStaticNumerics
-from .setup import build
+from .setup import build, loading_scales
 from .springs import march_springs
 
 
 @eqx.filter_jit
 def march(loading: Loading, numerics: QuasiStaticNumerics):
     """Build and march one quasi-static program; returns (scales, scaled outcome)."""
+    if numerics.model != "jkr":
+        return march_finite_range(loading, numerics)
     built = build(loading, numerics)
     if numerics.springs is None:
         return built.law.scales, march_continuum(built, numerics)
     return built.law.scales, march_springs(built, numerics, loading.spring_length, loading.spring_count)
+
+
+def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
+    """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
+    to beyond the program's peak, and the march along it."""
+    scales = loading_scales(loading, adhesive=True)
+    adhesion, force_control = loading.adhesion, loading.force_control
+    unit = jnp.where(force_control, scales.force, scales.normal)
+    reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=force_control)
+    law: CurveLaw
+    curve: AbstractCurve
+    if numerics.model == "maugis_dugdale":
+        law = DugdaleLaw.scaled(
+            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
+        )
+        curve = build_curve(law, numerics.tabulation.max_turns, reach)
+    else:
+        double_hertz = DoubleHertzLaw.scaled(
+            loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
+        )
+        law, curve = double_hertz, build_double_hertz_curve(double_hertz, reach)
+    program = (force_control, loading.directions, loading.targets / unit, loading.legs)
+    return scales, march_curve(law, curve, program, numerics)
