@@ -20,6 +20,15 @@ from .cache import cache_directory, use_cache
 # Verlet loops (the law evaluated inside) are a few kB: compiled whole they run 10× faster.
 SMALL_LOOP_OPTION = "xla_cpu_small_while_loop_byte_threshold=65536"
 
+# Options of every compiled impact program, whatever the process settings. XLA:CPU vectorises
+# the elementwise loops over a vmapped batch: lanes in SIMD registers and lanes in the scalar
+# remainder run different code (vector and scalar exp/log/pow, fused multiply–adds contracted
+# differently), so a point's last bits depended on its position in the batch and on the chunk
+# size. With float64 vectors of one element (64 bits) every lane runs the scalar code of an
+# unbatched solve: a point's result is bitwise the same alone or at any place of any batch.
+# (Options for XLA:CPU only; other backends ignore them.)
+COMPILER_OPTIONS = {"xla_cpu_prefer_vector_width": 64}
+
 
 def _accelerator_plugins() -> bool:
     """Whether a GPU/TPU plugin of jax is installed (the CPU option is then not added)."""
