@@ -39,6 +39,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.runtime import COMPILER_OPTIONS
 from .._io.files import write_text
 from .._plots.bench import save_speed_figure
 from .._run.programs import solve
@@ -164,6 +165,7 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction) -> float:
 
 
 _STAGES: dict = {}  # jit(vmap(build)) and jit(vmap(solve)) by static choices, this session
+SAME = {"compiler_options": COMPILER_OPTIONS}  # compiled as the sweep compiles its batch
 SPLIT_REPEATS = 3  # interleaved runs of each stage: the median is kept
 
 
@@ -174,8 +176,8 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
     if choices not in _STAGES:
         integrator, options = choices
         _STAGES[choices] = (
-            jax.jit(jax.vmap(lambda physics: checksum(integrator.build(physics, options)))),
-            jax.jit(jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options))))),
+            jax.jit(jax.vmap(lambda physics: checksum(integrator.build(physics, options))), **SAME),
+            jax.jit(jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))), **SAME),
         )
     devices = local_devices()
     sample = plan.order[np.linspace(0, plan.size - 1, size).round().astype(int)]

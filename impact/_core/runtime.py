@@ -7,6 +7,7 @@ changes process-wide settings); call it first in scripts that use the Python API
 
 import functools
 import os
+import platform
 from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
@@ -20,14 +21,16 @@ from .cache import cache_directory, use_cache
 # Verlet loops (the law evaluated inside) are a few kB: compiled whole they run 10× faster.
 SMALL_LOOP_OPTION = "xla_cpu_small_while_loop_byte_threshold=65536"
 
-# Options of every compiled impact program, whatever the process settings. XLA:CPU vectorises
-# the elementwise loops over a vmapped batch: lanes in SIMD registers and lanes in the scalar
-# remainder run different code (vector and scalar exp/log/pow, fused multiply–adds contracted
-# differently), so a point's last bits depended on its position in the batch and on the chunk
-# size. With float64 vectors of one element (64 bits) every lane runs the scalar code of an
-# unbatched solve: a point's result is bitwise the same alone or at any place of any batch.
-# (Options for XLA:CPU only; other backends ignore them.)
-COMPILER_OPTIONS = {"xla_cpu_prefer_vector_width": 64}
+# Options of every compiled impact program, whatever the process settings: a point's result is
+# bitwise the same alone or at any place of a batch of any size. XLA:CPU vectorises the loops over
+# a vmapped batch, and lanes in SIMD registers round differently from lanes in the scalar
+# remainder; it also contracts a·b + c into one fused multiply–add where both sit in one fused
+# kernel, and the fusions differ between programs of different batch sizes. So: float64 vectors
+# of one element (every lane runs scalar code) and, on x86-64, no instructions beyond AVX (no
+# FMA: every product is rounded). Other backends ignore these options.
+COMPILER_OPTIONS: dict[str, object] = {"xla_cpu_prefer_vector_width": 64}
+if platform.machine().lower() in ("x86_64", "amd64"):
+    COMPILER_OPTIONS["xla_cpu_max_isa"] = "AVX"
 
 
 def _accelerator_plugins() -> bool:

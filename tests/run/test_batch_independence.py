@@ -3,9 +3,10 @@ point by point (chunk 1), in calls of 6 (chunk 7), all at once (chunk 64 and the
 reverse order gives every result bitwise equal, and equal to `impact.simulate` of the point.
 
 XLA:CPU once vectorised the lanes of a batch, so that lanes in SIMD registers and lanes in the
-scalar remainder rounded differently (restitutions apart by a few ulps, Maugis–Dugdale's step
-counts by up to 20); `impact._core.runtime.COMPILER_OPTIONS` makes every lane run scalar code.
-Twelve points make the batch wide enough to be vectorised without those options.
+scalar remainder rounded differently, and contracted multiply–adds differently in programs of
+different batch sizes (restitutions apart by a few ulps, Maugis–Dugdale's step counts by up to
+20); `impact._core.runtime.COMPILER_OPTIONS` makes every lane run the same scalar code, without
+fused multiply–adds. Twelve points make the batch wide enough to be vectorised without them.
 """
 
 from pathlib import Path

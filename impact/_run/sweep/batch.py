@@ -131,7 +131,8 @@ def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
     key = (choices, treedef, tuple((leaf.shape, leaf.dtype) for leaf in leaves))
     if key not in _MAPPED:
         start = time.perf_counter()
-        function = jax.jit(lambda physics: jax.lax.map(point_function(choices), physics), compiler_options=COMPILER_OPTIONS)
+        point = point_function(choices)
+        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=COMPILER_OPTIONS)
         _MAPPED[key] = function.lower(batch).compile()
         COMPILE_SECONDS["unbatched"] += time.perf_counter() - start
     try:
