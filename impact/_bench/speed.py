@@ -165,7 +165,6 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction) -> float:
 
 
 _STAGES: dict = {}  # jit(vmap(build)) and jit(vmap(solve)) by static choices, this session
-SAME = {"compiler_options": COMPILER_OPTIONS}  # compiled as the sweep compiles its batch
 SPLIT_REPEATS = 3  # interleaved runs of each stage: the median is kept
 
 
@@ -176,8 +175,14 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
     if choices not in _STAGES:
         integrator, options = choices
         _STAGES[choices] = (
-            jax.jit(jax.vmap(lambda physics: checksum(integrator.build(physics, options))), **SAME),
-            jax.jit(jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))), **SAME),
+            jax.jit(
+                jax.vmap(lambda physics: checksum(integrator.build(physics, options))),
+                compiler_options=COMPILER_OPTIONS,
+            ),
+            jax.jit(
+                jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))),
+                compiler_options=COMPILER_OPTIONS,
+            ),
         )
     devices = local_devices()
     sample = plan.order[np.linspace(0, plan.size - 1, size).round().astype(int)]
