@@ -39,6 +39,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.runtime import COMPILER_OPTIONS
 from .._io.files import write_text
 from .._plots.bench import save_speed_figure
 from .._run.programs import solve
@@ -174,8 +175,14 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
     if choices not in _STAGES:
         integrator, options = choices
         _STAGES[choices] = (
-            jax.jit(jax.vmap(lambda physics: checksum(integrator.build(physics, options)))),
-            jax.jit(jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options))))),
+            jax.jit(
+                jax.vmap(lambda physics: checksum(integrator.build(physics, options))),
+                compiler_options=COMPILER_OPTIONS,
+            ),
+            jax.jit(
+                jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))),
+                compiler_options=COMPILER_OPTIONS,
+            ),
         )
     devices = local_devices()
     sample = plan.order[np.linspace(0, plan.size - 1, size).round().astype(int)]

@@ -6,6 +6,8 @@ from collections.abc import Callable
 
 import jax
 
+from .._core.runtime import COMPILER_OPTIONS
+
 
 def best_time(function: Callable, args: tuple, budget: float, repeats: int = 7, once: float = 1.0):
     """(best wall time in s, last result) of `function(*args)` with the result ready, repeated
@@ -36,7 +38,8 @@ def best_python_time(function: Callable, args: tuple, budget: float, repeats: in
 
 
 def compile_ahead(function: Callable, *args):
-    """(compiled executable of `jax.jit(function)` for `args`, seconds to trace, lower and compile)."""
+    """(compiled executable of `jax.jit(function)` for `args`, with the options of impact's own
+    programs; seconds to trace, lower and compile)."""
     start = time.perf_counter()
-    compiled = jax.jit(function).lower(*args).compile()
+    compiled = jax.jit(function, compiler_options=COMPILER_OPTIONS).lower(*args).compile()
     return compiled, time.perf_counter() - start

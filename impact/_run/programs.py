@@ -25,6 +25,7 @@ import jax
 from jax import export
 
 from .._core.cache import directory_in_use
+from .._core.runtime import COMPILER_OPTIONS
 from .._integrate.base import AbstractIntegrator
 from .._integrate.carry import Outcome
 from .._integrate.problem import Options, Physics
@@ -47,10 +48,6 @@ def solve(integrator: AbstractIntegrator, physics: Physics, options: Options) ->
 def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Options) -> tuple[Fields, Fields]:
     """`solve`, with the scales and the outcome as {field name: array}; traced only where the
     cache holds no program of its key."""
-    directory = directory_in_use()
-    if directory is None or not _can_serialize():
-        scales, outcome = solve(integrator, physics, options)
-        return _fields(scales), _fields(outcome)
     dynamic, static = eqx.partition((integrator, physics), eqx.is_array)
     leaves, structure = jax.tree.flatten(dynamic)
 
@@ -61,7 +58,11 @@ def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Op
 
     key = _key((repr(static), str(structure), repr(options)), leaves)
     if key not in _loaded:
-        _loaded[key] = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", by_field, leaves)
+        directory = directory_in_use()
+        if directory is None or not _can_serialize():
+            _loaded[key] = jax.jit(by_field, compiler_options=COMPILER_OPTIONS)
+        else:
+            _loaded[key] = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", by_field, leaves)
     return _loaded[key](*leaves)
 
 
@@ -79,7 +80,7 @@ def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> 
     """The stored program at `path`, or `function` traced, exported and stored there (a file
     that cannot be read back is replaced; one that cannot be written is skipped)."""
     try:
-        return export.deserialize(bytearray(path.read_bytes())).call
+        return jax.jit(export.deserialize(bytearray(path.read_bytes())).call, compiler_options=COMPILER_OPTIONS)
     except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
         pass
     exported = export.export(jax.jit(function))(*leaves)
@@ -91,7 +92,7 @@ def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> 
     except OSError:
         with contextlib.suppress(OSError):
             partial.unlink(missing_ok=True)
-    return exported.call
+    return jax.jit(exported.call, compiler_options=COMPILER_OPTIONS)
 
 
 def _key(static: tuple[str, ...], leaves: list[jax.Array]) -> str:

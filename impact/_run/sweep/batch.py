@@ -11,6 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax.sharding import AxisType, NamedSharding, PartitionSpec
 
+from ..._core.runtime import COMPILER_OPTIONS
 from ..._integrate.codes import RESULT_CODE
 from ..._integrate.problem import Physics
 from ..._scene.errors import SweepError
@@ -108,7 +109,7 @@ def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices:
     sharding = batch_sharding(devices)
     dtype = jnp.result_type(float)
     abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
-    function = jax.jit(jax.vmap(point_function(choices)))
+    function = jax.jit(jax.vmap(point_function(choices)), compiler_options=COMPILER_OPTIONS)
     compiled = function.lower(jax.tree.unflatten(treedef, abstract)).compile()
     _COMPILED[key] = compiled
     return compiled, time.perf_counter() - start
@@ -130,7 +131,8 @@ def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
     key = (choices, treedef, tuple((leaf.shape, leaf.dtype) for leaf in leaves))
     if key not in _MAPPED:
         start = time.perf_counter()
-        function = jax.jit(lambda physics: jax.lax.map(point_function(choices), physics))
+        point = point_function(choices)
+        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=COMPILER_OPTIONS)
         _MAPPED[key] = function.lower(batch).compile()
         COMPILE_SECONDS["unbatched"] += time.perf_counter() - start
     try:
@@ -145,7 +147,7 @@ def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
     code solver_failure."""
     choices = plan.choices[group]
     if choices not in _SINGLE:
-        _SINGLE[choices] = jax.jit(point_function(choices))
+        _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=COMPILER_OPTIONS)
     function = _SINGLE[choices]
     results = empty_results(len(points))
     for row, point in enumerate(points):

@@ -1,0 +1,79 @@
+"""A point's result does not depend on its batch (issue #18, item 3): for each law, a sweep run
+point by point (chunk 1), in calls of 6 (chunk 7), all at once (chunk 64 and the default) and in
+reverse order gives every result bitwise equal, and equal to `impact.simulate` of the point.
+
+XLA:CPU once vectorised the lanes of a batch, so that lanes in SIMD registers and lanes in the
+scalar remainder rounded differently (restitutions apart by a few ulps, Maugis–Dugdale's step
+counts by up to 20); `impact._core.runtime.COMPILER_OPTIONS` makes every lane run scalar code.
+Twelve points make the batch wide enough to be vectorised without that option.
+
+Not yet for a power law with n ≠ 2: its calls of 6 points differ from those of 1 and 12 in the
+last bits (restitution ~1e-16), with or without fused multiply–adds; Maugis–Dugdale did so in one
+of three runs; the cause is not found.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from impact import simulate
+from impact._core.defaults import DEFAULT_CHUNK
+from impact._run.sweep import RESULTS, sweep
+from impact._scene.paths import with_values
+from impact._scene.scene import load_scene
+
+CONFIGS = Path(__file__).parents[2] / "configs"
+POINTS = 12
+# (scene, its changes, lowest and highest velocity in m/s): captured and separated points
+LAWS = {
+    "continuum JKR": ("thornton_ning.yaml", {}, 0.25, 5.0),
+    "power law": ("power_law.yaml", {}, 0.1, 3.0),
+    "spring array": ("spring_array.yaml", {}, 0.3, 3.0),
+    "Maugis-Dugdale": ("maugis_dugdale.yaml", {}, 0.1, 3.0),
+    "attach hysteresis": ("attach_on_touch.yaml", {"effects.adhesion.approach_work_of_adhesion": 0.02}, 0.2, 3.0),
+}
+# Results `impact.simulate` gives bitwise; its program (with the event log) contracts a few
+# multiply–adds of the force differently: the force extremes and ∮F dd agree to a few ulps.
+SIMULATED = ("restitution", "stuck", "contact_time", "bounces", "touch_velocity", "separation_velocity")
+CLOSE = {"max_indentation": 1e-14, "max_force": 1e-14, "min_force": 1e-14, "dissipated_energy": 1e-12}  # ∮F dd cancels
+
+
+def assert_bitwise(results: dict, reference: dict, label: str) -> None:
+    for name in RESULTS:
+        mine, theirs = np.asarray(results[name]), np.asarray(reference[name])
+        differ = np.flatnonzero(~((mine == theirs) | (np.isnan(mine) & np.isnan(theirs))))
+        assert differ.size == 0, f"{label}: {name} differs at points {differ.tolist()}"
+
+
+# Power law n ≠ 2: calls of 6 points differ in the last bits, always; Maugis–Dugdale: in one of
+# three runs of this module (calls of 6, restitution), with the same code: cause not found.
+NOT_YET = pytest.mark.xfail(strict=False, reason="calls of 6 points may differ in the last bits (issue #18)")
+
+
+UNSURE = ("power law", "Maugis-Dugdale")
+
+
+@pytest.mark.parametrize("law", [pytest.param(law, marks=NOT_YET) if law in UNSURE else law for law in LAWS])
+def test_a_points_result_does_not_depend_on_its_batch(law):
+    config, changes, low, high = LAWS[law]
+    scene = with_values(load_scene(CONFIGS / config), changes)
+    velocities = np.geomspace(low, high, POINTS)
+    axes = {"initial.velocity": velocities.tolist()}
+    alone = sweep(scene, axes, order="given", chunk=1)
+    assert alone.stats["call_sizes"] == [1]
+    assert 0 < np.count_nonzero(alone.stuck) < POINTS  # both outcomes: lanes that finish early
+    for chunk, size in ((7, 6), (64, POINTS), (DEFAULT_CHUNK, POINTS)):
+        batched = sweep(scene, axes, order="given", chunk=chunk)
+        assert batched.stats["call_sizes"] == [size]
+        assert_bitwise(batched.results, alone.results, f"chunk {chunk}")
+    backwards = sweep(scene, {"initial.velocity": velocities[::-1].tolist()}, order="given", chunk=64)
+    assert_bitwise({name: column[::-1] for name, column in backwards.results.items()}, alone.results, "reversed")
+    for point in (0, POINTS // 2, POINTS - 1):
+        single = simulate(with_values(scene, {"initial.velocity": float(velocities[point])}), trajectory=False)
+        assert single.status == alone.status_names()[point]
+        assert single.stats["steps"] == alone.steps[point]
+        for name in SIMULATED:
+            assert np.array_equal(getattr(single, name), alone.results[name][point], equal_nan=True), (point, name)
+        for name, rtol in CLOSE.items():
+            np.testing.assert_allclose(getattr(single, name), alone.results[name][point], rtol=rtol, err_msg=name)
