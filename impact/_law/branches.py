@@ -189,10 +189,52 @@ def previous_rising(nodes, levels, increasing, start, level):
 
 
 def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, table_size: int) -> Branch:
-    """Find the turning points of h on (0, top]; tabulate its increasing segments if
-    `table_size` > 0. The search grid is a third logarithmic, two thirds uniform; with
-    `tabulation.tip_search` it also brackets a turn from falling to rising below the grid (an
-    attach edge with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of decades down)."""
+    """Find the turning points of h on (0, top] (in closed form for a power-law ĝ, else by a
+    search); tabulate its increasing segments if `table_size` > 0."""
+    max_turns = tabulation.max_turns
+
+    def slope(x):
+        return law.edge_slope(x, coefficient)
+
+    if law.power_form() is None:
+        turns, valid, count = _searched_turns(law, coefficient, top, tabulation)
+    else:
+        turns, valid, count = _power_law_turns(law, coefficient, top, max_turns)
+    turns = jnp.where(valid, turns, top)
+    nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
+    levels = law.edge(nodes, coefficient)
+    middles = 0.5 * (nodes[:-1] + nodes[1:])
+    increasing = (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1])
+    return Branch(
+        coefficient=jnp.asarray(coefficient, dtype=nodes.dtype),
+        nodes=nodes,
+        levels=levels,
+        increasing=increasing,
+        table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
+        overflow=count > max_turns,
+    )
+
+
+def _power_law_turns(law: ContactLaw, coefficient, top, max_turns: int):
+    """The turning point of h = Â·x̂ⁿ − λ·√x̂ in closed form, where h' = 0:
+    x̂^(n−½) = λ/(2nÂ) (one turn for λ > 0 and n ≠ ½; none without adhesion); as
+    `sign_changes` returns it: (points [max_turns], valid [max_turns], count)."""
+    scale, exponent = law.power_form()
+    ratio = coefficient / (2.0 * exponent * scale)
+    power = exponent - 0.5
+    usable = law.adhesive & (coefficient > 0.0) & (power != 0.0) & (scale > 0.0)
+    turn = jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, power, 1.0))
+    valid = usable & (turn > 0.0) & (turn < top)
+    turns = jnp.zeros(max_turns).at[0].set(jnp.where(valid, turn, top))
+    flags = jnp.zeros(max_turns, bool).at[0].set(valid)
+    return turns, flags, jnp.sum(flags)
+
+
+def _searched_turns(law: ContactLaw, coefficient, top, tabulation: Tabulation):
+    """The turning points of h on (0, top], searched on a grid a third logarithmic, two thirds
+    uniform; with `tabulation.tip_search` it also brackets a turn from falling to rising below
+    the grid (an attach edge with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of
+    decades down)."""
     max_turns, grid_size, tip_search = tabulation.max_turns, tabulation.turn_grid, tabulation.tip_search
 
     def slope(x):
@@ -211,20 +253,7 @@ def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, tabl
             ]
         )
     )
-    turns, valid, count = sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
-    turns = jnp.where(valid, turns, top)
-    nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
-    levels = law.edge(nodes, coefficient)
-    middles = 0.5 * (nodes[:-1] + nodes[1:])
-    increasing = (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1])
-    return Branch(
-        coefficient=jnp.asarray(coefficient, dtype=nodes.dtype),
-        nodes=nodes,
-        levels=levels,
-        increasing=increasing,
-        table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
-        overflow=count > max_turns,
-    )
+    return sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
 
 
 def sign_changes(slope, grid, rising, max_turns: int):
