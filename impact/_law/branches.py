@@ -39,6 +39,7 @@ _TIP_BISECTION_STEPS = 26
 _BISECTION_STEPS = 64
 _TABLE_BISECTION_STEPS = 32  # the table only starts Newton: 2^-32 of a segment is plenty
 _SAFEGUARDED_STEPS = 80
+_SETTLED = 4.0 * float(jnp.finfo(jnp.float64).eps)  # relative change at which a search stops
 _NEWTON_STEPS = 3
 
 
@@ -139,21 +140,37 @@ class Branch(eqx.Module):
 
     def _solve(self, law: ContactLaw, indentation, lower, upper):
         """Newton's method on log(h − h(lower)) against log(x − lower) (see `radius`),
-        safeguarded by bisection in log(x − lower) on [lower, upper], fixed step count."""
-        base_level = self.level(law, lower)
-        span = upper - lower
+        safeguarded by bisection in log(x − lower) on [lower, upper], until the iterate
+        settles (at most _SAFEGUARDED_STEPS steps; a level outside the segment's range has no
+        root inside: the segment's end, at once)."""
+        # The search runs on values without derivatives (a while loop has no reverse mode);
+        # the final Newton step below carries them.
+        branch, frozen, target, low_end, high_end = jax.lax.stop_gradient((self, law, indentation, lower, upper))
+        base_level = branch.level(frozen, low_end)
+        span = high_end - low_end
+        top_level = branch.level(frozen, high_end)
+        inside_range = (target > base_level) & (target < top_level)
 
-        def step(_, state):
-            lo, hi, offset = state  # offsets from `lower`
-            below = self.level(law, lower + offset) < indentation
+        def running(state):
+            count, _, _, _, settled = state
+            return (count < _SAFEGUARDED_STEPS) & ~settled
+
+        def step(state):
+            count, lo, hi, offset, _ = state  # offsets from `lower`
+            below = branch.level(frozen, low_end + offset) < target
             lo, hi = jnp.where(below, offset, lo), jnp.where(below, hi, offset)
-            guess = self._log_newton(law, lower, base_level, lower + offset, indentation) - lower
+            guess = branch._log_newton(frozen, low_end, base_level, low_end + offset, target) - low_end
             inside = (guess > lo) & (guess < hi)
-            return lo, hi, jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
+            # Settled once Newton moves the iterate by round-off (its step may then leave the
+            # bracket by an ulp: the iterate is kept) or the bracket has closed on it.
+            settled = (jnp.abs(guess - offset) <= _SETTLED * offset) | (hi - lo <= _SETTLED * hi)
+            new = jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
+            return count + 1, lo, hi, jnp.where(settled, offset, new), settled
 
-        first = self._power_start(law, lower, base_level, upper, indentation) - lower
-        start = (jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span))
-        _, _, offset = jax.lax.stop_gradient(jax.lax.fori_loop(0, _SAFEGUARDED_STEPS, step, start))
+        first = branch._power_start(frozen, low_end, base_level, high_end, target) - low_end
+        first = jnp.where(inside_range, first, jnp.where(target >= top_level, span, _SMALLEST_RADIUS))
+        start = (0, jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span), ~inside_range)
+        _, _, _, offset, _ = jax.lax.while_loop(running, step, start)
         return jnp.clip(self._newton(law, lower + offset, indentation), lower, upper)
 
     def cascade_out(self, law: ContactLaw, start, indentation):
