@@ -88,6 +88,28 @@ def extremes(function, lower, upper):
     return low, high
 
 
+def branch_force_range(law: ContactLaw, branch: Branch, start_radius, end_radius):
+    """(min, max) of the force while the radius rides the branch between two radii.
+
+    For ĝ = Â·aⁿ the force on the branch, F = 2(a·h − Ĝ) = 2(Â·n/(n+1)·a^(n+1) − λ·a^(3/2)),
+    has one stationary point, a^(n−½) = 3λ/(2nÂ): the range is that of F at the two ends and
+    there, if it lies between them. Other profiles: `extremes` (a scan and golden sections).
+    """
+    form = law.power_form()
+    if form is None:
+        return extremes(lambda a: branch_force(law, branch, a), start_radius, end_radius)
+    scale, exponent = form
+    coefficient = branch.coefficient if law.adhesive else jnp.zeros(())
+    power = exponent - 0.5
+    usable = (coefficient > 0.0) & (power != 0.0) & (scale > 0.0)
+    ratio = 1.5 * coefficient / (exponent * jnp.where(usable, scale, 1.0))
+    stationary = jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, power, 1.0))
+    low, high = jnp.minimum(start_radius, end_radius), jnp.maximum(start_radius, end_radius)
+    between = usable & (stationary > low) & (stationary < high)
+    forces = branch_force(law, branch, jnp.stack([low, high, jnp.where(between, stationary, low)]))
+    return jnp.min(forces), jnp.max(forces)
+
+
 def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start, end) -> ContactSummary:
     """Work ∫F dd, the force range and the deepest indentation of one contact phase.
 
@@ -99,7 +121,7 @@ def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start
     d_end, _ = end
 
     work_riding = branch_work(law, branch, a_start, a_end)
-    low_riding, high_riding = extremes(lambda a: branch_force(law, branch, a), a_start, a_end)
+    low_riding, high_riding = branch_force_range(law, branch, a_start, a_end)
 
     # Hold: a harmonic arc about d_eq; if it starts inward it turns at d_eq + amplitude.
     stiffness = 2.0 * jnp.maximum(a_start, 1e-300)

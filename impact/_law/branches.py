@@ -39,6 +39,7 @@ _TIP_BISECTION_STEPS = 26
 _BISECTION_STEPS = 64
 _TABLE_BISECTION_STEPS = 32  # the table only starts Newton: 2^-32 of a segment is plenty
 _SAFEGUARDED_STEPS = 80
+_SETTLED = 4.0 * float(jnp.finfo(jnp.float64).eps)  # relative change at which a search stops
 _NEWTON_STEPS = 3
 
 
@@ -139,21 +140,37 @@ class Branch(eqx.Module):
 
     def _solve(self, law: ContactLaw, indentation, lower, upper):
         """Newton's method on log(h − h(lower)) against log(x − lower) (see `radius`),
-        safeguarded by bisection in log(x − lower) on [lower, upper], fixed step count."""
-        base_level = self.level(law, lower)
-        span = upper - lower
+        safeguarded by bisection in log(x − lower) on [lower, upper], until the iterate
+        settles (at most _SAFEGUARDED_STEPS steps; a level outside the segment's range has no
+        root inside: the segment's end, at once)."""
+        # The search runs on values without derivatives (a while loop has no reverse mode);
+        # the final Newton step below carries them.
+        branch, frozen, target, low_end, high_end = jax.lax.stop_gradient((self, law, indentation, lower, upper))
+        base_level = branch.level(frozen, low_end)
+        span = high_end - low_end
+        top_level = branch.level(frozen, high_end)
+        inside_range = (target > base_level) & (target < top_level)
 
-        def step(_, state):
-            lo, hi, offset = state  # offsets from `lower`
-            below = self.level(law, lower + offset) < indentation
+        def running(state):
+            count, _, _, _, settled = state
+            return (count < _SAFEGUARDED_STEPS) & ~settled
+
+        def step(state):
+            count, lo, hi, offset, _ = state  # offsets from `lower`
+            below = branch.level(frozen, low_end + offset) < target
             lo, hi = jnp.where(below, offset, lo), jnp.where(below, hi, offset)
-            guess = self._log_newton(law, lower, base_level, lower + offset, indentation) - lower
+            guess = branch._log_newton(frozen, low_end, base_level, low_end + offset, target) - low_end
             inside = (guess > lo) & (guess < hi)
-            return lo, hi, jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
+            # Settled once Newton moves the iterate by round-off (its step may then leave the
+            # bracket by an ulp: the iterate is kept) or the bracket has closed on it.
+            settled = (jnp.abs(guess - offset) <= _SETTLED * offset) | (hi - lo <= _SETTLED * hi)
+            new = jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
+            return count + 1, lo, hi, jnp.where(settled, offset, new), settled
 
-        first = self._power_start(law, lower, base_level, upper, indentation) - lower
-        start = (jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span))
-        _, _, offset = jax.lax.stop_gradient(jax.lax.fori_loop(0, _SAFEGUARDED_STEPS, step, start))
+        first = branch._power_start(frozen, low_end, base_level, high_end, target) - low_end
+        first = jnp.where(inside_range, first, jnp.where(target >= top_level, span, _SMALLEST_RADIUS))
+        start = (0, jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span), ~inside_range)
+        _, _, _, offset, _ = jax.lax.while_loop(running, step, start)
         return jnp.clip(self._newton(law, lower + offset, indentation), lower, upper)
 
     def cascade_out(self, law: ContactLaw, start, indentation):
@@ -189,10 +206,52 @@ def previous_rising(nodes, levels, increasing, start, level):
 
 
 def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, table_size: int) -> Branch:
-    """Find the turning points of h on (0, top]; tabulate its increasing segments if
-    `table_size` > 0. The search grid is a third logarithmic, two thirds uniform; with
-    `tabulation.tip_search` it also brackets a turn from falling to rising below the grid (an
-    attach edge with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of decades down)."""
+    """Find the turning points of h on (0, top] (in closed form for a power-law ĝ, else by a
+    search); tabulate its increasing segments if `table_size` > 0."""
+    max_turns = tabulation.max_turns
+
+    def slope(x):
+        return law.edge_slope(x, coefficient)
+
+    if law.power_form() is None:
+        turns, valid, count = _searched_turns(law, coefficient, top, tabulation)
+    else:
+        turns, valid, count = _power_law_turns(law, coefficient, top, max_turns)
+    turns = jnp.where(valid, turns, top)
+    nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
+    levels = law.edge(nodes, coefficient)
+    middles = 0.5 * (nodes[:-1] + nodes[1:])
+    increasing = (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1])
+    return Branch(
+        coefficient=jnp.asarray(coefficient, dtype=nodes.dtype),
+        nodes=nodes,
+        levels=levels,
+        increasing=increasing,
+        table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
+        overflow=count > max_turns,
+    )
+
+
+def _power_law_turns(law: ContactLaw, coefficient, top, max_turns: int):
+    """The turning point of h = Â·x̂ⁿ − λ·√x̂ in closed form, where h' = 0:
+    x̂^(n−½) = λ/(2nÂ) (one turn for λ > 0 and n ≠ ½; none without adhesion); as
+    `sign_changes` returns it: (points [max_turns], valid [max_turns], count)."""
+    scale, exponent = law.power_form()
+    ratio = coefficient / (2.0 * exponent * scale)
+    power = exponent - 0.5
+    usable = law.adhesive & (coefficient > 0.0) & (power != 0.0) & (scale > 0.0)
+    turn = jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, power, 1.0))
+    valid = usable & (turn > 0.0) & (turn < top)
+    turns = jnp.zeros(max_turns).at[0].set(jnp.where(valid, turn, top))
+    flags = jnp.zeros(max_turns, bool).at[0].set(valid)
+    return turns, flags, jnp.sum(flags)
+
+
+def _searched_turns(law: ContactLaw, coefficient, top, tabulation: Tabulation):
+    """The turning points of h on (0, top], searched on a grid a third logarithmic, two thirds
+    uniform; with `tabulation.tip_search` it also brackets a turn from falling to rising below
+    the grid (an attach edge with 0 < Δγa ≪ Δγ turns at its own jump-in radius, any number of
+    decades down)."""
     max_turns, grid_size, tip_search = tabulation.max_turns, tabulation.turn_grid, tabulation.tip_search
 
     def slope(x):
@@ -211,20 +270,7 @@ def build_branch(law: ContactLaw, coefficient, top, tabulation: Tabulation, tabl
             ]
         )
     )
-    turns, valid, count = sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
-    turns = jnp.where(valid, turns, top)
-    nodes = jnp.concatenate([jnp.zeros(1), jnp.sort(turns), jnp.full(1, top)])
-    levels = law.edge(nodes, coefficient)
-    middles = 0.5 * (nodes[:-1] + nodes[1:])
-    increasing = (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1])
-    return Branch(
-        coefficient=jnp.asarray(coefficient, dtype=nodes.dtype),
-        nodes=nodes,
-        levels=levels,
-        increasing=increasing,
-        table=_tabulate(law, coefficient, nodes, levels, increasing, table_size) if table_size else None,
-        overflow=count > max_turns,
-    )
+    return sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
 
 
 def sign_changes(slope, grid, rising, max_turns: int):

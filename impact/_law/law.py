@@ -39,6 +39,14 @@ class ContactLaw(eqx.Module):
         extent = self.profile.extent()
         return jnp.where(jnp.isfinite(extent), extent / self.scales.radial, jnp.inf)
 
+    def power_form(self):
+        """(Â, n) where ĝ(x̂) = Â·x̂ⁿ, or None where the profile has no such form."""
+        form = self.profile.power_form()
+        if form is None:
+            return None
+        coefficient, exponent = form
+        return coefficient * self.scales.radial**exponent / self.scales.normal, exponent
+
     def edge(self, x, coefficient):
         """Edge function h(x̂) = ĝ(x̂) − coefficient·√x̂ (ĝ alone without adhesion)."""
         if not self.adhesive:

@@ -19,9 +19,10 @@ def radius_bound(law: ContactLaw, coefficient, speed):
     Loading along the attach edge h stores W(a) = [a·h² − 2G·h − λ²a²/2] + ∫g² da from the
     adhesion scale a = 1 (integrate ∫F dh by parts with F = 2(a·h − G)); the bound is where W
     first exceeds ½v² + 1 with a > 1 (the +1 covers the adhesion scale). W is tabulated on
-    a_k = 2^(k/4) (Gauss–Legendre on each step), then bisected inside the step. Capped by the
-    body's extent. Returns (radius, found): an edge that never stores enough (n < 1/2, or
-    n = 1/2 with a force attractive at every radius) pulls the contact open without limit.
+    a_k = 2^(k/4) (∫g² in closed form for a power law, else Gauss–Legendre on each step), then
+    bisected inside the step. Capped by the body's extent. Returns (radius, found): an edge that
+    never stores enough (n < 1/2, or n = 1/2 with a force attractive at every radius) pulls the
+    contact open without limit.
     """
     energy = 0.5 * speed**2 + 1.0
     nodes, weights = (jnp.asarray(v) for v in np.polynomial.legendre.leggauss(_BOUND_NODES))
@@ -30,7 +31,12 @@ def radius_bound(law: ContactLaw, coefficient, speed):
         h = law.edge(a, coefficient)
         return a * h**2 - 2.0 * law.G(a) * h - coefficient**2 * a**2 / 2.0
 
-    def squared_area(lo, hi):  # ∫_lo^hi g² da
+    form = law.power_form()
+
+    def squared_area(lo, hi):  # ∫_lo^hi g² da: in closed form for g = Â·aⁿ
+        if form is not None:
+            scale, exponent = form
+            return scale**2 * (hi ** (2.0 * exponent + 1.0) - lo ** (2.0 * exponent + 1.0)) / (2.0 * exponent + 1.0)
         mid, half = 0.5 * (hi + lo), 0.5 * (hi - lo)
         points = mid[..., None] + half[..., None] * nodes
         return half * jnp.sum(weights * law.g(points) ** 2, axis=-1)
@@ -40,7 +46,10 @@ def radius_bound(law: ContactLaw, coefficient, speed):
         jnp.arange(low * _BOUND_STEPS_PER_OCTAVE, high * _BOUND_STEPS_PER_OCTAVE + 1) / _BOUND_STEPS_PER_OCTAVE
     )
     grid = jnp.minimum(grid, law.extent())
-    areas = jnp.concatenate([jnp.zeros(1), jnp.cumsum(squared_area(grid[:-1], grid[1:]))])
+    if form is None:
+        areas = jnp.concatenate([jnp.zeros(1), jnp.cumsum(squared_area(grid[:-1], grid[1:]))])
+    else:
+        areas = squared_area(grid[0], grid)
     one = -low * _BOUND_STEPS_PER_OCTAVE  # index of a = 1
     work = boundary(grid) - boundary(grid[one]) + areas - areas[one]
     enough = (work >= energy) & (grid > 1.0)

@@ -83,3 +83,9 @@ class Profile(eqx.Module):
     @abc.abstractmethod
     def radius_scale(self) -> Array:
         """A characteristic radius (m), only used to bracket root searches."""
+
+    def power_form(self) -> tuple[Array, Array] | None:
+        """(A, n) where g(x) = A·xⁿ exactly (A in m^(1−n)): the contact law then states the
+        turning points of its edge functions and ∫g² in closed form instead of searching and
+        integrating. None (the default): g has no such form."""
+        return None

@@ -25,6 +25,9 @@ class Paraboloid(Profile):
     def radius_scale(self):
         return self.R
 
+    def power_form(self):
+        return 1 / self.R, as_float(2.0)
+
 
 def _spheroid_g(x: Array, k: Array) -> Array:
     """x artanh(kx): g of a sphere of radius 1/k (m)."""
@@ -107,6 +110,9 @@ class Cone(Profile):
     def radius_scale(self):
         return jnp.asarray(1.0)  # a cone has no length: 1 m
 
+    def power_form(self):
+        return np.pi / 2 * jnp.tan(self.theta), as_float(1.0)
+
 
 class PowerLaw(Profile):
     """f = c rⁿ, g = κ(n) c xⁿ (3.70-3.72); n > 0, c (m^(1-n))."""
@@ -128,6 +134,9 @@ class PowerLaw(Profile):
     def radius_scale(self):
         # the radius where f(r) = r; 1 m for near-conical exponents
         return jnp.where(jnp.abs(self.n - 1) < 0.25, 1.0, self.c ** (1 / (1 - self.n)))
+
+    def power_form(self):
+        return kappa(self.n) * self.c, self.n
 
 
 class FlatPunch(Profile):
