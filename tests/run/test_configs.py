@@ -157,6 +157,8 @@ def thornton_ning_plastic(result):
     )
     assert 0.1 < closed_form < 0.5 * thornton_ning(scene, result.touch_velocity)
     assert result.restitution == pytest.approx(closed_form, abs=1e-8)
+
+
 def viscoelastic_first_order(result):
     """Brilliantov's viscoelastic paraboloid: within (C1·βv₀^(1/5))² of Schwager & Pöschel's first
     order 1 − C1·βv₀^(1/5) (the second-order coefficient is 0.8 < 1), and above it."""
