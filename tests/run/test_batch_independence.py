@@ -31,9 +31,11 @@ LAWS = {
     "spring array": ("spring_array.yaml", {}, 0.3, 3.0),
     "attach hysteresis": ("attach_on_touch.yaml", {"effects.adhesion.approach_work_of_adhesion": 0.02}, 0.2, 3.0),
 }
-# Results `impact.simulate` gives bitwise; its program (with the event log) contracts a few
-# multiply–adds of the force differently: the force extremes and ∮F dd agree to a few ulps.
+# Results `impact.simulate` gives bitwise on the continuum law; its program (with the event log)
+# contracts a few multiply–adds of the force differently: the force extremes and ∮F dd agree to a
+# few ulps, and on a spring array (whose events advance in closed form) these results too.
 SIMULATED = ("restitution", "stuck", "contact_time", "bounces", "touch_velocity", "separation_velocity")
+SIMULATED_CLOSE = {"spring array": 1e-14}
 CLOSE = {"max_indentation": 1e-14, "max_force": 1e-14, "min_force": 1e-14, "dissipated_energy": 1e-12}  # ∮F dd cancels
 
 
@@ -64,6 +66,10 @@ def test_a_points_result_does_not_depend_on_its_batch(law):
         assert single.status == alone.status_names()[point]
         assert single.stats["steps"] == alone.steps[point]
         for name in SIMULATED:
-            assert np.array_equal(getattr(single, name), alone.results[name][point], equal_nan=True), (point, name)
+            mine, theirs = getattr(single, name), alone.results[name][point]
+            if law in SIMULATED_CLOSE:
+                np.testing.assert_allclose(mine, theirs, rtol=SIMULATED_CLOSE[law], err_msg=name)
+            else:
+                assert np.array_equal(mine, theirs, equal_nan=True), (point, name)
         for name, rtol in CLOSE.items():
             np.testing.assert_allclose(getattr(single, name), alone.results[name][point], rtol=rtol, err_msg=name)
