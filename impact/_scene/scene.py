@@ -12,19 +12,16 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .. import theory
+from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_SHAPES, Adhesion, Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, ProfileSpec
 from .representable import check_representable
 from .sections import (
-    DOUBLE_HERTZ_SHAPES,
-    DUGDALE_SHAPES,
     MASS_OR_DENSITY,
     SOLVER_METHODS,
-    Adhesion,
     Body,
     Contact,
     Counterpart,
-    Effects,
     Initial,
     Limits,
     Material,
