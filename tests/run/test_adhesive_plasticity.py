@@ -103,6 +103,24 @@ def dent_rebound(touch_speed: float, first_velocity: float) -> float:
     return math.sqrt(touch_speed**2 - 2 * (stored(snap_off) - stored(jump_in)) / MASS)
 
 
+def test_two_bodies_meet_the_closed_form_with_effective_parameters():
+    """A sphere of twice the radius and seven times the mass coming the other way: the contact is the
+    wall impact of the effective radius and the reduced mass at the closing speed."""
+    other_mass, other_velocity, velocity = 7.0 * MASS, 2.0, 8.0
+    scene = particle(velocity)
+    counterpart = {"profile": {"shape": "paraboloid", "R": 2 * R}, "mass": other_mass, "velocity": other_velocity}
+    scene["counterpart"] = counterpart
+    result = simulate(scene, trajectory=False)
+    reduced = MASS * other_mass / (MASS + other_mass)
+    closing = velocity + other_velocity
+    expected = theory.adhesive_plastic_restitution(closing, reduced, 2 * R / 3, E_STAR, WORK, P_Y)
+    assert result.plastic_work > 0
+    assert result.restitution == pytest.approx(float(expected), abs=1e-8)
+    before = MASS * velocity - other_mass * other_velocity
+    after = MASS * result.body_velocity_after + other_mass * result.counterpart_velocity_after
+    assert after == pytest.approx(before, rel=1e-12)
+
+
 def test_bounces_under_gravity_keep_the_dent():
     """The second contact lands in the dent of the first, stays elastic (no yield) and loses only the
     jump-in and snap-off of the dent's JKR branch: its rebound speed (from the flight that follows)
