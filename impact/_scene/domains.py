@@ -94,6 +94,13 @@ VELOCITY = Domain(
     zero=True,
     reason="0 for a body dropped by gravity; above 10 km/s an impact is no elastic contact",
 )
+COUNTERPART_VELOCITY = Domain(
+    1e-20,
+    1e4,
+    "m/s",
+    zero=True,
+    reason="its speed towards the body, 0 at rest; above 10 km/s an impact is no elastic contact",
+)
 WORK_OF_ADHESION = Domain(0.0, 1e4, "J/m²", reason="measured works of adhesion lie below 10 J/m²")
 # Brilliantov's dissipative constant A is a relaxation time: 1 s is far beyond any solid's.
 DISSIPATIVE_CONSTANT = Domain(0.0, 1.0, "s", reason="a relaxation time of at most a second")

@@ -93,7 +93,7 @@ class Counterpart(Section):
     density: Annotated[Number, within(d.DENSITY)] | None = Field(
         None, description="density of the counterpart (kg/m³); mass = density × volume of its sphere"
     )
-    velocity: Annotated[Number, within(d.VELOCITY)] = Field(
+    velocity: Annotated[Number, within(d.COUNTERPART_VELOCITY)] = Field(
         0.0, description="speed of the counterpart towards the body (m/s); default: at rest"
     )
 

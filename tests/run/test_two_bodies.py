@@ -91,6 +91,11 @@ BAD = [
     ({"profile": {"shape": "blob"}}, "counterpart.profile.shape: unknown shape 'blob'; known shapes: paraboloid,"),
     ({"profile": None}, "counterpart.density: a flat counterpart has no volume; give its mass instead"),
     ({"mass": 1e-9}, "counterpart: give exactly one of mass (kg) and density (kg/m³)"),
+    (
+        {"velocity": -3.0},
+        "counterpart.velocity: -3 m/s is outside the allowed range 0 or [1e-20, 1e4] m/s: its speed towards "
+        "the body, 0 at rest",
+    ),
 ]
 
 
