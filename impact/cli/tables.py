@@ -79,6 +79,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
     stats = result.stats
     contact_time = result.contact_time
     tabor = result.tabor_parameter
+    effects = result.scene.effects
     rows = [
         ("restitution e", f"{result.restitution:.8g}"),
         ("stuck", "yes" if result.stuck else "no"),
@@ -88,13 +89,18 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
-        *([("plastic work", quantity(result.plastic_work, "J"))] if result.scene.effects.plasticity else []),
+        *([("plastic work", quantity(result.plastic_work, "J"))] if effects.plasticity else []),
         *(
             [("adhesion hysteresis", quantity(result.adhesion_hysteresis, "J"))]
-            if result.scene.effects.plasticity and result.scene.adhesive
+            if (effects.plasticity or effects.damping) and result.scene.adhesive
             else []
         ),
-        *([("viscous work", quantity(result.viscous_work, "J"))] if result.scene.effects.damping else []),
+        *([("viscous work", quantity(result.viscous_work, "J"))] if effects.damping else []),
+        *(
+            [("unrecovered elastic energy", quantity(result.unrecovered_elastic_energy, "J"))]
+            if effects.damping and not result.scene.adhesive
+            else []
+        ),
         *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
@@ -251,7 +257,31 @@ def sweep_table(result: SweepResult, stats: dict) -> Table:
         else f"{error:.3g} ({'; '.join(closed_form_names(result))})"
     )
     rows.append(("max |e − e_theory|", closed_forms))
+    rows += _sweep_energy_rows(result)
     return key_value_table(f"{result.scene.name} sweep", rows)
+
+
+def _span(values: np.ndarray, unit: str) -> str:
+    """The smallest and largest finite value, with SI prefixes ("—" where none is finite)."""
+    finite = values[np.isfinite(values)]
+    if finite.size == 0:
+        return "—"
+    return f"{quantity(float(finite.min()), unit)} … {quantity(float(finite.max()), unit)}"
+
+
+def _sweep_energy_rows(result: SweepResult) -> list[tuple[str, str]]:
+    """The named losses and a counterpart's lab velocities where the sweep holds them (their
+    range over the points with a physical outcome), and the energy balance of the points."""
+    success = result.success
+    rows = [(name.replace("_", " "), _span(column[success], "J")) for name, column in result.named_losses().items()]
+    for name in ("body_velocity_after", "counterpart_velocity_after"):
+        column = getattr(result, name)
+        if column is not None:
+            rows.append((f"{name.replace('_', ' ')} (lab)", _span(column[success], "m/s")))
+    imbalance = result.energy_imbalance()
+    if rows and math.isfinite(imbalance):
+        rows.append(("energy balance", f"{imbalance:.2g} (max |½m(v₀² − v₁²) − Σ losses| / energy turned over)"))
+    return rows
 
 
 def _number(value: float, form: str) -> str:
