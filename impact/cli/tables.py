@@ -8,7 +8,7 @@ from rich import box
 from rich.table import Table
 from rich.text import Text
 
-from .._integrate.codes import RESULT_CODES
+from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._plots.figures import si_prefix
 from .._run.impacts import Result
 from .._run.indentation import IndentationResult
@@ -271,13 +271,17 @@ def _span(values: np.ndarray, unit: str) -> str:
 
 def _sweep_energy_rows(result: SweepResult) -> list[tuple[str, str]]:
     """The named losses and a counterpart's lab velocities where the sweep holds them (their
-    range over the points with a physical outcome), and the energy balance of the points."""
-    success = result.success
-    rows = [(name.replace("_", " "), _span(column[success], "J")) for name, column in result.named_losses().items()]
-    for name in ("body_velocity_after", "counterpart_velocity_after"):
-        column = getattr(result, name)
+    range over the separated points), and the energy balance of the points with a physical
+    outcome."""
+    separated = result.status == RESULT_CODE["separated"]
+    rows = [
+        (name.replace("_", " "), f"{_span(column[separated], 'J')} (separated points)")
+        for name, column in result.named_losses().items()
+    ]
+    for body in ("body", "counterpart"):
+        column = getattr(result, f"{body}_velocity_after")
         if column is not None:
-            rows.append((f"{name.replace('_', ' ')} (lab)", _span(column[success], "m/s")))
+            rows.append((f"{body} after (lab)", f"{_span(column[separated], 'm/s')} (separated points)"))
     imbalance = result.energy_imbalance()
     if rows and math.isfinite(imbalance):
         rows.append(("energy balance", f"{imbalance:.2g} (max |½m(v₀² − v₁²) − Σ losses| / energy turned over)"))
