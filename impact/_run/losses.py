@@ -2,10 +2,9 @@
 (`dissipated_energy`), splits into plastic work, viscous work, the adhesion hysteresis and the
 elastic energy a damped contact leaves in the surface. They sum to `dissipated_energy`.
 
-In jax.numpy on SI values, so that a sweep computes them inside its compiled batch with the
-arithmetic `simulate` uses for one impact."""
-
-import jax.numpy as jnp
+On SI values, floats or traced arrays: a sweep computes them inside its compiled batch with
+the arithmetic `simulate` uses for one impact (a loss that cannot occur is the float 0, so that
+`simulate` runs no JAX operation for it)."""
 
 from .. import theory
 from .._integrate.adhesive_plastic import AdhesivePlastic
@@ -29,14 +28,14 @@ def plastic_work(integrator: AbstractIntegrator, physics: Physics, max_indentati
         )[1]
     if isinstance(integrator, Plastic):
         return dissipated
-    return jnp.zeros_like(dissipated)
+    return 0.0
 
 
 def adhesion_hysteresis(adhesive: bool, dissipated, plastic, viscous):
     """J of the first contact's loss dissipated neither by plastic flow nor by damping: the
     jump-in and the snap-off of the adhesive contact (0 where adhesion is not simulated)."""
     if not adhesive:
-        return jnp.zeros_like(dissipated)
+        return 0.0
     return dissipated - plastic - viscous
 
 
@@ -48,5 +47,5 @@ def unrecovered_elastic_energy(adhesive: bool, damped: bool, dissipated, viscous
     includes it. 0 with adhesion (there the snap-off releases it: `adhesion_hysteresis`) or
     without damping."""
     if adhesive or not damped:
-        return jnp.zeros_like(dissipated)
+        return 0.0
     return dissipated - viscous
