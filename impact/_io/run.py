@@ -12,6 +12,8 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
         bounces, touch_velocity, separation_velocity, dissipated_energy, plastic_work, viscous_work,
+        adhesion_hysteresis   (where the scene names adhesion), unrecovered_elastic_energy (where
+                              it names damping): the rest of dissipated_energy
         tabor_parameter   (scalars; Λ: Maugis–Dugdale on a paraboloid, Greenwood–Johnson; else nan)
         centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
                           (lab frame, along the body's approach; speeds above are relative)
@@ -52,6 +54,12 @@ SCALAR_UNITS = {
     "centre_of_mass_velocity": "m s-1",
     "body_velocity_after": "m s-1",
     "counterpart_velocity_after": "m s-1",
+}
+# Scalars derived from the others (`Result` properties), written where the scene names what they
+# describe and not read back: name → (unit, whether the scene has it).
+DERIVED_UNITS = {
+    "adhesion_hysteresis": ("J", lambda scene: scene.effects.adhesion is not None),
+    "unrecovered_elastic_energy": ("J", lambda scene: scene.effects.damping is not None),
 }
 # Time series under observables/contact/: Result field → (unit, description).
 CONTACT_SERIES = {
@@ -147,7 +155,8 @@ def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Grou
     contact = observables.create_group("contact")
     for name, (unit, description) in CONTACT_SERIES.items():
         _link_clock(clock, _series(contact.create_group(name), getattr(result, name), unit, description))
-    for name, unit in SCALAR_UNITS.items():
+    derived = {name: unit for name, (unit, named) in DERIVED_UNITS.items() if named(result.scene)}
+    for name, unit in {**SCALAR_UNITS, **derived}.items():
         dataset = observables.create_dataset(name, data=getattr(result, name))
         if unit:
             dataset.attrs["unit"] = unit

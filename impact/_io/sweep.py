@@ -14,7 +14,10 @@ Layout (values SI, `unit` attributes where dimensioned):
         axes/<dotted.path>        the values of each axis (1-D)
         index[R]                  flat index (C order of `shape`) of the point in each row
         params/<dotted.path>[R]   the swept values of each row
-        results/<name>[R]         restitution, stuck, status (result code), contact_time, ...
+        results/<name>[R]         restitution, stuck, status (result code), contact_time, ...;
+                                  plastic_work, viscous_work, adhesion_hysteresis where the
+                                  scene names plasticity, damping, adhesion; body_velocity_after
+                                  and counterpart_velocity_after where it names a counterpart
 
 Rows follow the processing order (group by group, by expected cost), so `index` maps them back
 to the grid; `read_sweep` returns arrays in the sweep's shape. Every dataset along R is
@@ -32,7 +35,7 @@ import yaml
 
 from .._integrate.codes import RESULT_CODES
 from .._run.sweep.plan import plan_sweep
-from .._run.sweep.result import RESULTS, SweepResult, empty_results
+from .._run.sweep.result import RESULTS, SweepResult, empty_results, result_names
 from .._scene.errors import SweepError
 from .._scene.scene import scene_yaml
 from .._scene.sweep import make_spec
@@ -86,7 +89,8 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
         for axis in spec.axes:
             _column(params, axis.path, axis.values.dtype, rows_per_chunk)
         results = group.create_group("results")
-        for name, (dtype, _, unit, description) in RESULTS.items():
+        for name in result_names(spec.scene):
+            dtype, _, unit, description = RESULTS[name]
             dataset = _column(results, name, dtype, rows_per_chunk)
             dataset.attrs["description"] = description
             if unit:
@@ -205,10 +209,10 @@ def read_sweep(path: Path) -> SweepResult:
     with _open_sweep(path) as file:
         index, _, stored = _rows(file)
         attributes = {key: _plain(value) for key, value in file["sweep"].attrs.items()}
-    results = empty_results(spec.size)
-    for name in RESULTS:
-        if name in stored:
-            results[name][index] = stored[name]
+    results = empty_results(spec.size, result_names(spec.scene))
+    for name, column in results.items():
+        if name in stored:  # a file written before the column existed lacks it
+            column[index] = stored[name]
     return SweepResult.from_flat(spec, spec.flat_params(), results, attributes)
 
 
@@ -260,14 +264,15 @@ def merge(paths: list[Path], output: Path) -> SweepResult:
     rank = np.empty(spec.size, dtype=np.int64)
     rank[plan.order] = np.arange(spec.size)
     order = np.argsort(rank[index])
-    results = {name: np.concatenate([part[2][name] for part in parts])[order] for name in RESULTS}
+    names = result_names(spec.scene)
+    results = {name: np.concatenate([part[2][name] for part in parts])[order] for name in names}
     points = index[order]
     chunk = states[0]["chunk"]
     with atomic_path(output) as temporary:
         create_sweep_file(temporary, spec, expected=spec.size, chunk=chunk)
         append_chunk(temporary, points, plan.params, results)
         set_attributes(temporary, merged_from=np.array([str(p) for p in paths], dtype=h5py.string_dtype()))
-    flat = empty_results(spec.size)
-    for name in RESULTS:
+    flat = empty_results(spec.size, names)
+    for name in names:
         flat[name][points] = results[name]
     return SweepResult.from_flat(spec, plan.params, flat, {"points": spec.size, "merged_from": [str(p) for p in paths]})

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from .._run.sweep.result import RESULTS
+from .._run.sweep.result import result_names
 from .._scene.errors import SweepError
 from .._scene.sweep_spec import SweepSpec
 from .files import write_bytes
@@ -65,7 +65,7 @@ class SweepWriter:
             if start >= writer.rows:
                 with np.load(file) as stored:
                     points = stored["index"]
-                    writer._append_h5(points, {name: stored[name] for name in RESULTS})
+                    writer._append_h5(points, {name: stored[name] for name in result_names(spec.scene)})
         return writer
 
     def append(self, points: np.ndarray, results: dict) -> None:

@@ -35,7 +35,7 @@ def restitution_figure(result: SweepResult, max_series: int = 12) -> "Figure":
         _draw_series(top, bottom, result, path, x, fixed, members, k)
     if len(series) > max_series:
         top.text(0.02, 0.02, f"{max_series} of {len(series)} series shown", transform=top.transAxes, fontsize="small")
-    _format_x_axes([axes for axes in (top, bottom) if axes is not None], x)
+    format_x_axes([axes for axes in (top, bottom) if axes is not None], x)
     top.set_ylabel("coefficient of restitution e")
     top.axhline(0.0, color="0.6", lw=0.8, zorder=0)
     top.legend(loc="lower right", fontsize="x-small")
@@ -55,7 +55,7 @@ def _draw_series(top, bottom, result: SweepResult, path: str, x: np.ndarray, fix
     e = result.restitution.reshape(-1)
     theory_e = result.theory_restitution.reshape(-1)
     status = result.status.reshape(-1)
-    color, label = f"C{k % 10}", _label(fixed)
+    color, label = f"C{k % 10}", series_label(fixed)
     suffix = f": {label}" if label else ""
     outcome = np.isin(status[members], (RESULT_CODE["separated"], RESULT_CODE["captured"]))
     ok, failed = members[outcome], members[~outcome]
@@ -94,7 +94,7 @@ def _draw_series(top, bottom, result: SweepResult, path: str, x: np.ndarray, fix
         )
 
 
-def _format_x_axes(axes_list: list, x: np.ndarray) -> None:
+def format_x_axes(axes_list: list, x: np.ndarray) -> None:
     """A log x axis with plain-number ticks where x > 0 spans more than a decade; a grid."""
     from matplotlib.ticker import FormatStrFormatter, FuncFormatter, NullFormatter
 
@@ -114,7 +114,7 @@ def save_restitution_figure(result: SweepResult, path: "str | Path") -> Path:
     return write_figures(path.parent, [(path.name, restitution_figure(result))])[0]
 
 
-def _label(fixed: dict) -> str:
+def series_label(fixed: dict) -> str:
     """The other axes' values of a series, e.g. "work_of_adhesion = 0.05"."""
     return ", ".join(f"{p.split('.')[-1]} = {v:.4g}" for p, v in fixed.items())
 

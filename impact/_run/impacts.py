@@ -8,8 +8,11 @@ from typing import Any
 import numpy as np
 
 from .. import theory
+from .._integrate.base import AbstractIntegrator
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
+from .._integrate.problem import Physics
 from .._scene.scene import Scene
+from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from .parameters import integrator_for, options_for, physics_for
 from .programs import solve_by_field
 
@@ -39,7 +42,8 @@ class Result:
     dissipated_energy: float  # J lost in the first contact: ∮F dd (elastic and viscous force)
     plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
     viscous_work: float  # J of it dissipated by damping, ∫F_visc ḋ dt (effects.damping); 0 without
-    # (with adhesion the rest of dissipated_energy is the adhesion hysteresis: `adhesion_hysteresis`)
+    # (the rest of dissipated_energy: with adhesion the adhesion hysteresis, `adhesion_hysteresis`;
+    # damped without adhesion the elastic energy left in the surface, `unrecovered_elastic_energy`)
     tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
     centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
     body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
@@ -60,9 +64,16 @@ class Result:
     def adhesion_hysteresis(self) -> float:
         """J of the first contact's loss dissipated neither by plastic flow nor by damping: the
         jump-in and the snap-off of the adhesive contact (0 without adhesion)."""
-        if not self.scene.adhesive:
-            return 0.0
-        return self.dissipated_energy - self.plastic_work - self.viscous_work
+        return float(
+            adhesion_hysteresis(self.scene.adhesive, self.dissipated_energy, self.plastic_work, self.viscous_work)
+        )
+
+    @property
+    def unrecovered_elastic_energy(self) -> float:
+        """J of the first contact's loss that a damped contact without adhesion leaves in the
+        surface as elastic energy (it lets go at F = 0, still indented); 0 otherwise."""
+        damped = self.scene.effects.damping is not None
+        return float(unrecovered_elastic_energy(self.scene.adhesive, damped, self.dissipated_energy, self.viscous_work))
 
     @property
     def body_velocity_after_cm(self) -> float:
@@ -77,25 +88,9 @@ class Result:
 
 def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
     """Run one scene of kind `impact`; `trajectory=False` skips the time series (faster)."""
-    scales, outcome = solve_by_field(integrator_for(scene), physics_for(scene), options_for(scene, trajectory))
-    return to_result(scene, scales, outcome)
-
-
-def plastic_work(scene: Scene, max_indentation: float, dissipated: float) -> float:
-    """The plastic work (J) of the first contact: all it dissipates without adhesion (Thornton
-    1997); with adhesion, Thornton & Ning's flow up to the deepest indentation (in closed form:
-    no later contact reaches that deep), the rest being the adhesion hysteresis; 0 without
-    plasticity."""
-    plasticity, adhesion = scene.effects.plasticity, scene.active_adhesion
-    if plasticity is None:
-        return 0.0
-    if adhesion is None:
-        return dissipated
-    R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
-    losses = theory.adhesive_plastic_losses(
-        max_indentation, R, E_star, adhesion.work_of_adhesion, plasticity.yield_pressure
-    )
-    return float(losses[1])
+    integrator, physics = integrator_for(scene), physics_for(scene)
+    scales, outcome = solve_by_field(integrator, physics, options_for(scene, trajectory))
+    return to_result(scene, scales, outcome, integrator, physics)
 
 
 def tabor_parameter(scene: Scene) -> float:
@@ -113,9 +108,10 @@ def tabor_parameter(scene: Scene) -> float:
     )
 
 
-def velocities_after(scene: Scene, separation_velocity: float) -> tuple[float, float, float]:
+def velocities_after(scene: Scene, separation_velocity: "float | np.ndarray") -> tuple[Any, Any, Any]:
     """(centre-of-mass velocity, body's, counterpart's) in the lab frame (m/s, positive along the
-    body's approach) once the surfaces separate at the relative speed `separation_velocity`:
+    body's approach) once the surfaces separate at the relative speed `separation_velocity`
+    (floats; or arrays, elementwise, for a scene holding arrays of a sweep's points):
     u₁ = V − m₂/(m₁ + m₂)·v_sep, u₂ = V + m₁/(m₁ + m₂)·v_sep, V = (m₁v₁ − m₂v₂)/(m₁ + m₂)."""
     if scene.counterpart is None:
         return 0.0, -separation_velocity, 0.0
@@ -125,8 +121,15 @@ def velocities_after(scene: Scene, separation_velocity: float) -> tuple[float, f
     return centre, centre - other / total * separation_velocity, centre + mass / total * separation_velocity
 
 
-def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any]) -> Result:
-    """Scaled outcome → SI result (the fields of `Scales` and `Outcome` by name)."""
+def to_result(
+    scene: Scene,
+    scales: Mapping[str, Any],
+    outcome: Mapping[str, Any],
+    integrator: AbstractIntegrator,
+    physics: Physics,
+) -> Result:
+    """Scaled outcome → SI result (the fields of `Scales` and `Outcome` by name) of the scene
+    solved by `integrator` with `physics`."""
     o = {name: np.asarray(value) for name, value in outcome.items()}
     s = {name: float(value) for name, value in scales.items()}
     time, length, force = s["time"], s["normal"], s["force"]
@@ -166,7 +169,7 @@ def to_result(scene: Scene, scales: Mapping[str, Any], outcome: Mapping[str, Any
         touch_velocity=touch * speed,
         separation_velocity=separation * speed,
         dissipated_energy=dissipated,
-        plastic_work=plastic_work(scene, float(o["max_indentation"]) * length, dissipated),
+        plastic_work=float(plastic_work(integrator, physics, float(o["max_indentation"]) * length, dissipated)),
         viscous_work=float(o["first_contact_viscous_work"]) * force * length,
         tabor_parameter=tabor_parameter(scene),
         centre_of_mass_velocity=centre,

@@ -8,7 +8,8 @@ names the field, prints no traceback and writes nothing.
     impact merge SHARD.h5 ... -o sweep.h5 [--overwrite]
 
 A sweep writes DIR/sweep.h5 chunk by chunk (through a journal, see `impact._io.sweep_journal`)
-and, once complete, DIR/restitution.png and a summary. Run the same command again after an
+and, once complete, DIR/restitution.png (and DIR/losses.png where the scene names a loss) and a
+summary. Run the same command again after an
 interruption and it continues where it stopped; a finished sweep is refused unless
 --overwrite, a partial one of another definition always. With N processes (independent
 shares, or joined by jax.distributed with --coordinator / --distributed) each writes
@@ -37,6 +38,7 @@ from .._core.defaults import DEFAULT_CHUNK
 from .._io import sweep as sweep_store
 from .._io.sweep_journal import SweepWriter, journal_state
 from .._plots.sweep import save_restitution_figure
+from .._plots.sweep_losses import save_losses_figure
 from .._run.sweep import Plan, SweepResult, execute, local_devices, plan_sweep, sticking_estimates
 from .._run.sweep import Progress as SweepProgress
 from .._scene.errors import SceneError, SweepError
@@ -46,6 +48,7 @@ from .console import err, out, refuse, refuse_value, say, warn
 from .tables import OUTCOMES, outcome_counts, sticking_table, sweep_table
 
 FIGURE = "restitution.png"
+LOSSES_FIGURE = "losses.png"
 
 
 class _PointsPerSecond(ProgressColumn):
@@ -126,8 +129,15 @@ def run_sweep(
         say(f"shard {share[0]} of {share[1]} written to {path}; join the shards with `impact merge`")
         return
     result = sweep_store.read_sweep(path)
-    save_restitution_figure(result, folder / FIGURE)
+    _save_figures(result, folder)
     _print_summary(result, stats, f"sweep written to {folder}")
+
+
+def _save_figures(result: SweepResult, folder: Path) -> None:
+    """restitution.png, and losses.png where the scene names a loss."""
+    save_restitution_figure(result, folder / FIGURE)
+    if result.named_losses():
+        save_losses_figure(result, folder / LOSSES_FIGURE)
 
 
 def _sweep_spec(sweep_file: Path) -> SweepSpec:
@@ -224,6 +234,7 @@ def _writer(path: Path, plan: Plan, resume: bool, overwrite: bool, **layout) -> 
     try:
         if overwrite:
             (folder / FIGURE).unlink(missing_ok=True)
+            (folder / LOSSES_FIGURE).unlink(missing_ok=True)
         return SweepWriter.start(path, plan.spec, plan, **layout)
     except BaseException:
         if created:
@@ -257,7 +268,7 @@ def merge_shards(shards: list[Path], output: Path, overwrite: bool) -> None:
         result = sweep_store.merge(shards, output)
     except SceneError as error:
         refuse("cannot merge the shards", error.problems)
-    save_restitution_figure(result, output.parent / FIGURE)
+    _save_figures(result, output.parent)
     _print_summary(result, {"merge_time": time.perf_counter() - start}, f"merged sweep written to {output}")
 
 

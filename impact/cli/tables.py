@@ -8,7 +8,7 @@ from rich import box
 from rich.table import Table
 from rich.text import Text
 
-from .._integrate.codes import RESULT_CODES
+from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._plots.figures import si_prefix
 from .._run.impacts import Result
 from .._run.indentation import IndentationResult
@@ -79,6 +79,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
     stats = result.stats
     contact_time = result.contact_time
     tabor = result.tabor_parameter
+    effects = result.scene.effects
     rows = [
         ("restitution e", f"{result.restitution:.8g}"),
         ("stuck", "yes" if result.stuck else "no"),
@@ -88,13 +89,18 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
         *([("Tabor parameter Λ", f"{tabor:.6g}")] if math.isfinite(tabor) else []),
-        *([("plastic work", quantity(result.plastic_work, "J"))] if result.scene.effects.plasticity else []),
+        *([("plastic work", quantity(result.plastic_work, "J"))] if effects.plasticity else []),
         *(
             [("adhesion hysteresis", quantity(result.adhesion_hysteresis, "J"))]
-            if result.scene.effects.plasticity and result.scene.adhesive
+            if (effects.plasticity or effects.damping) and result.scene.adhesive
             else []
         ),
-        *([("viscous work", quantity(result.viscous_work, "J"))] if result.scene.effects.damping else []),
+        *([("viscous work", quantity(result.viscous_work, "J"))] if effects.damping else []),
+        *(
+            [("unrecovered elastic energy", quantity(result.unrecovered_elastic_energy, "J"))]
+            if effects.damping and not result.scene.adhesive
+            else []
+        ),
         *_two_body_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
@@ -251,7 +257,35 @@ def sweep_table(result: SweepResult, stats: dict) -> Table:
         else f"{error:.3g} ({'; '.join(closed_form_names(result))})"
     )
     rows.append(("max |e − e_theory|", closed_forms))
+    rows += _sweep_energy_rows(result)
     return key_value_table(f"{result.scene.name} sweep", rows)
+
+
+def _span(values: np.ndarray, unit: str) -> str:
+    """The smallest and largest finite value, with SI prefixes ("—" where none is finite)."""
+    finite = values[np.isfinite(values)]
+    if finite.size == 0:
+        return "—"
+    return f"{quantity(float(finite.min()), unit)} … {quantity(float(finite.max()), unit)}"
+
+
+def _sweep_energy_rows(result: SweepResult) -> list[tuple[str, str]]:
+    """The named losses and a counterpart's lab velocities where the sweep holds them (their
+    range over the separated points), and the energy balance of the points with a physical
+    outcome."""
+    separated = result.status == RESULT_CODE["separated"]
+    rows = [
+        (name.replace("_", " "), f"{_span(column[separated], 'J')} (separated points)")
+        for name, column in result.named_losses().items()
+    ]
+    for body in ("body", "counterpart"):
+        column = getattr(result, f"{body}_velocity_after")
+        if column is not None:
+            rows.append((f"{body} after (lab)", f"{_span(column[separated], 'm/s')} (separated points)"))
+    imbalance = result.energy_imbalance()
+    if rows and math.isfinite(imbalance):
+        rows.append(("energy balance", f"{imbalance:.2g} (max |½m(v₀² − v₁²) − Σ losses| / energy turned over)"))
+    return rows
 
 
 def _number(value: float, form: str) -> str:

@@ -87,6 +87,10 @@ def test_file_follows_h5md_layout(separated, tmp_path):
         ):
             assert observables[name].shape == () and observables[name].attrs["unit"] == unit
         assert observables["status"].asstr()[()] == "separated"
+        # the scene names adhesion, not damping: the hysteresis is written (not read back)
+        assert observables["adhesion_hysteresis"][()] == separated.adhesion_hysteresis > 0
+        assert observables["adhesion_hysteresis"].attrs["unit"] == "J"
+        assert "unrecovered_elastic_energy" not in observables
         assert observables["restitution"][()] == separated.restitution
         assert list(observables["events/kind"].asstr()[()]) == [kind for _, kind in separated.events]
         assert observables["events/time"].attrs["unit"] == "s"

@@ -5,6 +5,7 @@ refusals."""
 
 import math
 
+import h5py
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -73,8 +74,12 @@ def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio, tmp_path):
     stored = 0.5 * stiffness * (coefficient * e * SPEED / stiffness) ** 2
     assert abs(kinetic_energy_lost(result) - result.dissipated_energy) <= 1e-10 * energy
     assert result.viscous_work == pytest.approx(energy * (1 - e**2) - stored, rel=1e-8)
-    # run.h5 keeps it beside the other energies
+    assert result.unrecovered_elastic_energy == pytest.approx(stored, rel=1e-6)
+    # run.h5 keeps them beside the other energies (no adhesion named: no hysteresis)
     assert read_run(write_run(result, tmp_path / "run.h5")).viscous_work == result.viscous_work
+    with h5py.File(tmp_path / "run.h5", "r") as file:
+        assert file["observables/unrecovered_elastic_energy"][()] == result.unrecovered_elastic_energy
+        assert "adhesion_hysteresis" not in file["observables"]
 
 
 def test_viscoelastic_paraboloid_follows_schwager_poeschel():

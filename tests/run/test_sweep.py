@@ -27,7 +27,7 @@ from impact import simulate, theory
 from impact._io.sweep import create_sweep_file
 from impact._io.sweep_journal import SweepWriter, journal_folder, journal_rows, npz_bytes
 from impact._plots.sweep import restitution_figure
-from impact._run.sweep import RESULTS, empty_results, plan_sweep, sticking_estimates, sweep
+from impact._run.sweep import empty_results, plan_sweep, result_names, sticking_estimates, sweep
 from impact._run.sweep.closed_forms import sticking_velocity
 from impact._run.sweep.execute import chunks_of
 from impact._scene.errors import SweepError
@@ -121,6 +121,7 @@ def test_sweep_equals_simulate_point_by_point(grid):
                 "touch_velocity",
                 "separation_velocity",
                 "dissipated_energy",
+                "adhesion_hysteresis",
             ):
                 mine, theirs = float(getattr(grid, name)[i, j]), float(getattr(single, name))
                 assert math.isclose(mine, theirs, rel_tol=1e-12, abs_tol=0.0) or mine == theirs, (name, mine, theirs)
@@ -146,8 +147,9 @@ def test_grid_and_zip_shapes(grid):
         chunk=CHUNK,
     )
     assert zipped.shape == (8,) and zipped.restitution.shape == (8,)
-    flat = {name: np.asarray(getattr(grid, name)).reshape(-1)[::-1] for name in RESULTS}
-    assert_same(zipped.results, flat, names=tuple(RESULTS))
+    flat = {name: column.reshape(-1)[::-1] for name, column in grid.results.items()}
+    assert zipped.results.keys() == flat.keys() == set(result_names(load_scene(THORNTON_NING)))
+    assert_same(zipped.results, flat, names=tuple(flat))
 
 
 def test_new_values_do_not_recompile(grid):
@@ -441,8 +443,8 @@ def test_two_processes_write_shards_that_merge_into_the_single_process_file(grid
     assert invoke("sweep", jobs.grid_file, "-o", single, "--chunk", CHUNK).exit_code == 0
     assert_same_files(tmp_path / "merged.h5", single / "sweep.h5")
     columns = h5_columns(tmp_path / "merged.h5")
-    flat = {name: columns[f"results/{name}"][np.argsort(columns["index"])] for name in RESULTS}
-    assert_same(flat, {name: np.asarray(getattr(grid, name)).reshape(-1) for name in RESULTS}, names=tuple(RESULTS))
+    flat = {name: columns[f"results/{name}"][np.argsort(columns["index"])] for name in grid.results}
+    assert_same(flat, {name: column.reshape(-1) for name, column in grid.results.items()}, names=tuple(flat))
 
 
 def test_the_journal_recovers_what_a_kill_inside_a_write_breaks(tmp_path):
@@ -450,7 +452,7 @@ def test_the_journal_recovers_what_a_kill_inside_a_write_breaks(tmp_path):
     plan = plan_sweep(spec)
     path = tmp_path / "sweep.h5"
     writer = SweepWriter.start(path, spec, plan, expected=12, chunk=4)
-    fake = [empty_results(4) for _ in range(3)]
+    fake = [empty_results(4, result_names(spec.scene)) for _ in range(3)]
     for k, results in enumerate(fake):
         results["restitution"][:] = np.arange(4) + 10 * k
         results["status"][:] = 0

@@ -1,6 +1,7 @@
 """Two free bodies: the contact takes the effective radius, E* and the reduced mass; momentum is
 conserved and the kinetic energy lost is the loop work; bad counterparts are refused."""
 
+import numpy as np
 import pytest
 
 import impact
@@ -124,3 +125,11 @@ def test_a_sweep_over_the_counterpart_meets_thornton_ning_with_effective_paramet
     result = impact.sweep(two_spheres(), {"counterpart.velocity": [0.0, 0.2], "counterpart.profile.R": [1e-5, 4e-5]})
     assert result.restitution.shape == (2, 2)
     assert abs(result.restitution - result.theory_restitution).max() < 1e-8
+    # both bodies' lab velocities: momentum conserved, separating at the relative rebound speed
+    m1 = load_scene(two_spheres()).body.resolved_mass
+    m2 = DENSITY * 4 / 3 * np.pi * result.params["counterpart.profile.R"] ** 3
+    v2 = result.params["counterpart.velocity"]
+    u1, u2 = result.body_velocity_after, result.counterpart_velocity_after
+    np.testing.assert_allclose(m1 * u1 + m2 * u2, m1 * V_BODY - m2 * v2, rtol=1e-12, atol=1e-12 * m1 * V_BODY)
+    np.testing.assert_allclose(u2 - u1, result.restitution * (V_BODY + v2), rtol=1e-12)
+    assert result.viscous_work is None and result.adhesion_hysteresis is not None

@@ -30,7 +30,7 @@ from .batch import local_devices
 from .closed_forms import closed_form_name, closed_form_restitution, sticking_velocity
 from .execute import DEFAULT_CHUNK, Progress, execute, run_spec, sweep
 from .plan import Plan, batch_physics, plan_sweep
-from .result import RESULTS, SweepResult, empty_results
+from .result import RESULTS, SweepResult, empty_results, result_names
 from .theory_curves import VELOCITY, closed_form_names, sticking_estimates, theory_curve
 
 __all__ = [
@@ -48,6 +48,7 @@ __all__ = [
     "execute",
     "local_devices",
     "plan_sweep",
+    "result_names",
     "run_spec",
     "sticking_estimates",
     "sticking_velocity",

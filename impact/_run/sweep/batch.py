@@ -15,10 +15,11 @@ from ..._core.runtime import COMPILER_OPTIONS
 from ..._integrate.codes import RESULT_CODE
 from ..._integrate.problem import Physics
 from ..._scene.errors import SweepError
+from ..losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from ..programs import solve
 from .closed_forms import closed_form_restitution
 from .plan import Plan, StaticChoices
-from .result import RESULTS, empty_results
+from .result import SOLVED, empty_results
 
 # Compiled batches by (static choices, Physics structure and shapes, devices), this session.
 _COMPILED: dict = {}
@@ -28,14 +29,16 @@ _COMPILED: dict = {}
 # compiled program; `impact bench speed` times the integration stage with exactly these.
 POINT_READS = (
     "status", "stuck", "touch_velocity", "separation_velocity", "touch_time", "separation_time",
-    "max_indentation", "max_force", "min_force", "contacts", "first_contact_work", "steps",
-    "accepted_steps", "rejected_steps",
+    "max_indentation", "max_force", "min_force", "contacts", "first_contact_work",
+    "first_contact_viscous_work", "steps", "accepted_steps", "rejected_steps",
 )  # fmt: skip
 
 
 def point_function(choices: StaticChoices) -> Callable:
-    """One impact → its scalar results in SI (the arithmetic of `impact._run.impacts.to_result`)."""
+    """One impact → its scalar results in SI (the arithmetic of `impact._run.impacts.to_result`):
+    the columns `SOLVED`, every named loss among them (a sweep keeps those its scene names)."""
     separated, captured = RESULT_CODE["separated"], RESULT_CODE["captured"]
+    options = choices.options
 
     def point(physics: Physics) -> dict:
         scales, outcome = solve(choices.integrator, physics, choices.options)
@@ -45,6 +48,9 @@ def point_function(choices: StaticChoices) -> Callable:
         touch = o.touch_velocity
         success = (o.status == separated) | (o.status == captured)
         ratio = o.separation_velocity / jnp.where(touch > 0, touch, 1.0)
+        dissipated = o.first_contact_work * force * length
+        viscous = o.first_contact_viscous_work * force * length
+        plastic = plastic_work(choices.integrator, physics, o.max_indentation * length, dissipated)
         return {
             "restitution": jnp.where((touch > 0) & success, ratio, jnp.nan),
             "stuck": o.stuck,
@@ -60,7 +66,13 @@ def point_function(choices: StaticChoices) -> Callable:
             "bounces": o.contacts.astype(jnp.int32),
             "touch_velocity": touch * speed,
             "separation_velocity": o.separation_velocity * speed,
-            "dissipated_energy": o.first_contact_work * force * length,
+            "dissipated_energy": dissipated,
+            "plastic_work": plastic,
+            "viscous_work": viscous,
+            "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous),
+            "unrecovered_elastic_energy": unrecovered_elastic_energy(
+                options.adhesive, options.damped, dissipated, viscous
+            ),
             "steps": o.steps,
             "accepted_steps": o.accepted_steps,
             "rejected_steps": o.rejected_steps,
@@ -139,7 +151,7 @@ def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
         values = jax.device_get(_MAPPED[key](batch))
     except jax.errors.JaxRuntimeError:
         return one_by_one(plan, group, points)
-    return {name: np.asarray(values[name])[: len(points)] for name in RESULTS}
+    return {name: np.asarray(values[name])[: len(points)] for name in SOLVED}
 
 
 def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
@@ -149,7 +161,7 @@ def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
     if choices not in _SINGLE:
         _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=COMPILER_OPTIONS)
     function = _SINGLE[choices]
-    results = empty_results(len(points))
+    results = empty_results(len(points), SOLVED)
     for row, point in enumerate(points):
         physics = jax.tree.map(operator.itemgetter(point), plan.physics)
         try:
@@ -157,6 +169,6 @@ def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
         except jax.errors.JaxRuntimeError:
             results["status"][row] = RESULT_CODE["solver_failure"]
             continue
-        for name in RESULTS:
+        for name in SOLVED:
             results[name][row] = values[name]
     return results

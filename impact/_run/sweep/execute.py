@@ -19,7 +19,7 @@ from ..._scene.sweep import make_spec
 from ..._scene.sweep_spec import SweepSpec
 from .batch import COMPILE_SECONDS, batch_sharding, compiled_batch, local_devices, sequential
 from .plan import Plan, plan_sweep
-from .result import RESULTS, SweepResult, empty_results
+from .result import SOLVED, SweepResult, chunk_columns, empty_results, result_names
 
 
 class Progress:
@@ -72,7 +72,8 @@ def execute(
     progress: Progress | None = None,
 ) -> dict:
     """Run the plan's points of this share (after the first `skip`), chunk by chunk; hand each
-    finished chunk (its points, its results) to `on_chunk` in order. Returns timing stats."""
+    finished chunk (its points, its result columns: `result_names` of the scene) to `on_chunk`
+    in order. Returns timing stats."""
     with _quiet_callback_errors():
         return _execute(plan, chunk, devices, share, skip, on_chunk, progress or Progress())
 
@@ -114,7 +115,8 @@ def _execute(plan: Plan, chunk: int, devices, share, skip, on_chunk, progress: P
             values = sequential(plan, group, points, sizes[group])
             fallbacks += len(points)
         if on_chunk is not None:
-            on_chunk(points, {name: np.asarray(values[name])[: len(points)] for name in RESULTS})
+            solved = {name: np.asarray(values[name])[: len(points)] for name in SOLVED}
+            on_chunk(points, chunk_columns(plan.spec.scene, plan.params, points, solved))
         progress.advance(len(points))
         done += len(points)
 
@@ -189,7 +191,7 @@ def run_spec(
 ) -> SweepResult:
     """Run a validated sweep in memory."""
     plan = plan_sweep(spec)
-    results = empty_results(plan.size)
+    results = empty_results(plan.size, result_names(spec.scene))
 
     def store(points, values):
         for name, column in values.items():
@@ -214,7 +216,9 @@ def sweep(
     such as {"geomspace": [0.2, 20, 400]}), combined as a grid or zipped.
 
     Returns every scalar result as an array in the sweep's shape, with the chapter's closed-form
-    restitution where it has one. Raises SweepError (a SceneError: `.problems` names each bad
-    field) before running anything. Enable float64 first (`jax.config.update("jax_enable_x64",
+    restitution where it has one, each named loss of the scene's effects (plastic work, viscous
+    work, adhesion hysteresis, unrecovered elastic energy) and, with a counterpart, both bodies'
+    lab velocities. Raises SweepError (a SceneError: `.problems` names each bad field) before
+    running anything. Enable float64 first (`jax.config.update("jax_enable_x64",
     True)`)."""
     return run_spec(make_spec(scene, axes, mode, order), chunk=chunk, devices=devices, progress=progress)

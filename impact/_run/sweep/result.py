@@ -1,13 +1,16 @@
 """The results of a sweep: every scalar result of every point, in the sweep's shape."""
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..._integrate.codes import RESULT_CODE, RESULT_CODES
+from ..._scene.paths import with_values
 from ..._scene.scene import Scene
 from ..._scene.sweep_spec import SweepSpec
+from ..impacts import velocities_after
 
 # Scalar results per point: name → (dtype, fill value for points not run, unit, description).
 RESULTS = {
@@ -27,11 +30,71 @@ RESULTS = {
     "touch_velocity": (np.float64, np.nan, "m s-1", "speed at the first touch"),
     "separation_velocity": (np.float64, np.nan, "m s-1", "speed when the first contact let go (0 if captured)"),
     "dissipated_energy": (np.float64, np.nan, "J", "energy lost in the first contact"),
+    "plastic_work": (np.float64, np.nan, "J", "the part of dissipated_energy lost to plastic flow"),
+    "viscous_work": (np.float64, np.nan, "J", "the part of dissipated_energy lost to damping"),
+    "adhesion_hysteresis": (
+        np.float64,
+        np.nan,
+        "J",
+        "the rest of dissipated_energy: the jump-in and snap-off of the adhesive contact",
+    ),
+    "unrecovered_elastic_energy": (
+        np.float64,
+        np.nan,
+        "J",
+        "the rest of dissipated_energy of a damped contact without adhesion: elastic energy left in the surface",
+    ),
+    "body_velocity_after": (
+        np.float64,
+        np.nan,
+        "m s-1",
+        "the body's velocity after the first contact, lab frame, along its approach (< 0: rebounding)",
+    ),
+    "counterpart_velocity_after": (
+        np.float64,
+        np.nan,
+        "m s-1",
+        "the counterpart's velocity after the first contact, lab frame, along the body's approach",
+    ),
     "steps": (np.int64, -1, "", "solver steps"),
     "accepted_steps": (np.int64, -1, "", "accepted solver steps"),
     "rejected_steps": (np.int64, -1, "", "rejected solver steps"),
     "theory_restitution": (np.float64, np.nan, "", "closed-form restitution of the chapter (NaN where none)"),
 }
+
+# The columns a sweep holds only where its base scene names what they describe (an axis can set
+# a named effect's values, never name one).
+NAMED_BY: dict[str, Callable[[Scene], bool]] = {
+    "plastic_work": lambda scene: scene.effects.plasticity is not None,
+    "viscous_work": lambda scene: scene.effects.damping is not None,
+    "unrecovered_elastic_energy": lambda scene: scene.effects.damping is not None,
+    "adhesion_hysteresis": lambda scene: scene.effects.adhesion is not None,
+    "body_velocity_after": lambda scene: scene.counterpart is not None,
+    "counterpart_velocity_after": lambda scene: scene.counterpart is not None,
+}
+LOSSES = ("plastic_work", "viscous_work", "adhesion_hysteresis", "unrecovered_elastic_energy")
+# The columns computed on the host from a chunk's solved columns (the rest come from the batch).
+LAB_VELOCITIES = ("body_velocity_after", "counterpart_velocity_after")
+SOLVED = tuple(name for name in RESULTS if name not in LAB_VELOCITIES)
+
+
+def result_names(scene: Scene) -> tuple[str, ...]:
+    """The result columns of a sweep of `scene`, in the order of RESULTS."""
+    return tuple(name for name in RESULTS if name not in NAMED_BY or NAMED_BY[name](scene))
+
+
+def chunk_columns(scene: Scene, params: dict[str, np.ndarray], points: np.ndarray, solved: dict) -> dict:
+    """The result columns of a chunk's points (`params`: the sweep's flat swept values) from
+    the batch's `solved` columns: with a counterpart, both bodies' lab-frame velocities after
+    the first contact as `simulate` gives them (`velocities_after`, NaN without a physical
+    outcome)."""
+    columns = dict(solved)
+    if scene.counterpart is not None:
+        success = (solved["status"] == RESULT_CODE["separated"]) | (solved["status"] == RESULT_CODE["captured"])
+        rebound = np.where(success, solved["separation_velocity"], np.nan)
+        batch = with_values(scene, {path: values[points] for path, values in params.items()})
+        _, columns["body_velocity_after"], columns["counterpart_velocity_after"] = velocities_after(batch, rebound)
+    return {name: np.asarray(columns[name], dtype=RESULTS[name][0]) for name in result_names(scene)}
 
 
 @dataclass
@@ -59,6 +122,13 @@ class SweepResult:
     rejected_steps: np.ndarray
     theory_restitution: np.ndarray
     stats: dict = field(default_factory=dict)
+    # Present where the base scene names what they describe (`NAMED_BY`), else None:
+    plastic_work: np.ndarray | None = None
+    viscous_work: np.ndarray | None = None
+    adhesion_hysteresis: np.ndarray | None = None
+    unrecovered_elastic_energy: np.ndarray | None = None
+    body_velocity_after: np.ndarray | None = None
+    counterpart_velocity_after: np.ndarray | None = None
 
     @property
     def scene(self) -> Scene:
@@ -75,7 +145,8 @@ class SweepResult:
 
     @property
     def results(self) -> dict[str, np.ndarray]:
-        return {name: getattr(self, name) for name in RESULTS}
+        """Every result column the sweep holds, by name (in the order of RESULTS)."""
+        return {name: getattr(self, name) for name in RESULTS if getattr(self, name) is not None}
 
     @property
     def success(self) -> np.ndarray:
@@ -86,6 +157,24 @@ class SweepResult:
         """Result codes as names ('not run' for -1)."""
         names = np.array([*RESULT_CODES, "not run"], dtype=object)
         return names[np.where(self.status < 0, len(RESULT_CODES), self.status)]
+
+    def named_losses(self) -> dict[str, np.ndarray]:
+        """The columns of the named losses the scene has (J), by name: they sum to
+        `dissipated_energy`."""
+        return {name: column for name, column in self.results.items() if name in LOSSES}
+
+    def energy_imbalance(self) -> float:
+        """max |½m(v₀² − v₁²) − Σ named losses| over the points with a physical outcome, relative
+        to the energy turned over there, ½mv₀² + Σ|named losses| (m the reduced mass; NaN if
+        none): the balance of each point's first contact, closed to the solver's tolerance."""
+        if not self.success.any():
+            return math.nan
+        batch = with_values(self.scene, {path: values[self.success] for path, values in self.params.items()})
+        touch, separation = self.touch_velocity[self.success], self.separation_velocity[self.success]
+        losses = [column[self.success] for column in self.named_losses().values()] or [np.zeros_like(touch)]
+        lost = 0.5 * batch.reduced_mass * (touch**2 - separation**2)
+        turnover = 0.5 * batch.reduced_mass * touch**2 + np.sum(np.abs(losses), axis=0)
+        return float(np.max(np.abs(lost - np.sum(losses, axis=0)) / turnover))
 
     def max_theory_error(self) -> float:
         """max |e − e_theory| over the points with a physical outcome and a closed form (NaN if none)."""
@@ -100,10 +189,11 @@ class SweepResult:
         return cls(
             spec=spec,
             params={path: np.asarray(values).reshape(shape) for path, values in params.items()},
-            **{name: np.asarray(results[name]).reshape(shape) for name in RESULTS},
+            **{name: np.asarray(results[name]).reshape(shape) for name in RESULTS if name in results},
             stats=dict(stats or {}),
         )
 
 
-def empty_results(size: int) -> dict[str, np.ndarray]:
-    return {name: np.full(size, fill, dtype=dtype) for name, (dtype, fill, _, _) in RESULTS.items()}
+def empty_results(size: int, names: "tuple[str, ...] | None" = None) -> dict[str, np.ndarray]:
+    """Columns of `size` points not run, by name (every one of RESULTS, or `names`)."""
+    return {name: np.full(size, RESULTS[name][1], dtype=RESULTS[name][0]) for name in names or tuple(RESULTS)}
