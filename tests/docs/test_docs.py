@@ -138,3 +138,17 @@ def test_named_repository_files_exist(path):
     named = re.findall(r"\b((?:configs|tests|impact|docs)/[\w./-]+\.(?:py|yaml|yml|md|png))\b", path.read_text())
     missing = sorted({name for name in named if not (ROOT / name).exists()})
     assert not missing, f"{path.name} names files that do not exist: {missing}"
+
+
+@pytest.mark.parametrize("path", _markdown_files(), ids=lambda path: str(path.relative_to(ROOT)))
+def test_no_control_characters(path):
+    """No tab, carriage return, backspace or other control character: a LaTeX command written
+    through an escaping string (`\\rho`, `\\tfrac`, `\\beta`) leaves one and breaks its formula."""
+    text = path.read_bytes().decode()
+    found = sorted(
+        {
+            f"line {text.count(chr(10), 0, match.start()) + 1}: {match.group()!r}"
+            for match in re.finditer(r"[\x00-\x08\x0b-\x1f\x7f]", text)
+        }
+    )
+    assert not found, f"{path.name} holds control characters: {found}"
