@@ -19,6 +19,7 @@ from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
 from .._integrate.verlet import Verlet
 from .._law.branches import Tabulation
+from .._scene.profiles import PowerLawSpec
 from .._scene.scene import Scene
 
 _SAMPLES_PER_PHASE = 64
@@ -60,12 +61,19 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
             scene.contact_profile.build(),
             tip_search=partial_approach,
         ),
-        # Loading from a = 0 on a steep tip needs the timed path: no jump-in, or a power law
-        # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
-        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.contact_profile.shape == "power_law",
+        timed_loading=adhesion is None or adhesion.approach == 0.0 or _rises_from_the_tip(scene),
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
         damped=scene.effects.damping is not None,
     )
+
+
+def _rises_from_the_tip(scene: Scene) -> bool:
+    """Whether the attach edge h = g − λa·√x of an adhesive body may rise from a = 0, with no
+    jump-in, so that loading starts from a = 0 and needs the timed path: a power law
+    g ∝ xⁿ with n ≤ 1/2 (for n > 1/2 the Heß term wins near the tip: h < 0, a jump-in).
+    Its radius table is built per point and its radius solved in every step: the slow path."""
+    profile = scene.contact_profile
+    return isinstance(profile, PowerLawSpec) and profile.n <= 0.5
 
 
 def physics_for(scene: Scene) -> Physics:
