@@ -68,12 +68,17 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
 
 
 def _rises_from_the_tip(scene: Scene) -> bool:
-    """Whether the attach edge h = g − λa·√x of an adhesive body may rise from a = 0, with no
-    jump-in, so that loading starts from a = 0 and needs the timed path: a power law
-    g ∝ xⁿ with n ≤ 1/2 (for n > 1/2 the Heß term wins near the tip: h < 0, a jump-in).
-    Its radius table is built per point and its radius solved in every step: the slow path."""
-    profile = scene.contact_profile
-    return isinstance(profile, PowerLawSpec) and profile.n <= 0.5
+    """Whether loading of an adhesive power-law body may start from a = 0 and so needs the timed
+    path (its radius table is built per point and its radius solved in every step: the slow
+    path). For n ≤ 1/2 the attach edge h = g − λa·√x rises from the tip (no jump-in); above,
+    the jump-in radius, ∝ λa^(1/(n − 1/2)) in units of the impact energy, may lie below the
+    smallest float for n < 1 or a small approach work Δγa < Δγ (measured: Δγa/Δγ = 1e-100 at
+    n = 1 is lost without the timed path). With n ≥ 1 and Δγa = Δγ (the closed form (3.81–82))
+    the jump-in is found as for the paraboloid, and no step solves for a radius."""
+    profile, adhesion = scene.contact_profile, scene.active_adhesion
+    assert adhesion is not None
+    partial = adhesion.approach < adhesion.work_of_adhesion
+    return isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial)
 
 
 def physics_for(scene: Scene) -> Physics:
