@@ -111,10 +111,17 @@ class DugdaleLaw(eqx.Module):
         """d where the interaction starts: the tip within the range, −h."""
         return -self.range
 
-    def zone(self, zone):
-        """(d, F) of an adhesive zone of radius b without contact."""
-        depth = self.f_unit() * zone**self.exponent - 4.0 * self.stress * zone / jnp.pi - self.range
-        return depth, -jnp.pi * self.stress * zone**2
+    def zone(self, zone, junction=None):
+        """(d, F) of an adhesive zone of radius b without contact. Given the junction b_J, d is
+        written from there, d = −2σ·b_J + f(b) − f(b_J) − (4σ/π)·(b − b_J) (the same with
+        (3.164)), so that it meets the contact's d = −2σ·b_J at p = 1 exactly: a round-off step
+        between the two would be a spurious jump where the curve runs flat past the junction."""
+        n, stress, unit = self.exponent, self.stress, self.f_unit()
+        force = -jnp.pi * stress * zone**2
+        if junction is None:
+            return unit * zone**n - 4.0 * stress * zone / jnp.pi - self.range, force
+        rise = unit * (zone**n - junction**n) - 4.0 * stress * (zone - junction) / jnp.pi
+        return rise - 2.0 * stress * junction, force
 
     def shape_term(self, share):
         """P(p) of the range condition."""
@@ -214,7 +221,7 @@ class DugdaleCurve(AbstractCurve):
         """(d, F, a, b) at s."""
         contact = s > self.junction
         zone = jnp.minimum(s, self.junction)
-        zone_depth, zone_force = law.zone(zone)
+        zone_depth, zone_force = law.zone(zone, self.junction)
         depth, force, radius, contact_zone = law.contact(jnp.exp(jnp.minimum(self.junction - s, 0.0)))
         return (
             jnp.where(contact, depth, zone_depth),
