@@ -127,8 +127,8 @@ class SpeedPlan:
 def speed_plan(
     quick: bool = False, points: tuple[int, ...] = (), only: tuple[str, ...] = (), repeats: int = SPEED_REPEATS
 ) -> SpeedPlan:
-    """The full plan (every workload at 10², 10³, 10⁴ points, but Maugis–Dugdale and the spring
-    arrays at 10², 10³ and the scan over N at 10²), or the quick one (the light workloads at 10², the scan at N = 64,
+    """The full plan (every workload at 10², 10³, 10⁴ points, but the spring arrays at 10², 10³
+    and the scan over N at 10²), or the quick one (the light workloads at 10², the scan at N = 64,
     256, 1024); `points` replaces every count, `only` keeps the workloads of those keys."""
     runs = []
     for workload in workloads(quick):
@@ -138,8 +138,6 @@ def speed_plan(
             counts: tuple[int, ...] = (100,)
         elif workload.springs:
             counts = (100, 1000) if workload.springs in (256, 2048) else (100,)
-        elif workload.key == "md":
-            counts = (100, 1000)  # about 14 ms per impact
         else:
             counts = (100, 1000, 10000)
         runs.append((workload, tuple(points) or counts))

@@ -121,11 +121,15 @@ def _after(problem: CurveProblem, advancing, turned, segment, s_end, d_end):
     law, curve = problem.law, problem.curve
     junction = curve.junction
     # Loading reaches its segment's top: on to the next rising state at this level.
+    # A rising segment that goes on from this one's end (the junction) is no jump: the state
+    # stays at the node, whatever an ulp of d finds on the flat start of the next one.
     out_s, out_segment, blocked = curve.cascade_out(law, curve.nodes[segment + 1], d_end)
+    out_s = jnp.where(out_segment == segment + 1, curve.nodes[segment + 1], out_s)
     jumped_out = out_s > curve.nodes[segment + 1] + _SAME_STATE * (1.0 + out_s)
     out_event = jnp.where(jumped_out, EVENT_CODE["snap_in"], EVENT_CODE["contact_start"])
     # Unloading reaches its segment's foot: back to the last rising state at this level.
     in_s, in_segment, released = curve.cascade_in(law, curve.nodes[segment], d_end)
+    in_s = jnp.where(in_segment == segment - 1, curve.nodes[segment], in_s)
     jumped_in = in_s < curve.nodes[segment] - _SAME_STATE * (1.0 + in_s)
     in_event = jnp.where(
         released,

@@ -19,10 +19,16 @@ At p = 1 (a = 0) it is the junction b_J where the centre closes, f(b) + 2σ·(1 
 s = b_J − ln p in contact. `DugdaleCurve` splits s at the turning points of d(s): the body
 rides the rising segments and jumps at fixed d at their ends, as the JKR branches do.
 
-P is Gauss–Legendre in φ for u ≥ 1/2, with g(cos φ) − g(u) written without cancellation
-(u → 1 is the JKR-like edge of a deep contact); for u < 1/2 it is f(1)·π/2 minus the part
-over y = cos φ ∈ [0, u], in y = u·t² (smooth for any n).
+For the paraboloid and the cone P has a closed form, P = (C_g/2π)·S(2θ) (n = 2) and
+P = (2C_g/π)·S(θ) (n = 1) with S(x) = sin x − x·cos x (its series where it cancels, x < 1/2),
+and the range condition is a quadratic (n = 2) or linear (n = 1) equation in b: a state is a
+few elementary functions. For other n P is Gauss–Legendre in φ for u ≥ 1/2, with
+g(cos φ) − g(u) written without cancellation (u → 1 is the JKR-like edge of a deep contact);
+for u < 1/2 it is f(1)·π/2 minus the part over y = cos φ ∈ [0, u], in y = u·t² (smooth for any
+n), and b a Newton root.
 """
+
+import math
 
 import equinox as eqx
 import jax
@@ -75,6 +81,18 @@ class DugdaleLaw(eqx.Module):
             range=adhesion_range / scales.normal,
         )
 
+    @property
+    def closed_degree(self) -> int | None:
+        """n of a paraboloid (2) or a cone (1), whose P and b have closed forms (static: known
+        from the body's type); None for a power law (n traced)."""
+        return _CLOSED_DEGREES.get(type(self.law.profile))
+
+    @property
+    def exponent(self):
+        """n: a Python number where it is known statically (integer powers), else traced."""
+        closed = self.closed_degree
+        return self.degree if closed is None else closed
+
     def g_unit(self):
         """C_g = ĝ(1)."""
         return self.law.g(jnp.ones(()))
@@ -93,13 +111,26 @@ class DugdaleLaw(eqx.Module):
         """d where the interaction starts: the tip within the range, −h."""
         return -self.range
 
-    def zone(self, zone):
-        """(d, F) of an adhesive zone of radius b without contact."""
-        depth = self.f_unit() * zone**self.degree - 4.0 * self.stress * zone / jnp.pi - self.range
-        return depth, -jnp.pi * self.stress * zone**2
+    def zone(self, zone, junction=None):
+        """(d, F) of an adhesive zone of radius b without contact. Given the junction b_J, d is
+        written from there, d = −2σ·b_J + f(b) − f(b_J) − (4σ/π)·(b − b_J) (the same with
+        (3.164)), so that it meets the contact's d = −2σ·b_J at p = 1 exactly: a round-off step
+        between the two would be a spurious jump where the curve runs flat past the junction."""
+        n, stress, unit = self.exponent, self.stress, self.f_unit()
+        force = -jnp.pi * stress * zone**2
+        if junction is None:
+            return unit * zone**n - 4.0 * stress * zone / jnp.pi - self.range, force
+        rise = unit * (zone**n - junction**n) - 4.0 * stress * (zone - junction) / jnp.pi
+        return rise - 2.0 * stress * junction, force
 
     def shape_term(self, share):
         """P(p) of the range condition."""
+        closed = self.closed_degree
+        if closed is not None:
+            angle = jnp.arctan2(jnp.sqrt(share * (2.0 - share)), 1.0 - share)  # θ = arccos u
+            if closed == 2:
+                return self.g_unit() / (2.0 * jnp.pi) * _sine_excess(2.0 * angle)
+            return 2.0 * self.g_unit() / jnp.pi * _sine_excess(angle)
         n, unit = self.degree, self.g_unit()
         nodes, weights = gauss_legendre(_QUADRATURE_NODES)
         ratio = 1.0 - share  # u = a/b
@@ -129,6 +160,10 @@ class DugdaleLaw(eqx.Module):
         differentiated implicitly, carries the derivatives of b (the curve's slope dd/ds is
         itself one: its derivative needs the second)."""
         shape, adhesive = self.shape_term(share), self.adhesive_term(share)
+        if self.closed_degree == 2:  # b²P + bQ = h, P, Q ≥ 0: the positive root, without cancellation
+            return 2.0 * self.range / (adhesive + jnp.sqrt(adhesive**2 + 4.0 * shape * self.range))
+        if self.closed_degree == 1:
+            return self.range / (shape + adhesive)
         n, log_range = self.degree, jnp.log(self.range)
 
         def residual(log_zone):
@@ -144,7 +179,7 @@ class DugdaleLaw(eqx.Module):
 
     def contact(self, share):
         """(d, F, a, b) of the contact with zone share p = (b − a)/b."""
-        n, unit = self.degree, self.g_unit()
+        n, unit = self.exponent, self.g_unit()
         zone = self.zone_radius(share)
         ratio = 1.0 - share
         radius = ratio * zone
@@ -154,6 +189,23 @@ class DugdaleLaw(eqx.Module):
         elastic = 2.0 * (unit * radius ** (n + 1) * n / (n + 1) - 2.0 * self.stress * radius * zone * opening)
         force = elastic - self.stress * zone**2 * (2.0 * angle - 2.0 * ratio * opening)
         return depth, force, radius, zone
+
+
+_CLOSED_DEGREES: dict[type, int] = {Paraboloid: 2, Cone: 1}
+# Below this x, S(x) = sin x − x·cos x from its series Σ (−1)^(k+1)·2k·x^(2k+1)/(2k+1)!
+# (8 terms: the first left out is below 1e-17 relative); above it the direct form loses at
+# most a digit.
+_SERIES_BELOW = 0.5
+_SERIES = tuple((-1.0) ** (k + 1) * 2 * k / math.factorial(2 * k + 1) for k in range(1, 9))
+
+
+def _sine_excess(x):
+    """S(x) = sin x − x·cos x = ∫_0^x φ·sin φ dφ, without cancellation at small x."""
+    square = x * x
+    series = jnp.zeros_like(x)
+    for coefficient in reversed(_SERIES):
+        series = series * square + coefficient
+    return jnp.where(x < _SERIES_BELOW, x * square * series, jnp.sin(x) - x * jnp.cos(x))
 
 
 class DugdaleCurve(AbstractCurve):
@@ -169,7 +221,7 @@ class DugdaleCurve(AbstractCurve):
         """(d, F, a, b) at s."""
         contact = s > self.junction
         zone = jnp.minimum(s, self.junction)
-        zone_depth, zone_force = law.zone(zone)
+        zone_depth, zone_force = law.zone(zone, self.junction)
         depth, force, radius, contact_zone = law.contact(jnp.exp(jnp.minimum(self.junction - s, 0.0)))
         return (
             jnp.where(contact, depth, zone_depth),

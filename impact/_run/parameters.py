@@ -19,6 +19,7 @@ from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
 from .._integrate.verlet import Verlet
 from .._law.branches import Tabulation
+from .._scene.profiles import PowerLawSpec
 from .._scene.scene import Scene
 
 _SAMPLES_PER_PHASE = 64
@@ -60,12 +61,24 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
             scene.contact_profile.build(),
             tip_search=partial_approach,
         ),
-        # Loading from a = 0 on a steep tip needs the timed path: no jump-in, or a power law
-        # (for n ≤ 1/2 the attach edge starts rising from a = 0 even with adhesion).
-        timed_loading=adhesion is None or adhesion.approach == 0.0 or scene.contact_profile.shape == "power_law",
+        timed_loading=adhesion is None or adhesion.approach == 0.0 or _rises_from_the_tip(scene),
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
         damped=scene.effects.damping is not None,
     )
+
+
+def _rises_from_the_tip(scene: Scene) -> bool:
+    """Whether loading of an adhesive power-law body may start from a = 0 and so needs the timed
+    path (its radius table is built per point and its radius solved in every step: the slow
+    path). For n ≤ 1/2 the attach edge h = g − λa·√x rises from the tip (no jump-in); above,
+    the jump-in radius, ∝ λa^(1/(n − 1/2)) in units of the impact energy, may lie below the
+    smallest float for n < 1 or a small approach work Δγa < Δγ (measured: Δγa/Δγ = 1e-100 at
+    n = 1 is lost without the timed path). With n ≥ 1 and Δγa = Δγ (the closed form (3.81–82))
+    the jump-in is found as for the paraboloid, and no step solves for a radius."""
+    profile, adhesion = scene.contact_profile, scene.active_adhesion
+    assert adhesion is not None
+    partial = adhesion.approach < adhesion.work_of_adhesion
+    return isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial)
 
 
 def physics_for(scene: Scene) -> Physics:

@@ -223,6 +223,9 @@ def evaluate(march: CurveMarch, c: CurveCarry, p: Piece, root) -> tuple[jax.Arra
     """Where the jump lands and the ride stops, and the states the step reads there."""
     up = c.direction > 0
     landing = jnp.where(up, jnp.maximum(root, p.start), jnp.minimum(root, p.start))
+    # A rising segment that goes on from the current one's end (the junction) is no jump: the
+    # state stays at the node, whatever an ulp of d finds on the flat start of the next one.
+    landing = jnp.where(p.jumping & ~p.touching & (p.segment == c.segment + jnp.where(up, 1, -1)), p.start, landing)
     stop = jnp.where(p.crossed, root, p.far)
     ride = c.s + (stop - c.s) * march.grid
     radius, depth, force = march.state(jnp.concatenate([jnp.stack([p.start, landing, c.s, c.pre[0]]), ride]))
