@@ -29,7 +29,7 @@ come back in SI. The spring array (midpoint springs, thresholds and prefix sums 
 """
 
 from .loading import EVENT_KINDS, Loading, QuasiStaticNumerics, QuasiStaticOutcome
-from .march import finite_range_curve, march
+from .march import finite_range_curve, finite_range_law, march
 from .setup import build
 
 __all__ = [
@@ -39,5 +39,6 @@ __all__ = [
     "QuasiStaticOutcome",
     "build",
     "finite_range_curve",
+    "finite_range_law",
     "march",
 ]

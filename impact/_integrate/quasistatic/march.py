@@ -44,19 +44,24 @@ def finite_range_curve(
     test: the law in the units of the JKR jump-in and its equilibrium curve up to beyond the
     program's peak (the unit: of the force under force control, else of the indentation)."""
     scales = loading_scales(loading, adhesive=True)
-    adhesion, force_control = loading.adhesion, loading.force_control
-    unit = jnp.where(force_control, scales.force, scales.normal)
-    reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=force_control)
-    law: CurveLaw
+    unit = jnp.where(loading.force_control, scales.force, scales.normal)
+    reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
+    law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
-    if numerics.model == "maugis_dugdale":
-        law = DugdaleLaw.scaled(
-            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
-        )
+    if isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
-        double_hertz = DoubleHertzLaw.scaled(
-            loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
-        )
-        law, curve = double_hertz, build_double_hertz_curve(double_hertz, reach)
+        curve = build_double_hertz_curve(law, reach)
     return scales, unit, law, curve
+
+
+def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> DugdaleLaw | DoubleHertzLaw:
+    """The Maugis–Dugdale or Greenwood–Johnson law of the loading in the units `scales`."""
+    adhesion = loading.adhesion
+    if numerics.model == "maugis_dugdale":
+        return DugdaleLaw.scaled(
+            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
+        )
+    return DoubleHertzLaw.scaled(
+        loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
+    )

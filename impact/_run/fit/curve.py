@@ -154,12 +154,7 @@ def _path_problem(path: str, adhesion) -> str | None:
     if not path.startswith("effects.adhesion."):
         return None
     name, fields = path.rsplit(".", 1)[1], ADHESION_FIELDS[adhesion.model]
-    if name not in fields:
-        return f"a {adhesion.model} curve depends on {', '.join(fields)}"
-    if name in ("stress", "range") and getattr(adhesion, name) is None:
-        given = "range" if name == "stress" else "stress"
-        return f"the scene gives the {given} (Δγ = σ0·h): fit effects.adhesion.{given}"
-    return None
+    return None if name in fields else f"a {adhesion.model} curve depends on {', '.join(fields)}"
 
 
 class Edge:

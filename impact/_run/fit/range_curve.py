@@ -27,7 +27,7 @@ import jax.numpy as jnp
 
 from ..._core.derivatives import implicit_root
 from ..._core.search import bisect
-from ..._integrate.quasistatic import finite_range_curve
+from ..._integrate.quasistatic import finite_range_curve, finite_range_law
 from ..._integrate.quasistatic.loading import BISECTION_STEPS
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve
@@ -51,15 +51,19 @@ def finite_range_state(scene: Scene, values: Scene, depth, retract) -> dict[str,
             adhesion_of(adhesion),
         ),
     )
-    scales, _, law, curve = finite_range_curve(loading, indentation_numerics(scene))
+    # The units, the curve and its segments only place the state: built without derivatives
+    # (the state in SI does not depend on the units; a row's state is the root below).
+    numerics = indentation_numerics(scene)
+    scales, _, fixed, curve = finite_range_curve(jax.lax.stop_gradient(loading), numerics)
+    law = finite_range_law(loading, numerics, scales)
     level = depth / scales.normal
     peak = jnp.maximum(loading.peak / scales.normal, level)
-    approach, _ = approach_segment(curve, law.onset, level)
-    top, _ = approach_segment(curve, law.onset, peak)
+    approach, _ = approach_segment(curve, fixed.onset, level)
+    top, _ = approach_segment(curve, fixed.onset, peak)
     back, released = retract_segment(curve, top, level)
     segment = jnp.where(retract, back, approach)
-    attached = jnp.where(retract, ~released, level >= law.onset)
-    s = curve_root(law, curve, segment, level, attached)
+    attached = jnp.where(retract, ~released, level >= fixed.onset)
+    s = curve_root(law, fixed, curve, segment, level, attached)
     _, force, radius, _ = curve.state(law, s)
     zero = jnp.zeros_like(force)
     return {
@@ -101,11 +105,12 @@ def retract_segment(curve: AbstractCurve, top, level) -> tuple[jax.Array, jax.Ar
     return jax.lax.fori_loop(0, rising.shape[0], inward, (top, jnp.asarray(False)))
 
 
-def curve_root(law, curve: AbstractCurve, segment, level, attached) -> jax.Array:
-    """s on the rising `segment` where d(s) = `level` (clamped to the segment), by bisection
-    and differentiated implicitly; off contact, the middle of the segment (any regular point)."""
+def curve_root(law, fixed, curve: AbstractCurve, segment, level, attached) -> jax.Array:
+    """s on the rising `segment` where d(s) = `level` (clamped to the segment), by bisection on
+    the `fixed` law (the same, without derivatives) and differentiated implicitly through `law`;
+    off contact, the middle of the segment (any regular point)."""
     lower, upper = curve.nodes[segment], curve.nodes[segment + 1]
     ends = curve.levels[segment], curve.levels[segment + 1]
-    goal = jnp.where(attached, jnp.clip(level, *ends), curve.depth(law, 0.5 * (lower + upper)))
-    lo, hi = bisect(lambda s: curve.depth(law, s) < goal, lower, upper, BISECTION_STEPS)
+    goal = jnp.where(attached, jnp.clip(level, *ends), curve.depth(fixed, 0.5 * (lower + upper)))
+    lo, hi = bisect(lambda s: curve.depth(fixed, s) < goal, lower, upper, BISECTION_STEPS)
     return implicit_root(lambda s: curve.depth(law, s) - goal, 0.5 * (lo + hi))
