@@ -29,6 +29,7 @@ from ..._core.derivatives import implicit_root
 from ..._core.search import bisect
 from ..._integrate.quasistatic import finite_range_curve, finite_range_law
 from ..._integrate.quasistatic.loading import BISECTION_STEPS
+from ..._integrate.quasistatic.setup import loading_scales
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve
 from ..._scene.scene import Scene
@@ -51,10 +52,12 @@ def finite_range_state(scene: Scene, values: Scene, depth, retract) -> dict[str,
             adhesion_of(adhesion),
         ),
     )
-    # The units, the curve and its segments only place the state: built without derivatives
-    # (the state in SI does not depend on the units; a row's state is the root below).
+    # The curve and its segments only place the state: built without derivatives (the state of
+    # a row is the root below, differentiated through the law). The units carry E* and the
+    # profile: differentiated.
     numerics = indentation_numerics(scene)
-    scales, _, fixed, curve = finite_range_curve(jax.lax.stop_gradient(loading), numerics)
+    _, _, fixed, curve = finite_range_curve(jax.lax.stop_gradient(loading), numerics)
+    scales = loading_scales(loading, adhesive=True)
     law = finite_range_law(loading, numerics, scales)
     level = depth / scales.normal
     peak = jnp.maximum(loading.peak / scales.normal, level)
