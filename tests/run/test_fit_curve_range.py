@@ -114,34 +114,51 @@ def test_a_hysteresis_fit_recovers_both_works_of_adhesion_within_three_standard_
         assert result.standard_errors[path] < 0.05 * true
 
 
+TRUE_MAUGIS = np.array([MAUGIS.E_STAR, MAUGIS.WORK_OF_ADHESION, MAUGIS.RANGE])
+# Where the derivatives are checked: on approach in compression, on retract where F is adhesive.
+DERIVATIVE_ROWS = np.array([[1.8e-9, 0.0], [-0.2e-9, 1.0], [-0.9e-9, 1.0]])
+
+
 @pytest.fixture(scope="module")
-def maugis_model():
-    """The Maugis–Dugdale curve of the example's true scene, varying E*, Δγ and h: its values
-    and Jacobian in one compiled program."""
+def maugis():
+    """The march of the example's true scene, its states that are no jump (the snap-in at d = −h
+    left out too), the example's data rows and `DERIVATIVE_ROWS`: and the model's values and
+    Jacobian in E*, Δγ and h at all of them, one compiled program (one shape) for every value."""
+    run = impact.simulate(impact.load_scene(MAUGIS_SCENE))
+    points = single_points(run.indentation)
+    points = points[~np.isclose(run.indentation[points], -MAUGIS.RANGE, rtol=1e-9, atol=0.0)]
+    data = MAUGIS.maugis_data()
+    rows = np.concatenate(
+        [
+            np.stack([run.indentation[points], run.leg[points]], axis=1),
+            data_rows_of(data),
+            DERIVATIVE_ROWS,
+        ]
+    ).astype(float)
     model = IndentationCurve(
         scene_yaml(impact.load_scene(MAUGIS_SCENE)), (MODULUS, ADHESION, RANGE), ("force", "contact_radius")
     )
     with jax.enable_x64(True):
-        return jax.jit(lambda values, rows: (model.batched(values, rows), jax.jacfwd(model.batched)(values, rows)))
+        compiled = jax.jit(lambda values: (model.batched(values, rows), jax.jacfwd(model.batched)(values, rows)))
+
+    def evaluate(values):
+        with jax.enable_x64(True):
+            return tuple(np.asarray(part) for part in compiled(jnp.asarray(values)))
+
+    return run, points, data_rows_of(data), evaluate
 
 
-TRUE_MAUGIS = np.array([MAUGIS.E_STAR, MAUGIS.WORK_OF_ADHESION, MAUGIS.RANGE])
+def data_rows_of(data) -> np.ndarray:
+    return np.stack([data["indentation"], data["branch"] == "retract"], axis=1).astype(float)
 
 
-def test_the_maugis_curve_meets_the_march_and_the_closed_form(maugis_model):
+def test_the_maugis_curve_meets_the_march_and_the_closed_form(maugis):
     """Every state of the march that is no jump (to 1e-8; measured 1e-14), and the force of
     make_maugis_data.py (brentq on (3.171)) at its rows."""
-    run = impact.simulate(impact.load_scene(MAUGIS_SCENE))
+    run, points, data_rows, evaluate = maugis
     assert run.status == "separated"
-    points = single_points(run.indentation)
-    points = points[~np.isclose(run.indentation[points], -MAUGIS.RANGE, rtol=1e-9, atol=0.0)]  # the snap-in
-    rows = np.stack([run.indentation[points], run.leg[points]], axis=1).astype(float)
-    data = MAUGIS.maugis_data()
-    data_rows = np.stack([data["indentation"], data["branch"] == "retract"], axis=1).astype(float)
-    with jax.enable_x64(True):
-        states, _ = maugis_model(jnp.asarray(TRUE_MAUGIS), jnp.asarray(np.concatenate([rows, data_rows])))
-    states = np.asarray(states)
-    march, closed = states[: len(points)], states[len(points) :, 0]
+    states, _ = evaluate(TRUE_MAUGIS)
+    march, closed = states[: len(points)], states[len(points) : len(points) + len(data_rows), 0]
     np.testing.assert_allclose(march[:, 0], run.force[points], rtol=1e-8, atol=1e-8 * np.abs(run.force).max())
     np.testing.assert_allclose(march[:, 1], run.contact_radius[points], rtol=1e-8, atol=1e-8 * run.contact_radius.max())
     exact = [MAUGIS.maugis_curve_force(d, back) for d, back in data_rows]
@@ -149,22 +166,18 @@ def test_the_maugis_curve_meets_the_march_and_the_closed_form(maugis_model):
     assert np.sum(run.force[points] < 0) > 10 and set(run.leg[points]) == {0, 1}
 
 
-def test_the_maugis_derivatives_meet_central_differences(maugis_model):
+def test_the_maugis_derivatives_meet_central_differences(maugis):
     """d(F, a)/d(E*, Δγ, h) by nested implicit roots, on approach in compression and on retract
     where the force is adhesive, against central differences of the model (steps 1e-6)."""
-    rows = jnp.asarray([[1.0e-9, 0.0], [-0.2e-9, 1.0], [-0.9e-9, 1.0]])
+    *_, evaluate = maugis
+    count = len(DERIVATIVE_ROWS)
+    states, jacobian = (part[-count:] for part in evaluate(TRUE_MAUGIS))
     steps = 1e-6 * TRUE_MAUGIS * np.eye(3)
-    with jax.enable_x64(True):
-        (states, jacobian) = maugis_model(jnp.asarray(TRUE_MAUGIS), rows)
-        shifted = [
-            np.asarray(maugis_model(jnp.asarray(TRUE_MAUGIS + sign * step), rows)[0])
-            for step in steps
-            for sign in (1, -1)
-        ]
+    shifted = [evaluate(TRUE_MAUGIS + sign * step)[0][-count:] for step in steps for sign in (1, -1)]
     central = np.stack([(shifted[2 * i] - shifted[2 * i + 1]) / (2 * steps[i, i]) for i in range(3)], axis=-1)
-    assert np.all(np.asarray(states)[1:, 0] < 0)
+    assert states[0, 0] > 0 and np.all(states[1:, 0] < 0)
     scale = np.abs(central).max(axis=0, keepdims=True)  # per observable and parameter
-    np.testing.assert_allclose(np.asarray(jacobian) / scale, central / scale, rtol=1e-5, atol=1e-9)
+    np.testing.assert_allclose(jacobian / scale, central / scale, rtol=1e-5, atol=1e-9)
 
 
 def test_what_the_maugis_curve_cannot_describe_is_refused_by_name():
