@@ -2,11 +2,12 @@
 'theory') and count how often the true values all lie within 3 (and 1) standard errors of the
 fit. Expected for Gaussian errors: 99.7 % per parameter at 3σ, 68 % at 1σ.
 
-    python configs/fits/coverage.py [drop_test|afm_curve] [repetitions]
+    python configs/fits/coverage.py [drop_test|afm_curve|afm_maugis] [repetitions]
 
 drop_test: the drop test of make_drop_data.py (work of adhesion and modulus from restitution
 and largest force); afm_curve: the AFM curve of make_afm_data.py (modulus and work of adhesion
-from the force on approach and retract).
+from the force on approach and retract); afm_maugis: the Maugis–Dugdale AFM curve of
+make_maugis_data.py (modulus, work of adhesion and range).
 """
 
 import sys
@@ -21,8 +22,9 @@ import impact
 sys.path.insert(0, str(Path(__file__).parent))
 import make_afm_data  # noqa: E402
 import make_drop_data  # noqa: E402
+import make_maugis_data  # noqa: E402
 
-ADHESION, MODULUS = "effects.adhesion.work_of_adhesion", "material.E_star"
+ADHESION, MODULUS, RANGE = "effects.adhesion.work_of_adhesion", "material.E_star", "effects.adhesion.range"
 EXAMPLES = {  # fit file, data of a seed, true values
     "drop_test": (
         "drop_test.yaml",
@@ -33,6 +35,15 @@ EXAMPLES = {  # fit file, data of a seed, true values
         "afm_curve.yaml",
         make_afm_data.afm_data,
         {ADHESION: make_afm_data.WORK_OF_ADHESION, MODULUS: make_afm_data.E_STAR},
+    ),
+    "afm_maugis": (
+        "afm_maugis.yaml",
+        make_maugis_data.maugis_data,
+        {
+            MODULUS: make_maugis_data.E_STAR,
+            ADHESION: make_maugis_data.WORK_OF_ADHESION,
+            RANGE: make_maugis_data.RANGE,
+        },
     ),
 }
 

@@ -9,6 +9,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._run.fit import FitResult, theory_applies, theory_model
+from .._run.fit.curve import IndentationCurve
 from .._scene.fit_curve import BRANCH, BRANCHES
 from .figures import si_prefix
 
@@ -57,11 +58,12 @@ def _closed_form(result: FitResult, control: np.ndarray) -> dict[str, tuple[np.n
     if spec.inputs or not theory_applies(spec):
         return None
     model = theory_model(spec)
+    assert isinstance(model, IndentationCurve), "the closed form of an indentation scene"
     rising = np.linspace(control.min(), control.max(), DENSE)
     curves = {}
     with jax.enable_x64(True):
         values = jnp.asarray(list(result.values.values()))
-        evaluate = jax.jit(jax.vmap(lambda point: model(jnp.concatenate([values, point]))))
+        evaluate = jax.jit(lambda points: model.batched(values, points))  # one curve, all points
         for label, code in BRANCHES.items():
             grid = rising if code == 0 else rising[::-1]
             points = jnp.stack([jnp.asarray(grid), jnp.full(DENSE, code)], axis=1)

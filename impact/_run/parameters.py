@@ -105,8 +105,11 @@ def physics_for(scene: Scene) -> Physics:
 def adhesion_for(scene: Scene) -> Adhesion:
     """The adhesion parameters of a scene (those of no adhesion where it names none)."""
     adhesion = scene.active_adhesion
-    if adhesion is None:
-        return Adhesion.none()
+    return Adhesion.none() if adhesion is None else adhesion_of(adhesion)
+
+
+def adhesion_of(adhesion) -> Adhesion:
+    """The parameters of an adhesion section (its values may be traced)."""
     dugdale = adhesion.model == "maugis_dugdale"
     return Adhesion(
         work_of_adhesion=_float64(adhesion.work_of_adhesion),

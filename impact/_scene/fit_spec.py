@@ -46,6 +46,7 @@ from .sections import Section
 OBSERVABLES = ("restitution", "contact_time", "max_indentation", "max_force", "min_force", "dissipated_energy")
 # Numbers that set static choices of a run (changing them compiles anew): never an input of a fit.
 STATIC_SECTIONS = ("solver",)
+# (The closed-form curve of an indentation test takes the approach work of adhesion traced.)
 STATIC_FIELDS = ("effects.adhesion.approach_work_of_adhesion",)
 MODELS = ("simulation", "theory")
 FUNCTION = "function"  # the model of a fit given a function in Python
@@ -248,8 +249,9 @@ def make_fit_spec(
     columns = {str(name): as_column(values) for name, values in data.items()}
     if model not in (*MODELS, FUNCTION):
         raise FitError([("model", f"expected one of {', '.join(MODELS)}, got {model!r}")])
-    problems = [problem for path in file.parameters for problem in _path_problems(scene, "parameters", path)]
-    problems += [problem for path in file.inputs for problem in _path_problems(scene, "inputs", path)]
+    static = () if model == "theory" and scene.kind == "indentation" else STATIC_FIELDS
+    problems = [problem for path in file.parameters for problem in _path_problems(scene, "parameters", path, static)]
+    problems += [problem for path in file.inputs for problem in _path_problems(scene, "inputs", path, static)]
     problems += [(f"inputs.{path}", "is also a fitted parameter") for path in file.inputs if path in file.parameters]
     problems += curve_problems(scene, branch, model, columns)
     problems += _column_problems(file, columns, scene)
@@ -262,8 +264,9 @@ def make_fit_spec(
     return FitSpec(scene, used, tuple(file.inputs), file.observables, file.parameters, model, branch)
 
 
-def _path_problems(scene: Scene, key: str, path: str) -> list[tuple[str, str]]:
-    """Why a dotted path cannot be fitted or set row by row (none if it can)."""
+def _path_problems(scene: Scene, key: str, path: str, static: tuple[str, ...]) -> list[tuple[str, str]]:
+    """Why a dotted path cannot be fitted or set row by row (none if it can); `static`: the
+    fields that set static choices of the model."""
     try:
         owner, name = resolve_field(scene, path)
     except (NoField, AbsentSection) as error:
@@ -271,7 +274,7 @@ def _path_problems(scene: Scene, key: str, path: str) -> list[tuple[str, str]]:
     value = getattr(owner, name)
     if value is None:
         return [(f"{key}.{path}", "is not set in the scene; give it a value there to fit or vary it")]
-    if path.split(".")[0] in STATIC_SECTIONS or path in STATIC_FIELDS or not isinstance(value, float):
+    if path.split(".")[0] in STATIC_SECTIONS or path in static or not isinstance(value, float):
         return [(f"{key}.{path}", f"is a static choice ({value!r}; changing it compiles anew), not a traced value")]
     return []
 

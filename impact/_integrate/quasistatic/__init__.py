@@ -29,7 +29,16 @@ come back in SI. The spring array (midpoint springs, thresholds and prefix sums 
 """
 
 from .loading import EVENT_KINDS, Loading, QuasiStaticNumerics, QuasiStaticOutcome
-from .march import march
+from .march import finite_range_curve, finite_range_law, march
 from .setup import build
 
-__all__ = ["EVENT_KINDS", "Loading", "QuasiStaticNumerics", "QuasiStaticOutcome", "build", "march"]
+__all__ = [
+    "EVENT_KINDS",
+    "Loading",
+    "QuasiStaticNumerics",
+    "QuasiStaticOutcome",
+    "build",
+    "finite_range_curve",
+    "finite_range_law",
+    "march",
+]

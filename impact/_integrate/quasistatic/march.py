@@ -4,11 +4,13 @@ along the equilibrium curve of a finite-range law."""
 import functools
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 
 from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.scales import Scales
 from .continuum import march_continuum
 from .curve import march_curve
 from .loading import Loading, QuasiStaticNumerics
@@ -30,21 +32,36 @@ def march(loading: Loading, numerics: QuasiStaticNumerics):
 def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
     """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
     to beyond the program's peak, and the march along it."""
+    scales, unit, law, curve = finite_range_curve(loading, numerics)
+    program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
+    return scales, march_curve(law, curve, program, numerics)
+
+
+def finite_range_curve(
+    loading: Loading, numerics: QuasiStaticNumerics
+) -> tuple[Scales, jax.Array, CurveLaw, AbstractCurve]:
+    """(scales, unit of the controlled value, law, curve) of a Maugis–Dugdale or Greenwood–Johnson
+    test: the law in the units of the JKR jump-in and its equilibrium curve up to beyond the
+    program's peak (the unit: of the force under force control, else of the indentation)."""
     scales = loading_scales(loading, adhesive=True)
-    adhesion, force_control = loading.adhesion, loading.force_control
-    unit = jnp.where(force_control, scales.force, scales.normal)
-    reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=force_control)
-    law: CurveLaw
+    unit = jnp.where(loading.force_control, scales.force, scales.normal)
+    reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
+    law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
-    if numerics.model == "maugis_dugdale":
-        law = DugdaleLaw.scaled(
-            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
-        )
+    if isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
-        double_hertz = DoubleHertzLaw.scaled(
-            loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
+        curve = build_double_hertz_curve(law, reach)
+    return scales, unit, law, curve
+
+
+def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> DugdaleLaw | DoubleHertzLaw:
+    """The Maugis–Dugdale or Greenwood–Johnson law of the loading in the units `scales`."""
+    adhesion = loading.adhesion
+    if numerics.model == "maugis_dugdale":
+        return DugdaleLaw.scaled(
+            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
         )
-        law, curve = double_hertz, build_double_hertz_curve(double_hertz, reach)
-    program = (force_control, loading.directions, loading.targets / unit, loading.legs)
-    return scales, march_curve(law, curve, program, numerics)
+    return DoubleHertzLaw.scaled(
+        loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
+    )

@@ -3,8 +3,10 @@ row's inputs (in the order of the fit), to the vector of the observables.
 
 `simulation_model` is the simulation itself (`impact.as_function`; impacts only); `theory_model`
 the closed form of the Thornton–Ning impact (3.50)–(3.51) and its largest force
-(`thornton_ning_max_force`), or of an indentation scene its quasi-static JKR curve (`curve`), a
-fast model for scenes it describes; any other such function may be passed to `impact.fit`.
+(`thornton_ning_max_force`), or of an indentation scene its quasi-static curve (`curve`: JKR with
+attach hysteresis; `range_curve`: Maugis–Dugdale, Greenwood–Johnson), a fast model for scenes it
+describes; any other such function may be passed to `impact.fit`. A model may also offer
+`batched(values, rows)`, the observables of all rows at once (computing what they share once).
 """
 
 import functools

@@ -80,6 +80,11 @@ class Residuals:
     model: Model
 
     def predicted(self, values, rows):
+        """The model at every row: its `batched` form where it has one (which computes what does
+        not depend on the row once), else the model mapped over the rows."""
+        batched = getattr(self.model, "batched", None)
+        if batched is not None:
+            return batched(values, rows)
         return jax.vmap(lambda row: jnp.atleast_1d(self.model(jnp.concatenate([values, row]))))(rows)
 
     def weighted(self, values, data: Measurements):
