@@ -1,6 +1,9 @@
 """Test configuration: float64 physics and whole-loop compilation, as in the CLI entry point, with
-the compilation cache in a temporary directory of this process (never the user's): the
-command-line tests' subprocesses inherit it through IMPACT_CACHE_DIR."""
+the compilation cache in a temporary directory of this test run (never the user's). The process
+that starts the run makes it and removes it at its end; pytest-xdist's workers, which it starts
+after loading this file, inherit it through IMPACT_TEST_CACHE_DIR, so a program one worker
+compiled is loaded by the other instead of compiled again; the command-line tests'
+subprocesses inherit it through IMPACT_CACHE_DIR."""
 
 import atexit
 import os
@@ -9,8 +12,11 @@ import tempfile
 
 import impact
 
-_CACHE = tempfile.mkdtemp(prefix="impact-test-cache-")
-atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
-os.environ["IMPACT_CACHE_DIR"] = _CACHE
+_RUN_CACHE = "IMPACT_TEST_CACHE_DIR"
+
+if _RUN_CACHE not in os.environ:
+    os.environ[_RUN_CACHE] = tempfile.mkdtemp(prefix="impact-test-cache-")
+    atexit.register(shutil.rmtree, os.environ[_RUN_CACHE], ignore_errors=True)
+os.environ["IMPACT_CACHE_DIR"] = os.environ[_RUN_CACHE]
 
 impact.configure()

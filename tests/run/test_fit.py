@@ -169,14 +169,12 @@ def test_a_relative_sigma_of_a_zero_value_is_refused(scene):
     assert caught.value.problems == [("observables.max_force.relative", "σ·|value| is 0 in row 5")]
 
 
-def test_the_simulation_fits_as_the_closed_form_does_and_a_second_fit_reuses_its_programs(scene):
+def test_the_simulation_fits_as_the_closed_form_does_and_a_second_fit_reuses_its_programs(scene, drop_fit):
     """model 'simulation' (impact.as_function through Levenberg–Marquardt, vmapped over the rows
-    under optimistix's jit) finds the closed-form fit; a second fit of the same model compiles
-    nothing."""
-    data = DROPS.drop_data(seed=3)
-    arguments = (scene, data, PARAMETERS, OBSERVABLES, ["initial.velocity"])
-    closed_form = impact.fit(*arguments, model="theory")
-    simulated = impact.fit(*arguments)
+    under optimistix's jit) finds the closed-form fit of the same data (`drop_fit`); a second
+    fit of the same model compiles nothing."""
+    closed_form = drop_fit
+    simulated = impact.fit(scene, DROPS.drop_data(seed=3), PARAMETERS, OBSERVABLES, ["initial.velocity"])
     assert simulated.converged and simulated.iterations <= 15
     for path, value in closed_form.values.items():
         assert simulated.values[path] == pytest.approx(value, rel=1e-6)

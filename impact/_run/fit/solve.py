@@ -159,7 +159,9 @@ def fit_spec(
     measured = np.stack([spec.data[name] for name in spec.observables], axis=1)
     sigma = np.ones(measured.shape) if given is None else given
     rows = np.stack([spec.data[column] for column in spec.row_columns], axis=1).reshape(spec.rows, -1)
-    data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, 1.0)))
+    # The scale a strong float64 like the one that replaces it below: a weakly typed 1.0 made
+    # `_optimum` compile twice, at the start and at the optimum (a minute of the simulation model).
+    data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, np.float64(1.0))))
     start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
     data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(_optimum(residuals, start, data)[1] ** 2)))
     verbose = Reporter(bounds, names, progress, float(data.scale)) if progress else False
