@@ -12,6 +12,7 @@ import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import optimistix as optx
 
 from .._law.scales import Scales
 from .carry import Outcome
@@ -36,6 +37,15 @@ ADJOINTS = {"checkpoint": dfx.RecursiveCheckpointAdjoint, "forward": dfx.Forward
 # Events are located by bisection inside the step that crossed, to a bracket of
 # 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
 _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
+
+# A ride's state is padded with zeros to a multiple of this many components, so that a point's
+# result does not depend on its batch. A Runge–Kutta step sums its stages with the tableau's
+# constant weights; under vmap that sum is one matrix–vector product over every lane's
+# components, which XLA:CPU computes in tiles of 4 rows (the register width it assumes where
+# vectors are off: `impact._core.runtime.COMPILER_OPTIONS`) with fused multiply–adds, and the
+# rows left over one at a time without: with 3 components, the last lane of a batch of 7 rounded
+# differently from the same point in a batch of 8.
+_STATE_TILE = 4
 
 
 class AbstractIntegrator(eqx.Module):
@@ -72,24 +82,39 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
 
     def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> dfx.Solution:
         """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
-        upwards (located by bisection to a few ulps) or `horizon` is reached."""
-        return dfx.diffeqsolve(
-            dfx.ODETerm(vector_field),
+        upwards (located by bisection to a few ulps) or `horizon` is reached.
+
+        The state is integrated padded with zeros (`_STATE_TILE`); the solution's `ys` are
+        not, its dense output is (`dense_states` strips it)."""
+        size = y0.shape[0]
+        padding = jnp.zeros(-size % _STATE_TILE)
+
+        def padded_field(t, y, args):
+            return jnp.concatenate([vector_field(t, y[:size], args), padding])
+
+        def event(t, y, args, **kwargs):
+            return first_event(t, y[:size], args, **kwargs)
+
+        def norm(error):  # the padding's zero error left out: the steps of the unpadded state
+            return optx.rms_norm(error[:size])
+
+        solution = dfx.diffeqsolve(
+            dfx.ODETerm(padded_field),
             SOLVERS[self.method](),
             t0=0.0,
             t1=horizon,
             dt0=None,
-            y0=y0,
+            y0=jnp.concatenate([y0, padding]),
             args=args,
             saveat=dfx.SaveAt(t1=True, dense=dense),
-            stepsize_controller=dfx.PIDController(rtol=self.rtol, atol=self.atol),
-            event=dfx.Event(
-                first_event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True
-            ),
+            stepsize_controller=dfx.PIDController(rtol=self.rtol, atol=self.atol, norm=norm),
+            event=dfx.Event(event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True),
             max_steps=self.max_steps,
             adjoint=ADJOINTS[self.adjoint](),
             throw=False,
         )
+        assert solution.ys is not None, "a ride saves its end state (SaveAt(t1=True))"
+        return eqx.tree_at(lambda s: s.ys, solution, solution.ys[..., :size])
 
 
 def located_end(solution: dfx.Solution, conditions, args):
@@ -112,5 +137,6 @@ def located_end(solution: dfx.Solution, conditions, args):
 def dense_states(solution: dfx.Solution, samples: int):
     """The ride's state at `samples` evenly spaced pseudo-times ([samples, 3])."""
     assert solution.ts is not None, "a ride saves its end time (SaveAt(t1=True))"
+    assert solution.ys is not None
     pseudo = jnp.linspace(0.0, solution.ts[-1], samples)
-    return jax.vmap(solution.evaluate)(pseudo)
+    return jax.vmap(solution.evaluate)(pseudo)[:, : solution.ys.shape[-1]]
