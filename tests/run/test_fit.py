@@ -12,6 +12,7 @@ import pytest
 
 import impact
 from impact._run.fit.bounds import Bounds
+from impact._run.fit.uncertainty import uncertainty
 from impact._scene.fit_spec import ParameterSpec
 from tests.run.test_compilation import Compiles
 
@@ -78,6 +79,18 @@ def test_restitution_alone_reports_the_combination_it_fixes(scene):
     assert all(math.isnan(error) for error in result.standard_errors.values())
     invariant = result.values[ADHESION] * result.values[MODULUS] ** -0.4
     assert invariant == pytest.approx(DROPS.WORK_OF_ADHESION * DROPS.E_STAR**-0.4, rel=0.02)
+
+
+def test_a_loosely_bound_parameter_is_reported_in_words():
+    """Determined, but with a standard error five times its value (as the Maugis–Dugdale range
+    near the JKR limit): said in words, beside its error."""
+    jacobian = np.array([[100.0, 0.0], [0.0, 2.0]])  # covariance diag(1e-4, 0.25)
+    found = uncertainty(jacobian, np.array([1.0, 0.1]), ["a", "b"], ["force"], 1.0)
+    assert found.standard_errors == pytest.approx([0.01, 0.5], rel=1e-12)
+    assert found.unidentifiable == [
+        "force alone fixes b only to ±500% of its value (0.1 ± 0.5): the model hardly changes with it, "
+        "so fix it or add data that depend on it"
+    ]
 
 
 def _line(x):

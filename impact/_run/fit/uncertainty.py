@@ -6,7 +6,8 @@ multiplied by χ²/dof when σ is unknown (a common σ estimated from the scatte
 computed in relative parameters (d ln p) and on the correlation-scaled matrix, whose
 eigenvalues then compare parameters of any unit: an eigenvalue below `IDENTIFIABILITY` times
 the largest marks a direction the data do not determine, reported in words, and the covariance
-is the pseudo-inverse on the determined directions only.
+is the pseudo-inverse on the determined directions only. A determined parameter whose standard
+error exceeds its value is reported in words as well.
 """
 
 from collections.abc import Sequence
@@ -19,12 +20,17 @@ import numpy as np
 IDENTIFIABILITY = 1e-9
 # Components of an undetermined direction below this fraction of its largest are left out.
 INVOLVED = 0.05
+# A determined parameter whose standard error exceeds this fraction of its value is reported in
+# words too: the data bound it, but not even to its order of magnitude (e.g. the Maugis–Dugdale
+# range near the JKR limit, where the curve depends on it weakly but not exactly not at all).
+LOOSE = 1.0
 
 
 @dataclass(frozen=True)
 class Uncertainty:
     """Covariance [p, p] in the physical units, standard errors [p] (nan: not determined by the
-    data), correlation [p, p], and each undetermined direction in words."""
+    data), correlation [p, p], and each undetermined direction (and each parameter determined
+    more loosely than its own size) in words."""
 
     covariance: np.ndarray
     standard_errors: np.ndarray
@@ -55,7 +61,24 @@ def uncertainty(
     correlation = covariance / np.outer(errors, errors)
     np.fill_diagonal(correlation, np.where(undetermined, np.nan, 1.0))
     words = [describe(direction, names, observed) for direction in directions]
+    loose = np.flatnonzero(~undetermined & (errors > LOOSE * np.abs(values)))
+    words += [describe_loose(names[index], values[index], errors[index], observed) for index in loose]
     return Uncertainty(covariance, errors, correlation, words)
+
+
+def _data(observed: Sequence[str]) -> tuple[str, str]:
+    """("restitution alone" | "force and max_force", "fixes" | "fix")."""
+    data = " and ".join(observed) + (" alone" if len(observed) == 1 else "")
+    return data, "fixes" if len(observed) == 1 else "fix"
+
+
+def describe_loose(name: str, value: float, error: float, observed: Sequence[str]) -> str:
+    """A parameter the data bound only loosely (standard error beyond `LOOSE` of its value)."""
+    data, verb = _data(observed)
+    return (
+        f"{data} {verb} {name} only to ±{error / abs(value):.0%} of its value ({value:.4g} ± {error:.2g}): "
+        "the model hardly changes with it, so fix it or add data that depend on it"
+    )
 
 
 def describe(direction: np.ndarray, names: Sequence[str], observed: Sequence[str]) -> str:
@@ -63,8 +86,7 @@ def describe(direction: np.ndarray, names: Sequence[str], observed: Sequence[str
     for two of them the one product of powers the data do fix."""
     direction = direction / direction[np.argmax(np.abs(direction))]
     involved = [index for index, part in enumerate(direction) if abs(part) >= INVOLVED]
-    data = " and ".join(observed) + (" alone" if len(observed) == 1 else "")
-    verb = "fixes" if len(observed) == 1 else "fix"
+    data, verb = _data(observed)
     if len(involved) == 1:
         return f"{data} {verb} no value of {names[involved[0]]}: the model does not change with it"
     listed = ", ".join(names[index] for index in involved[:-1]) + f" and {names[involved[-1]]}"
