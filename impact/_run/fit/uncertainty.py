@@ -62,7 +62,7 @@ def uncertainty(
     np.fill_diagonal(correlation, np.where(undetermined, np.nan, 1.0))
     words = [describe(direction, names, observed) for direction in directions]
     loose = np.flatnonzero(~undetermined & (errors > LOOSE * np.abs(values)))
-    words += [describe_loose(names[index], values[index], errors[index], observed) for index in loose]
+    words += [describe_loose(names[index], values[index], errors[index], observed) for index in loose.tolist()]
     return Uncertainty(covariance, errors, correlation, words)
 
 
