@@ -3,7 +3,6 @@
 import functools
 
 import equinox as eqx
-import jax
 import jax.numpy as jnp
 
 from ..._core.pytree import replace_where
@@ -11,7 +10,7 @@ from ..codes import RESULT_CODE
 from .continuum_cascade import after_cascade, cascade_bracket, cascade_outcome
 from .continuum_pieces import move, plan
 from .continuum_state import Carry, ContinuumMarch
-from .events import EventLog
+from .events import EventLog, empty_record, run_march
 from .loading import FREE, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built, bracketed_root, edge_path
 
@@ -34,22 +33,12 @@ def march_continuum(built: Built, numerics: QuasiStaticNumerics) -> QuasiStaticO
         grid=jnp.linspace(0.0, 1.0, numerics.samples),
         extent=built.law.extent(),
     )
-
-    def running(c: Carry):
-        return ~c.done & (c.steps < steps)
-
-    end = jax.lax.while_loop(running, functools.partial(step, march), initial(built, numerics, steps))
-    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
-    return QuasiStaticOutcome(
-        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=built.top
-    )
+    return run_march(functools.partial(step, march), initial(built, numerics, steps), steps, built.top)
 
 
 def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
     """The state before the first step: apart, on the first leg, with empty buffers for the
     curve and its events (or done at once where a branch table overflowed)."""
-    rows = steps * (numerics.samples + 8)
-    nan = jnp.full((), jnp.nan)
     carry = Carry(
         leg=jnp.zeros((), int),
         direction=jnp.asarray(built.directions[0], int),
@@ -59,15 +48,7 @@ def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
         wall=jnp.asarray(False),
         a=jnp.zeros(()),
         d=jnp.zeros(()),
-        pre=jnp.zeros(2),
-        pull_off=jnp.full(3, nan),
-        status=jnp.asarray(RESULT_CODE["separated"]),
-        done=jnp.asarray(False),
-        steps=jnp.zeros((), int),
-        rows=jnp.full((rows, 4), nan),
-        count=jnp.zeros((), int),
-        events=jnp.full((4 * steps, 2), -1),
-        event_count=jnp.zeros((), int),
+        **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
     attach, detach = built.problem.attach, built.problem.detach
     overflow = attach.overflow | detach.overflow | built.attach3.overflow | built.detach3.overflow

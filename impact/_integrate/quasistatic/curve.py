@@ -29,7 +29,7 @@ from ..._core.search import bisect
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve, CurveLaw, force_turns
 from ..codes import RESULT_CODE
-from .events import EventLog
+from .events import EventLog, empty_record, run_march
 from .loading import BISECTION_STEPS, EVENT, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
 
 
@@ -105,23 +105,13 @@ def march_curve(
         grid=jnp.linspace(0.0, 1.0, numerics.samples),
     )
     steps = numerics.steps(targets.shape[0])
-
-    def running(c: CurveCarry):
-        return ~c.done & (c.steps < steps)
-
     start = initial(march, numerics, steps)
     start = replace_where(start, overflow | curve.overflow, status=RESULT_CODE["branch_overflow"], done=True)
-    end = jax.lax.while_loop(running, functools.partial(step, march), start)
-    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
-    top = march.state(curve.nodes[-1])[0]
-    return QuasiStaticOutcome(
-        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=top
-    )
+    return run_march(functools.partial(step, march), start, steps, march.state(curve.nodes[-1])[0])
 
 
 def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> CurveCarry:
     """Apart, at the depth where the interaction starts, on the first leg; empty buffers."""
-    nan = jnp.full((), jnp.nan)
     return CurveCarry(
         leg=jnp.zeros((), int),
         direction=jnp.asarray(march.directions[0], int),
@@ -131,15 +121,7 @@ def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> Cur
         s=jnp.zeros(()),
         segment=jnp.zeros((), int),
         d=jnp.asarray(march.law.onset, float),
-        pre=jnp.zeros(2),
-        pull_off=jnp.full(3, nan),
-        status=jnp.asarray(RESULT_CODE["separated"]),
-        done=jnp.asarray(False),
-        steps=jnp.zeros((), int),
-        rows=jnp.full((steps * (numerics.samples + 8), 4), nan),
-        count=jnp.zeros((), int),
-        events=jnp.full((4 * steps, 2), -1),
-        event_count=jnp.zeros((), int),
+        **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
 
 

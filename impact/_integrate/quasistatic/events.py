@@ -1,8 +1,46 @@
-"""The points and events of one step of a quasi-static march, and how they reach the carry."""
+"""What every quasi-static march records (its points, events, pull-off and status), how one
+step's points and events reach the carry, and the loop that steps a march to its outcome."""
 
+from collections.abc import Callable
+
+import jax
 import jax.numpy as jnp
 
 from ..._core.pytree import replace
+from ..codes import RESULT_CODE
+from .loading import QuasiStaticOutcome
+
+
+def empty_record(rows: int, events: int) -> dict[str, jax.Array]:
+    """The record fields every march carry shares, before the first step: no instability begun
+    (`pre`), no pull-off, separated, not done, no step, and empty buffers for `rows` points
+    (a, d, F, leg) and `events` events (row, kind)."""
+    nan = jnp.full((), jnp.nan)
+    return {
+        "pre": jnp.zeros(2),
+        "pull_off": jnp.full(3, nan),
+        "status": jnp.asarray(RESULT_CODE["separated"]),
+        "done": jnp.asarray(False),
+        "steps": jnp.zeros((), int),
+        "rows": jnp.full((rows, 4), nan),
+        "count": jnp.zeros((), int),
+        "events": jnp.full((events, 2), -1),
+        "event_count": jnp.zeros((), int),
+    }
+
+
+def run_march(step: Callable, start, steps: int, top) -> QuasiStaticOutcome:
+    """Step the carry `start` until it is done or has taken `steps` steps (then its status is
+    phase_limit); `top`: the radius the march's tables reach."""
+
+    def running(c):
+        return ~c.done & (c.steps < steps)
+
+    end = jax.lax.while_loop(running, step, start)
+    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
+    return QuasiStaticOutcome(
+        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=top
+    )
 
 
 class EventLog:

@@ -9,7 +9,7 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.springs import TabulatedSpringArray
 from ..codes import RESULT_CODE
-from .events import EventLog
+from .events import EventLog, empty_record, run_march
 from .loading import EVENT, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built
 
@@ -92,21 +92,12 @@ def march_springs(built: Built, numerics: QuasiStaticNumerics, length, count) ->
     assert numerics.springs is not None, "a spring-array march needs the array's capacity"
     march = SpringMarch(built=built, array=spring_array(built, numerics.springs, count, length), count=count)
     steps = numerics.steps(built.targets.shape[0])
-
-    def running(c):
-        return ~c.done & (c.steps < steps)
-
-    end = jax.lax.while_loop(running, functools.partial(step, march), initial(built, steps))
-    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
-    return QuasiStaticOutcome(
-        status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=built.top
-    )
+    return run_march(functools.partial(step, march), initial(built, steps), steps, built.top)
 
 
 def initial(built: Built, steps: int) -> SpringCarry:
     """The state before the first step: apart, no spring attached, on the first leg, with empty
     buffers for the curve and its events."""
-    nan = jnp.full((), jnp.nan)
     return SpringCarry(
         leg=jnp.zeros((), int),
         direction=jnp.asarray(built.directions[0], int),
@@ -115,15 +106,7 @@ def initial(built: Built, steps: int) -> SpringCarry:
         touching=jnp.asarray(False),
         k=jnp.zeros((), int),
         d=jnp.zeros(()),
-        pre=jnp.zeros(2),
-        pull_off=jnp.full(3, nan),
-        status=jnp.asarray(RESULT_CODE["separated"]),
-        done=jnp.asarray(False),
-        steps=jnp.zeros((), int),
-        rows=jnp.full((2 * steps + 64 * built.targets.shape[0], 4), nan),
-        count=jnp.zeros((), int),
-        events=jnp.full((steps // 2 + 64, 2), -1),
-        event_count=jnp.zeros((), int),
+        **empty_record(rows=2 * steps + 64 * built.targets.shape[0], events=steps // 2 + 64),
     )
 
 
