@@ -3,7 +3,6 @@ round-trip), and bad fit files refused with exit code 2, the field named and not
 
 import dataclasses
 import math
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -70,17 +69,28 @@ def test_fit_summary_writes_null_for_an_undetermined_error():
     assert math.isfinite(summary["chi2"])
 
 
-def _bad_fit(tmp_path: Path, change=None, csv=None) -> Path:
-    data = yaml.safe_load(DROP_TEST.read_text())
-    data["scene"] = str(FITS.parent / "thornton_ning.yaml")
-    shutil.copy(FITS / "drops.csv", tmp_path / "drops.csv")
-    if csv is not None:
-        (tmp_path / "drops.csv").write_text(csv((FITS / "drops.csv").read_text()))
-    for key, value in (change or {}).items():
-        data[key] = value
+def _bad_copy(tmp_path: Path, example: Path, change=None, csv=None) -> Path:
+    """The fit file `example` and its data copied to `tmp_path`, its keys changed by `change` and
+    its data text by `csv`; a scene given as a file is named by its absolute path."""
+    data = yaml.safe_load(example.read_text())
+    if isinstance(data["scene"], str):
+        data["scene"] = str((example.parent / data["scene"]).resolve())
+    text = (example.parent / data["data"]).read_text()
+    (tmp_path / data["data"]).write_text(csv(text) if csv else text)
+    data.update(change or {})
     path = tmp_path / "bad.yaml"
     path.write_text(yaml.safe_dump(data))
     return path
+
+
+def _refused(tmp_path: Path, path: Path, field: str, message: str) -> None:
+    """`impact fit path` exits 2 naming the field and the message, without a traceback, writing nothing."""
+    folder = tmp_path / "out"
+    result = invoke("fit", path, "-o", folder)
+    assert result.exit_code == 2, result.output
+    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
+    assert "Traceback" not in result.output
+    assert not folder.exists()
 
 
 ADHESION = "effects.adhesion.work_of_adhesion"
@@ -134,28 +144,12 @@ def _nan_in_row_3(text: str) -> str:
     ids=["unknown path", "static input", "missing column", "negative sigma", "nan in data", "start outside bounds"],
 )
 def test_bad_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, change, csv, field, message):
-    path = _bad_fit(tmp_path, change, csv)
-    folder = tmp_path / "out"
-    result = invoke("fit", path, "-o", folder)
-    assert result.exit_code == 2, result.output
-    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
-    assert "Traceback" not in result.output
-    assert not folder.exists()
+    _refused(tmp_path, _bad_copy(tmp_path, DROP_TEST, change, csv), field, message)
 
 
 # --- indentation curves (the AFM use) and --set ----------------------------------------------
 
 AFM_CURVE = FITS / "afm_curve.yaml"
-
-
-def _bad_afm_fit(tmp_path: Path, change=None, csv=None) -> Path:
-    data = yaml.safe_load(AFM_CURVE.read_text())
-    text = (FITS / "afm_curve.csv").read_text()
-    (tmp_path / "afm_curve.csv").write_text(csv(text) if csv else text)
-    data.update(change or {})
-    path = tmp_path / "bad.yaml"
-    path.write_text(yaml.safe_dump(data))
-    return path
 
 
 def _without_indentation(text: str) -> str:
@@ -199,13 +193,7 @@ def _misspelt_retract(text: str) -> str:
     ids=["missing control column", "unknown branch label", "missing branch column", "impact observable", "simulation"],
 )
 def test_bad_indentation_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, change, csv, field, message):
-    path = _bad_afm_fit(tmp_path, change, csv)
-    folder = tmp_path / "out"
-    result = invoke("fit", path, "-o", folder)
-    assert result.exit_code == 2, result.output
-    assert f"{field}: {message}" in " ".join(result.output.split()), result.output
-    assert "Traceback" not in result.output
-    assert not folder.exists()
+    _refused(tmp_path, _bad_copy(tmp_path, AFM_CURVE, change, csv), field, message)
 
 
 def test_the_afm_example_fits_with_set_overrides(tmp_path):
