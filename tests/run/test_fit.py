@@ -2,7 +2,6 @@
 few steps, a linear model meets ordinary least squares exactly, bounds hold, and a combination
 the data cannot separate is reported in words."""
 
-import importlib.util
 import math
 from pathlib import Path
 
@@ -14,6 +13,7 @@ import impact
 from impact._run.fit.bounds import Bounds
 from impact._run.fit.uncertainty import uncertainty
 from impact._scene.fit_spec import ParameterSpec
+from tests.run.fit_examples import fit_script
 from tests.run.test_compilation import Compiles
 
 CONFIGS = Path(__file__).parents[2] / "configs"
@@ -25,14 +25,7 @@ PARAMETERS = {
 OBSERVABLES = {"restitution": {"sigma": "restitution_sigma"}, "max_force": {"sigma": 0.02, "relative": True}}
 
 
-def _drop_data_module():
-    spec = importlib.util.spec_from_file_location("make_drop_data", CONFIGS / "fits" / "make_drop_data.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-DROPS = _drop_data_module()
+DROPS = fit_script("make_drop_data")
 
 
 @pytest.fixture(scope="module")

@@ -3,9 +3,7 @@ the quasi-static march on both branches and under both controls, its derivatives
 differences, and the synthetic AFM curve gives back its modulus, work of adhesion and tip radius
 within 3 standard errors in at most 15 steps."""
 
-import importlib.util
 import math
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
@@ -16,20 +14,13 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
+from tests.run.fit_examples import FITS, fit_script
 from tests.run.test_compilation import Compiles
 
-FITS = Path(__file__).parents[2] / "configs" / "fits"
 ADHESION, MODULUS, RADIUS = "effects.adhesion.work_of_adhesion", "material.E_star", "body.profile.R"
 
 
-def _module(name: str):
-    spec = importlib.util.spec_from_file_location(name, FITS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-AFM = _module("make_afm_data")
+AFM = fit_script("make_afm_data")
 FIT_FILE = yaml.safe_load((FITS / "afm_curve.yaml").read_text())
 TRUE_SCENE = {
     **FIT_FILE["scene"],
@@ -40,7 +31,7 @@ TRUE_SCENE = {
 
 @pytest.fixture(scope="module")
 def coverage():
-    return _module("coverage")
+    return fit_script("coverage")
 
 
 @pytest.fixture(scope="module")

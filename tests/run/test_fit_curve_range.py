@@ -3,9 +3,6 @@
 its derivatives meet central differences, a hysteresis fit recovers both works of adhesion
 within 3 standard errors, and what the model cannot describe is refused by name."""
 
-import importlib.util
-from pathlib import Path
-
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -15,8 +12,8 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
+from tests.run.fit_examples import FITS, fit_script
 
-FITS = Path(__file__).parents[2] / "configs" / "fits"
 ADHESION, APPROACH, MODULUS = (
     "effects.adhesion.work_of_adhesion",
     "effects.adhesion.approach_work_of_adhesion",
@@ -25,14 +22,7 @@ ADHESION, APPROACH, MODULUS = (
 RANGE = "effects.adhesion.range"
 
 
-def _module(name: str):
-    spec = importlib.util.spec_from_file_location(name, FITS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-MAUGIS = _module("make_maugis_data")
+MAUGIS = fit_script("make_maugis_data")
 MAUGIS_FIT = yaml.safe_load((FITS / "afm_maugis.yaml").read_text())
 MAUGIS_SCENE = {
     **MAUGIS_FIT["scene"],
