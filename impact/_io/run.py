@@ -32,6 +32,7 @@ import h5py
 import numpy as np
 
 from .._run.impacts import Result
+from .._run.losses import NAMED_LOSSES
 from .files import atomic_path
 from .h5md import current_user, open_run, read_scene, read_string, write_header, write_scene
 
@@ -55,12 +56,9 @@ SCALAR_UNITS = {
     "body_velocity_after": "m s-1",
     "counterpart_velocity_after": "m s-1",
 }
-# Scalars derived from the others (`Result` properties), written where the scene names what they
-# describe and not read back: name → (unit, whether the scene has it).
-DERIVED_UNITS = {
-    "adhesion_hysteresis": ("J", lambda scene: scene.effects.adhesion is not None),
-    "unrecovered_elastic_energy": ("J", lambda scene: scene.effects.damping is not None),
-}
+# Losses derived from the others (`Result` properties, in J), written where the scene names what
+# they describe (`NAMED_LOSSES`) and not read back.
+DERIVED_LOSSES = ("adhesion_hysteresis", "unrecovered_elastic_energy")
 # Time series under observables/contact/: Result field → (unit, description).
 CONTACT_SERIES = {
     "indentation": ("m", "indentation d of the half-space; > 0 pressed in, < 0 a gap"),
@@ -155,7 +153,7 @@ def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Grou
     contact = observables.create_group("contact")
     for name, (unit, description) in CONTACT_SERIES.items():
         _link_clock(clock, _series(contact.create_group(name), getattr(result, name), unit, description))
-    derived = {name: unit for name, (unit, named) in DERIVED_UNITS.items() if named(result.scene)}
+    derived = {name: "J" for name in DERIVED_LOSSES if NAMED_LOSSES[name](result.scene)}
     for name, unit in {**SCALAR_UNITS, **derived}.items():
         dataset = observables.create_dataset(name, data=getattr(result, name))
         if unit:

@@ -6,11 +6,23 @@ On SI values, floats or traced arrays: a sweep computes them inside its compiled
 the arithmetic `simulate` uses for one impact (a loss that cannot occur is the float 0, so that
 `simulate` runs no JAX operation for it)."""
 
+from collections.abc import Callable
+
 from .. import theory
 from .._integrate.adhesive_plastic import AdhesivePlastic
 from .._integrate.base import AbstractIntegrator
 from .._integrate.plastic import Plastic
 from .._integrate.problem import Physics
+from .._scene.scene import Scene
+
+# Each named loss, and whether a scene names the effect it belongs to (where it does not, the
+# loss is 0 and the outputs leave it out).
+NAMED_LOSSES: dict[str, Callable[[Scene], bool]] = {
+    "plastic_work": lambda scene: scene.effects.plasticity is not None,
+    "viscous_work": lambda scene: scene.effects.damping is not None,
+    "adhesion_hysteresis": lambda scene: scene.effects.adhesion is not None,
+    "unrecovered_elastic_energy": lambda scene: scene.effects.damping is not None,
+}
 
 
 def plastic_work(integrator: AbstractIntegrator, physics: Physics, max_indentation, dissipated):

@@ -11,6 +11,7 @@ from ..._scene.paths import with_values
 from ..._scene.scene import Scene
 from ..._scene.sweep_spec import SweepSpec
 from ..impacts import velocities_after
+from ..losses import NAMED_LOSSES
 
 # Scalar results per point: name → (dtype, fill value for points not run, unit, description).
 RESULTS = {
@@ -65,14 +66,11 @@ RESULTS = {
 # The columns a sweep holds only where its base scene names what they describe (an axis can set
 # a named effect's values, never name one).
 NAMED_BY: dict[str, Callable[[Scene], bool]] = {
-    "plastic_work": lambda scene: scene.effects.plasticity is not None,
-    "viscous_work": lambda scene: scene.effects.damping is not None,
-    "unrecovered_elastic_energy": lambda scene: scene.effects.damping is not None,
-    "adhesion_hysteresis": lambda scene: scene.effects.adhesion is not None,
+    **NAMED_LOSSES,
     "body_velocity_after": lambda scene: scene.counterpart is not None,
     "counterpart_velocity_after": lambda scene: scene.counterpart is not None,
 }
-LOSSES = ("plastic_work", "viscous_work", "adhesion_hysteresis", "unrecovered_elastic_energy")
+LOSSES = tuple(NAMED_LOSSES)
 # The columns computed on the host from a chunk's solved columns (the rest come from the batch).
 LAB_VELOCITIES = ("body_velocity_after", "counterpart_velocity_after")
 SOLVED = tuple(name for name in RESULTS if name not in LAB_VELOCITIES)
