@@ -6,9 +6,9 @@ changes process-wide settings); call it first in scripts that use the Python API
 """
 
 import functools
+import importlib.util
 import os
 from collections.abc import Callable
-from importlib import metadata
 from pathlib import Path
 from typing import ParamSpec, TypeVar
 
@@ -30,9 +30,10 @@ COMPILER_OPTIONS = {"xla_cpu_prefer_vector_width": 64}
 
 
 def _accelerator_plugins() -> bool:
-    """Whether a GPU/TPU plugin of jax is installed (the CPU option is then not added)."""
-    names = (dist.metadata["Name"] or "" for dist in metadata.distributions())
-    return any(name.lower().replace("_", "-").startswith(("jax-cuda", "jax-rocm", "libtpu")) for name in names)
+    """Whether a GPU/TPU plugin of jax is installed (the CPU option is then not added): the
+    `jax_plugins` namespace its PJRT part installs (jax-cuda*, jax-rocm*), or libtpu. Looked up
+    by module name: reading every installed distribution's metadata took 0.1–0.2 s a process."""
+    return any(importlib.util.find_spec(name) is not None for name in ("jax_plugins", "libtpu"))
 
 
 def configure(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = True) -> Path | None:

@@ -4,35 +4,39 @@ physics and integrates it, phase by phase, to an `Outcome`.
 An integrator is an `equinox.Module` whose fields are its settings (solver, tolerances, step).
 Its string and integer settings are static; its float settings are static too when given as
 Python floats (a new value recompiles) and traced when given as arrays (a benchmark sweeps them).
+
+diffrax and optimistix are imported where a ride is traced, not with this module: a run whose
+program comes from the compilation cache (`impact._run.programs`) never loads them (~0.5 s).
 """
 
 import abc
+from typing import TYPE_CHECKING
 
-import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
-import optimistix as optx
 
 from .._law.scales import Scales
 from .carry import Outcome
 from .problem import Options, Physics
-from .rootfind import BracketBisection
 
-# The diffrax solvers a scene may name for the adaptive integrators.
+if TYPE_CHECKING:
+    import diffrax as dfx
+
+# The diffrax solvers a scene may name for the adaptive integrators: scene name → diffrax class.
 SOLVERS = {
-    "tsit5": dfx.Tsit5,
-    "dopri5": dfx.Dopri5,
-    "dopri8": dfx.Dopri8,
-    "bosh3": dfx.Bosh3,
-    "heun": dfx.Heun,
-    "kvaerno3": dfx.Kvaerno3,
-    "kvaerno5": dfx.Kvaerno5,
+    "tsit5": "Tsit5",
+    "dopri5": "Dopri5",
+    "dopri8": "Dopri8",
+    "bosh3": "Bosh3",
+    "heun": "Heun",
+    "kvaerno3": "Kvaerno3",
+    "kvaerno5": "Kvaerno5",
 }
 
 # How a ride is differentiated: diffrax's default (reverse mode through checkpoints), or
 # forward mode (`jax.jvp`, `jax.jacfwd`); each fails under the other kind of derivative.
-ADJOINTS = {"checkpoint": dfx.RecursiveCheckpointAdjoint, "forward": dfx.ForwardMode}
+ADJOINTS = {"checkpoint": "RecursiveCheckpointAdjoint", "forward": "ForwardMode"}
 
 # Events are located by bisection inside the step that crossed, to a bracket of
 # 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
@@ -80,12 +84,17 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
         if self.adjoint not in ADJOINTS:
             raise ValueError(f"unknown adjoint {self.adjoint!r}; known: {', '.join(ADJOINTS)}")
 
-    def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> dfx.Solution:
+    def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> "dfx.Solution":
         """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
         upwards (located by bisection to a few ulps) or `horizon` is reached.
 
         The state is integrated padded with zeros (`_STATE_TILE`); the solution's `ys` are
         not, its dense output is (`dense_states` strips it)."""
+        import diffrax as dfx
+        import optimistix as optx
+
+        from .rootfind import BracketBisection
+
         size = y0.shape[0]
         padding = jnp.zeros(-size % _STATE_TILE)
 
@@ -100,7 +109,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
 
         solution = dfx.diffeqsolve(
             dfx.ODETerm(padded_field),
-            SOLVERS[self.method](),
+            getattr(dfx, SOLVERS[self.method])(),
             t0=0.0,
             t1=horizon,
             dt0=None,
@@ -110,14 +119,14 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
             stepsize_controller=dfx.PIDController(rtol=self.rtol, atol=self.atol, norm=norm),
             event=dfx.Event(event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True),
             max_steps=self.max_steps,
-            adjoint=ADJOINTS[self.adjoint](),
+            adjoint=getattr(dfx, ADJOINTS[self.adjoint])(),
             throw=False,
         )
         assert solution.ys is not None, "a ride saves its end state (SaveAt(t1=True))"
         return eqx.tree_at(lambda s: s.ys, solution, solution.ys[..., :size])
 
 
-def located_end(solution: dfx.Solution, conditions, args):
+def located_end(solution: "dfx.Solution", conditions, args):
     """Where a ride ended: (event found, state y at the end, turned, out of time).
 
     `conditions(y, args)` lists the ride's event conditions in the order (turnaround, end of the
@@ -125,6 +134,8 @@ def located_end(solution: dfx.Solution, conditions, args):
     fired. A located turnaround has v = y[1] = 0 exactly: round-off of either sign would make the
     next phase's combined condition start positive and mask its other events.
     """
+    import diffrax as dfx
+
     assert solution.ys is not None, "a ride saves its end state (SaveAt(t1=True))"
     event_found = solution.result == dfx.RESULTS.event_occurred
     y_end = solution.ys[-1]
@@ -134,7 +145,7 @@ def located_end(solution: dfx.Solution, conditions, args):
     return event_found, y_end, turned, out_of_time
 
 
-def dense_states(solution: dfx.Solution, samples: int):
+def dense_states(solution: "dfx.Solution", samples: int):
     """The ride's state at `samples` evenly spaced pseudo-times ([samples, 3])."""
     assert solution.ts is not None, "a ride saves its end time (SaveAt(t1=True))"
     assert solution.ys is not None

@@ -2,9 +2,8 @@
 carry of the phase loop, its event log and trajectory buffer, and how a stretch of contact is
 booked."""
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import diffrax as dfx
 import equinox as eqx
 import jax
 import jax.numpy as jnp
@@ -14,6 +13,9 @@ from .codes import DONE, EVENT_CODE, FLIGHT, RESULT_CODE
 from .problem import Options
 from .transitions import Next
 from .work import ContactSummary
+
+if TYPE_CHECKING:
+    import diffrax as dfx  # imported where a phase is traced (see `base`)
 
 EVENTS_PER_PHASE = 2
 
@@ -150,13 +152,15 @@ def record_contact(c: Carry, end, summary: ContactSummary, separated, captured) 
 
 
 def close_phase(
-    c: Carry, active, solution: dfx.Solution, end, nxt: Next, out_of_time, summary: ContactSummary
+    c: Carry, active, solution: "dfx.Solution", end, nxt: Next, out_of_time, summary: ContactSummary
 ) -> Carry:
     """Book a contact phase that diffrax ended (kept only where `active`).
 
     `end` is (t, d, v) at its end, `nxt` the phase after its event, `out_of_time` whether the
     time limit fired, `summary` what the phase did.
     """
+    import diffrax as dfx
+
     event_found = solution.result == dfx.RESULTS.event_occurred
     failed = active & ~event_found
     in_time = ~out_of_time
