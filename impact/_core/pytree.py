@@ -1,5 +1,7 @@
-"""Updating equinox modules by field name, and choosing between two of them elementwise."""
+"""Updating equinox modules by field name, reading them as {field name: value}, and choosing between
+two of them elementwise."""
 
+import dataclasses
 from typing import Any, TypeVar
 
 import equinox as eqx
@@ -18,6 +20,11 @@ def replace(module: Module, **changes: Any) -> Module:
         tuple(changes[name] for name in names),
         is_leaf=lambda leaf: leaf is None,
     )
+
+
+def fields(module: eqx.Module) -> dict[str, Any]:
+    """{field name: value} of a module (a pytree `jax.export` can serialize)."""
+    return {field.name: getattr(module, field.name) for field in dataclasses.fields(module)}
 
 
 def where(condition: Any, when_true: Module, when_false: Module) -> Module:

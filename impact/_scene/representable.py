@@ -17,8 +17,10 @@ import jax.numpy as jnp
 import numpy as np
 
 from .. import theory
+from .._core.pytree import fields
 from .._core.runtime import float64
 from .._core.search import log_sign_change
+from .._core.stored import call_stored
 from .._law.scales import Scales, adhesive_scales, energy_scales
 from ..profiles import Profile
 from .domains import WORK_OF_ADHESION, Domain, outside
@@ -92,23 +94,24 @@ def _fall(scene) -> float:
     return 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
 
 
-@eqx.filter_jit
-def _units(inputs: UnitInputs, adhesive: bool) -> tuple[Scales, Scales]:
-    """(units of the run, units of the impact energy alone), for a batch of inputs."""
+def _units(inputs: UnitInputs, adhesive: bool) -> tuple[dict[str, jax.Array], dict[str, jax.Array]]:
+    """(units of the run, units of the impact energy alone) by name, for a batch of inputs."""
 
-    def one(point: UnitInputs):
+    def one(point: UnitInputs) -> tuple[Scales, Scales]:
         energetic = energy_scales(point.profile, point.E_star, point.mass, point.speed)
         if not adhesive:
             return energetic, energetic
         return adhesive_scales(point.profile, point.E_star, point.approach, point.mass, point.speed), energetic
 
-    return jax.vmap(one)(inputs)
+    run, energetic = jax.vmap(one)(inputs)
+    return fields(run), fields(energetic)
 
 
 @float64
 def units_of(inputs: Sequence[UnitInputs], adhesive: bool) -> list[Units]:
     """The units of many scenes of one structure, computed together in batches of `_BATCH` (one
-    compiled program serves every sweep: numbers are traced, the batch shape fixed)."""
+    compiled program serves every sweep: numbers are traced, the batch shape fixed; kept across
+    processes, `call_stored`)."""
     leaves = [jax.tree.leaves(point) for point in inputs]
     treedef = jax.tree.structure(inputs[0])
     units: list[Units] = []
@@ -117,9 +120,10 @@ def units_of(inputs: Sequence[UnitInputs], adhesive: bool) -> list[Units]:
         size = _BATCH if len(inputs) > 1 else 1
         rows = rows + [rows[-1]] * (size - len(rows))
         columns = [np.stack([np.asarray(row[k], np.float64) for row in rows]) for k in range(len(rows[0]))]
-        run, energetic = _units(jax.tree.unflatten(treedef, columns), adhesive)
+        run_fields, energetic = call_stored(_units, jax.tree.unflatten(treedef, columns), adhesive)
+        run = Scales(**{name: np.asarray(value) for name, value in run_fields.items()})  # in NumPy: no dispatch
         values = {name: np.asarray(getattr(run, name)) for name in _UNIT_NAMES}
-        depth = np.asarray(energetic.normal)
+        depth = np.asarray(energetic["normal"])
         for row in range(min(_BATCH, len(inputs) - first)):
             units.append(Units({name: float(column[row]) for name, column in values.items()}, float(depth[row])))
     return units

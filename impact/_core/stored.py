@@ -1,0 +1,103 @@
+"""Traced programs kept across processes: a program whose key is in the compilation cache is not
+traced again (tracing costs Python seconds, besides the compilation that JAX's persistent cache
+saves).
+
+The first call of a program traces it once, serializes it with `jax.export` (StableHLO) into
+`exported/` of the cache directory and runs it; later processes deserialize it and JAX's
+persistent cache supplies its compiled executable. A program is keyed by everything that shapes
+it: impact's source, the versions of jax and the libraries it traces, the platform, its name, the
+static parts of its arguments and the shapes and dtypes of their arrays; a program whose key
+differs is traced anew. Without a cache directory (or without `flatbuffers`, which `jax.export`
+serializes with) it is traced in every process.
+"""
+
+import contextlib
+import functools
+import hashlib
+import importlib.util
+import os
+from collections.abc import Callable
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import equinox as eqx
+import jax
+from jax import export
+
+from .cache import directory_in_use
+from .runtime import COMPILER_OPTIONS
+
+EXPORTED = "exported"  # folder of the serialized programs inside the cache directory
+_LIBRARIES = ("jax", "jaxlib", "diffrax", "equinox", "optimistix", "lineax")
+
+_loaded: dict[str, Callable] = {}  # key → the program of this process
+
+
+def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
+    """`function(*arguments)` compiled, its arrays traced and the rest static (a static part is
+    told apart by its repr); traced only where the cache holds no program of its key.
+
+    `function` returns a pytree of dicts, tuples and lists of arrays (what `jax.export` can
+    serialize: an `equinox.Module` is returned as {field name: value}, e.g. by `pytree.fields`).
+    """
+    dynamic, static = eqx.partition(arguments, eqx.is_array)
+    leaves, structure = jax.tree.flatten(dynamic)
+
+    def traced(*values: jax.Array) -> Any:
+        return function(*eqx.combine(jax.tree.unflatten(structure, values), static))
+
+    name = f"{function.__module__}.{function.__qualname__}"
+    key = _key((name, repr(static), str(structure)), leaves)
+    if key not in _loaded:
+        directory = directory_in_use()
+        if directory is None or not _can_serialize():
+            _loaded[key] = jax.jit(traced, compiler_options=COMPILER_OPTIONS)
+        else:
+            _loaded[key] = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
+    return _loaded[key](*leaves)
+
+
+@functools.cache
+def _can_serialize() -> bool:
+    """Whether `jax.export` can serialize here (it needs the flatbuffers package)."""
+    return importlib.util.find_spec("flatbuffers") is not None
+
+
+def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> Callable:
+    """The stored program at `path`, or `function` traced, exported and stored there (a file
+    that cannot be read back is replaced; one that cannot be written is skipped)."""
+    try:
+        return jax.jit(export.deserialize(bytearray(path.read_bytes())).call, compiler_options=COMPILER_OPTIONS)
+    except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
+        pass
+    exported = export.export(jax.jit(function))(*leaves)
+    partial = path.with_name(f"{path.name}.{os.getpid()}.partial")  # written whole, then renamed
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial.write_bytes(exported.serialize())
+        os.replace(partial, path)
+    except OSError:
+        with contextlib.suppress(OSError):
+            partial.unlink(missing_ok=True)
+    return jax.jit(exported.call, compiler_options=COMPILER_OPTIONS)
+
+
+def _key(static: tuple[str, ...], leaves: list[jax.Array]) -> str:
+    """SHA-256 of the source, the libraries, the platform, the static parts of one program and
+    its traced arguments' shapes and dtypes."""
+    avals = [(leaf.shape, str(leaf.dtype), getattr(leaf, "weak_type", False)) for leaf in leaves]
+    text = repr((_environment(), jax.default_backend(), static, avals))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+@functools.cache
+def _environment() -> str:
+    """impact's source (every module's bytes) and the versions of the traced libraries."""
+    digest = hashlib.sha256()
+    package = Path(__file__).parents[1]
+    for module in sorted(package.rglob("*.py")):
+        digest.update(module.relative_to(package).as_posix().encode())
+        digest.update(module.read_bytes())
+    versions = [f"{name} {metadata.version(name)}" for name in _LIBRARIES]
+    return f"{digest.hexdigest()} {versions}"
