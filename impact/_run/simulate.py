@@ -1,11 +1,14 @@
 """`simulate(scene)`: one scene, of either kind, results back in SI units."""
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .._core.runtime import float64
 from .._scene.scene import Scene, load_scene
 from .impacts import Result, simulate_impact
-from .indentation import IndentationResult, simulate_indentation
+
+if TYPE_CHECKING:
+    from .indentation import IndentationResult  # imported where a scene is one: an impact needs none of it
 
 
 @float64
@@ -16,5 +19,7 @@ def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> 
     float64 whatever JAX's global flag."""
     scene = load_scene(scene)
     if scene.kind == "indentation":
+        from .indentation import simulate_indentation
+
         return simulate_indentation(scene)
     return simulate_impact(scene, trajectory)

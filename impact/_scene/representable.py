@@ -121,7 +121,7 @@ def units_of(inputs: Sequence[UnitInputs], adhesive: bool) -> list[Units]:
         rows = rows + [rows[-1]] * (size - len(rows))
         columns = [np.stack([np.asarray(row[k], np.float64) for row in rows]) for k in range(len(rows[0]))]
         run_fields, energetic = call_stored(_units, jax.tree.unflatten(treedef, columns), adhesive)
-        run = Scales(**{name: np.asarray(value) for name, value in run_fields.items()})  # in NumPy: no dispatch
+        run = jax.tree.map(np.asarray, Scales(**run_fields))  # its velocity and energy in NumPy: no dispatch
         values = {name: np.asarray(getattr(run, name)) for name in _UNIT_NAMES}
         depth = np.asarray(energetic["normal"])
         for row in range(min(_BATCH, len(inputs) - first)):

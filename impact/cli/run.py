@@ -11,18 +11,16 @@ import shutil
 import time
 from datetime import datetime
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import typer
 from rich.text import Text
 
 from .._io.files import write_text
 from .._io.h5md import read_provenance
-from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance, write_indentation
 from .._io.run import read_run, write_run
-from .._plots.indentation import save_indentation_figures
 from .._plots.run import save_figures
 from .._run.impacts import Result
-from .._run.indentation import IndentationResult
 from .._run.simulate import simulate
 from .._scene.errors import SceneError
 from .._scene.overrides import apply_overrides
@@ -30,6 +28,12 @@ from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
 from .console import out, refuse, say, warn
 from .folders import check_output
 from .tables import facts_table, result_table
+
+if TYPE_CHECKING:
+    from .._run.indentation import IndentationResult
+
+# Indentation tests' modules (their quasi-static march, files and figures) are imported where a
+# run is one: an impact's run loads none of them.
 
 
 def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | None, overwrite: bool) -> None:
@@ -57,6 +61,8 @@ def validate_scene(scene_file: Path, assignments: list[str] | None) -> None:
 
 def show_run(run_file: Path) -> None:
     """`impact show`: print the summary of a stored run (run.h5)."""
+    from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance
+
     indentation = is_indentation_run(run_file)
     try:
         result = read_indentation(run_file) if indentation else read_run(run_file)
@@ -95,12 +101,15 @@ def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time:
         refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
     try:
         write_text(folder / "config.yaml", scene_yaml(result.scene))
-        if isinstance(result, IndentationResult):
-            write_indentation(result, folder / "run.h5", wall_time=wall_time)
-            save_indentation_figures(result, folder)
-        else:
+        if isinstance(result, Result):
             write_run(result, folder / "run.h5", wall_time=wall_time)
             save_figures(result, folder)
+        else:
+            from .._io.indentation import write_indentation
+            from .._plots.indentation import save_indentation_figures
+
+            write_indentation(result, folder / "run.h5", wall_time=wall_time)
+            save_indentation_figures(result, folder)
     except BaseException:
         if created:
             shutil.rmtree(folder, ignore_errors=True)

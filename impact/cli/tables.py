@@ -2,6 +2,7 @@
 indentation test, and the summary of a sweep with its sticking velocities."""
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from rich import box
@@ -11,9 +12,11 @@ from rich.text import Text
 from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._plots.figures import si_prefix
 from .._run.impacts import Result
-from .._run.indentation import IndentationResult
-from .._run.sweep import SweepResult, closed_form_names
 from .._scene.scene import Scene
+
+if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs neither
+    from .._run.indentation import IndentationResult
+    from .._run.sweep import SweepResult
 
 OUTCOMES = ("separated", "captured")
 
@@ -41,16 +44,16 @@ def key_value_table(title: str, rows: list[tuple[str, str]]) -> Table:
 
 def result_table(result: "Result | IndentationResult", wall_time: float | None) -> Table:
     """The key results of an impact or an indentation test (wall time in s, if known)."""
-    if isinstance(result, IndentationResult):
-        return indentation_table(result, wall_time)
-    return impact_table(result, wall_time)
+    if isinstance(result, Result):
+        return impact_table(result, wall_time)
+    return indentation_table(result, wall_time)
 
 
 def _wall_time(wall_time: float | None) -> tuple[str, str]:
     return ("wall time", "unknown" if wall_time is None else quantity(wall_time, "s"))
 
 
-def indentation_table(result: IndentationResult, wall_time: float | None) -> Table:
+def indentation_table(result: "IndentationResult", wall_time: float | None) -> Table:
     """The pull-off (last stable state before the contact is lost) and the extremes of a test."""
     pull_off = result.pull_off
 
@@ -207,7 +210,7 @@ def _counterpart_rows(scene: Scene) -> list[tuple[str, str]]:
     return rows
 
 
-def outcome_counts(result: SweepResult) -> dict[str, int]:
+def outcome_counts(result: "SweepResult") -> dict[str, int]:
     """Points per result code name ('not run' included), for the codes that occur."""
     names = result.status_names().reshape(-1)
     return {name: int(np.sum(names == name)) for name in (*RESULT_CODES, "not run") if np.any(names == name)}
@@ -240,8 +243,10 @@ def _run_rows(stats: dict) -> list[tuple[str, str]]:
     return rows
 
 
-def sweep_table(result: SweepResult, stats: dict) -> Table:
+def sweep_table(result: "SweepResult", stats: dict) -> Table:
     """A sweep's points, outcomes, run cost (where `stats` holds a run's) and max |e − e_theory|."""
+    from .._run.sweep import closed_form_names
+
     counts = outcome_counts(result)
     shape = " × ".join(map(str, result.shape))
     rows = [
@@ -269,7 +274,7 @@ def _span(values: np.ndarray, unit: str) -> str:
     return f"{quantity(float(finite.min()), unit)} … {quantity(float(finite.max()), unit)}"
 
 
-def _sweep_energy_rows(result: SweepResult) -> list[tuple[str, str]]:
+def _sweep_energy_rows(result: "SweepResult") -> list[tuple[str, str]]:
     """The named losses and a counterpart's lab velocities where the sweep holds them (their
     range over the separated points), and the energy balance of the points with a physical
     outcome."""
