@@ -98,7 +98,7 @@ _SAFE_OTHERWISE = {
     # Appends chunks in place once the journal holds them whole; a restart repairs it from the journal.
     "_io/sweep.py",
     "_io/sweep_journal.py",  # np.savez into memory; the bytes are written by write_bytes
-    "_run/programs.py",  # the exported-program cache: written whole under a .partial name, then renamed
+    "_core/stored.py",  # the exported-program cache: written whole under a .partial name, then renamed
 }
 
 
