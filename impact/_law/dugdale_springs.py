@@ -42,6 +42,13 @@ _GAP_DECADES = (-30.0, 3.0)
 _END_STEPS = 200
 
 
+def spring_turns(max_turns: int) -> int:
+    """Turning points of d or F a spring curve may hold inside its pieces, for a law whose
+    continuum curve has `max_turns`: near a turning point of the continuum curve, where its slope
+    is about 0, the slopes of a few pieces in a row may alternate in sign."""
+    return 4 * max_turns + 16
+
+
 def piece_state(law: DugdaleLaw, spacing, prefix, k, zone):
     """(d, F, a) on the k-curve at zone radius b (`prefix`[k] = Σ_{i≤k} g(x_i), scaled)."""
     n, stress = law.exponent, law.stress

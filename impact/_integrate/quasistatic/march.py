@@ -1,6 +1,7 @@
 """One quasi-static test: the continuum or the spring-array march of a loading, or the march
 along the equilibrium curve of a finite-range law."""
 
+import dataclasses
 import functools
 
 import equinox as eqx
@@ -10,6 +11,7 @@ import jax.numpy as jnp
 from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.dugdale_springs import build_spring_curve, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
 from .curve import march_curve
@@ -32,6 +34,9 @@ def march(loading: Loading, numerics: QuasiStaticNumerics):
 def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
     """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
     to beyond the program's peak, and the march along it."""
+    if numerics.springs is not None:
+        tabulation = dataclasses.replace(numerics.tabulation, max_turns=spring_turns(numerics.tabulation.max_turns))
+        numerics = dataclasses.replace(numerics, tabulation=tabulation)
     scales, unit, law, curve = finite_range_curve(loading, numerics)
     program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
     return scales, march_curve(law, curve, program, numerics)
@@ -49,10 +54,21 @@ def finite_range_curve(
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
     if isinstance(law, DugdaleLaw):
-        curve = build_curve(law, numerics.tabulation.max_turns, reach)
+        curve = build_curve(law, numerics.tabulation.max_turns, reach)  # enough for the continuum
+        if numerics.springs is not None:
+            curve = spring_curve(law, curve, loading, numerics.springs, numerics.tabulation.max_turns)
     else:
         curve = build_double_hertz_curve(law, reach)
     return scales, unit, law, curve
+
+
+def spring_curve(law: DugdaleLaw, continuum: AbstractCurve, loading: Loading, capacity: int, max_turns: int):
+    """The curve of the loading's Maugis–Dugdale spring array (`capacity` its compiled size): over
+    its `spring_length`, or by default the contact radius where the continuum curve ends (beyond
+    the program's peak)."""
+    reach = continuum.state(law, continuum.nodes[-1])[2]
+    length = jnp.where(jnp.isnan(loading.spring_length), reach, loading.spring_length / law.scales.radial)
+    return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
 
 def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> DugdaleLaw | DoubleHertzLaw:
