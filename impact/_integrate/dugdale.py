@@ -4,10 +4,12 @@ adhesive zone snaps to its first stable radius."""
 
 import functools
 
+import equinox as eqx
 import jax.numpy as jnp
 
-from .._law.curve import top_of_reach
+from .._law.curve import AbstractCurve, top_of_reach
 from .._law.dugdale import DugdaleLaw, build_curve
+from .._law.dugdale_springs import build_spring_curve, spring_turns
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
 from .problem import Options, Physics, scaled_time_limit, touch_velocity
@@ -24,9 +26,10 @@ class MaugisDugdale(AbstractCurveIntegrator):
         scales = adhesive_scales(profile, physics.E_star, adhesion.work_of_adhesion, physics.mass, speed)
         law = DugdaleLaw.scaled(profile, scales, physics.E_star, adhesion.adhesive_stress, adhesion.adhesion_range)
         touch_speed = speed / scales.velocity
+        curve = build_curve(law, options.tabulation.max_turns, functools.partial(top_of_reach, speed=touch_speed))
         return CurveProblem(
             law=law,
-            curve=build_curve(law, options.tabulation.max_turns, functools.partial(top_of_reach, speed=touch_speed)),
+            curve=self.ridden(law, curve, physics, options),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=-(adhesion.adhesion_range + physics.gap) / scales.normal,
             start_velocity=physics.velocity / scales.velocity,
@@ -34,3 +37,23 @@ class MaugisDugdale(AbstractCurveIntegrator):
             bounded=jnp.asarray(True),
             time_limit=scaled_time_limit(physics, scales),
         )
+
+    def ridden(self, law: DugdaleLaw, curve: AbstractCurve, physics: Physics, options: Options) -> AbstractCurve:
+        """The curve the body rides: the continuum's."""
+        return curve
+
+
+class MaugisDugdaleSprings(MaugisDugdale):
+    """Impacts of a spring array with Maugis–Dugdale adhesion (`_law.dugdale_springs`): the body
+    rides the array's equilibrium curve, every spring event a jump between its pieces. The
+    array has N = `Physics.spring_count` ≤ `capacity` springs (N traced: one compilation serves
+    every N up to the capacity) over `Physics.spring_length` (nan: the contact radius where the
+    continuum curve ends, beyond the impact's reach)."""
+
+    capacity: int = eqx.field(default=64, static=True)
+
+    def ridden(self, law: DugdaleLaw, curve: AbstractCurve, physics: Physics, options: Options) -> AbstractCurve:
+        reach = curve.state(law, curve.nodes[-1])[2]
+        length = jnp.where(jnp.isnan(physics.spring_length), reach, physics.spring_length / law.scales.radial)
+        count = physics.spring_count.astype(int)
+        return build_spring_curve(law, count, self.capacity, length, spring_turns(options.tabulation.max_turns))
