@@ -109,6 +109,12 @@ class DugdaleSpringCurve(AbstractCurve):
         weight = jnp.clip(offset - 1.0, 0.0, 1.0)
         return tuple(jnp.where(on_piece, h, h + weight * (f - h)) for h, f in zip(here, following, strict=True))
 
+    def on_segment(self, law: DugdaleLaw, s, segment):
+        """The piece holding `segment`, continued analytically past its ends (b linear in s),
+        not into the connectors: a step that crosses a spring event sees no kink."""
+        k = jnp.clip(jnp.floor(0.5 * self.nodes[segment]).astype(int), 0, self.count)
+        return self.piece(law, k, s - 2.0 * k)
+
     def grid(self, law: DugdaleLaw):
         """`_PIECE_GRID` points on each piece, its ends included (none beyond the top)."""
         pieces = 2.0 * jnp.arange(self.capacity + 1)
