@@ -7,8 +7,8 @@ import functools
 import equinox as eqx
 import jax.numpy as jnp
 
-from .._law.curve import AbstractCurve, top_of_reach
-from .._law.dugdale import DugdaleLaw, build_curve
+from .._law.curve import AbstractCurve, Reach, top_of_reach
+from .._law.dugdale import DugdaleLaw, build_curve, reach_radius
 from .._law.dugdale_springs import build_spring_curve, spring_turns
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
@@ -26,10 +26,9 @@ class MaugisDugdale(AbstractCurveIntegrator):
         scales = adhesive_scales(profile, physics.E_star, adhesion.work_of_adhesion, physics.mass, speed)
         law = DugdaleLaw.scaled(profile, scales, physics.E_star, adhesion.adhesive_stress, adhesion.adhesion_range)
         touch_speed = speed / scales.velocity
-        curve = build_curve(law, options.tabulation.max_turns, functools.partial(top_of_reach, speed=touch_speed))
         return CurveProblem(
             law=law,
-            curve=self.ridden(law, curve, physics, options),
+            curve=self.curve(law, functools.partial(top_of_reach, speed=touch_speed), physics, options),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=-(adhesion.adhesion_range + physics.gap) / scales.normal,
             start_velocity=physics.velocity / scales.velocity,
@@ -38,9 +37,9 @@ class MaugisDugdale(AbstractCurveIntegrator):
             time_limit=scaled_time_limit(physics, scales),
         )
 
-    def ridden(self, law: DugdaleLaw, curve: AbstractCurve, physics: Physics, options: Options) -> AbstractCurve:
-        """The curve the body rides: the continuum's."""
-        return curve
+    def curve(self, law: DugdaleLaw, reach: Reach, physics: Physics, options: Options) -> AbstractCurve:
+        """The curve the body rides, up to `reach`: the continuum's."""
+        return build_curve(law, options.tabulation.max_turns, reach)
 
 
 class MaugisDugdaleSprings(MaugisDugdale):
@@ -52,8 +51,9 @@ class MaugisDugdaleSprings(MaugisDugdale):
 
     capacity: int = eqx.field(default=64, static=True)
 
-    def ridden(self, law: DugdaleLaw, curve: AbstractCurve, physics: Physics, options: Options) -> AbstractCurve:
-        reach = curve.state(law, curve.nodes[-1])[2]
-        length = jnp.where(jnp.isnan(physics.spring_length), reach, physics.spring_length / law.scales.radial)
+    def curve(self, law: DugdaleLaw, reach: Reach, physics: Physics, options: Options) -> AbstractCurve:
+        length = jnp.where(
+            jnp.isnan(physics.spring_length), reach_radius(law, reach), physics.spring_length / law.scales.radial
+        )
         count = physics.spring_count.astype(int)
         return build_spring_curve(law, count, self.capacity, length, spring_turns(options.tabulation.max_turns))

@@ -10,7 +10,7 @@ import jax.numpy as jnp
 
 from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
-from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.dugdale import DugdaleLaw, build_curve, reach_radius
 from ..._law.dugdale_springs import build_spring_curve, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
@@ -53,20 +53,19 @@ def finite_range_curve(
     reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
-    if isinstance(law, DugdaleLaw):
-        curve = build_curve(law, numerics.tabulation.max_turns, reach)  # enough for the continuum
-        if numerics.springs is not None:
-            curve = spring_curve(law, curve, loading, numerics.springs, numerics.tabulation.max_turns)
+    if isinstance(law, DugdaleLaw) and numerics.springs is not None:
+        curve = spring_curve(law, reach_radius(law, reach), loading, numerics.springs, numerics.tabulation.max_turns)
+    elif isinstance(law, DugdaleLaw):
+        curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
         curve = build_double_hertz_curve(law, reach)
     return scales, unit, law, curve
 
 
-def spring_curve(law: DugdaleLaw, continuum: AbstractCurve, loading: Loading, capacity: int, max_turns: int):
+def spring_curve(law: DugdaleLaw, reach, loading: Loading, capacity: int, max_turns: int):
     """The curve of the loading's Maugis–Dugdale spring array (`capacity` its compiled size): over
-    its `spring_length`, or by default the contact radius where the continuum curve ends (beyond
-    the program's peak)."""
-    reach = continuum.state(law, continuum.nodes[-1])[2]
+    its `spring_length`, or by default `reach`, the contact radius where the continuum curve ends
+    (beyond the program's peak)."""
     length = jnp.where(jnp.isnan(loading.spring_length), reach, loading.spring_length / law.scales.radial)
     return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
