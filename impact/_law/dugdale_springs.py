@@ -37,9 +37,9 @@ from .dugdale import DugdaleLaw
 
 # Grid points per piece searched for turning points of d inside a piece.
 _PIECE_GRID = 8
-# Piece ends: log bisection of b − a over [1e-30, 1e3]·(array length + 1), 200 halvings.
+# Piece ends: log bisection of b − a over [1e-30, 1e3]·(array length + 1), 80 halvings.
 _GAP_DECADES = (-30.0, 3.0)
-_END_STEPS = 200
+_END_STEPS = 80
 
 
 def spring_turns(max_turns: int) -> int:
