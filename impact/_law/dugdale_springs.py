@@ -123,7 +123,8 @@ class DugdaleSpringCurve(AbstractCurve):
 
 def build_spring_curve(law: DugdaleLaw, count, capacity: int, length, max_turns: int) -> DugdaleSpringCurve:
     """The curve of `count` ≤ `capacity` midpoint springs on [0, L] (L = `length`, scaled), with
-    up to `max_turns` turning points of d inside pieces."""
+    up to `max_turns` turning points of d inside pieces (`overflow` where there are more, or more
+    springs than the capacity)."""
     spacing = length / count
     k = jnp.arange(capacity + 1)
     positions = (k + 0.5) * spacing
@@ -164,5 +165,10 @@ def build_spring_curve(law: DugdaleLaw, count, capacity: int, length, max_turns:
     return eqx.tree_at(
         lambda c: (c.nodes, c.levels, c.increasing, c.overflow),
         partial,
-        (nodes, partial.depth(law, nodes), (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1]), found > max_turns),
+        (
+            nodes,
+            partial.depth(law, nodes),
+            (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1]),
+            (found > max_turns) | (count > capacity),  # an array beyond its capacity is refused here
+        ),
     )
