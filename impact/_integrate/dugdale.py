@@ -55,5 +55,5 @@ class MaugisDugdaleSprings(MaugisDugdale):
         length = jnp.where(
             jnp.isnan(physics.spring_length), reach_radius(law, reach), physics.spring_length / law.scales.radial
         )
-        count = physics.spring_count.astype(int)
-        return build_spring_curve(law, count, self.capacity, length, spring_turns(options.tabulation.max_turns))
+        turns = spring_turns(options.tabulation.max_turns, self.capacity)
+        return build_spring_curve(law, physics.spring_count.astype(int), self.capacity, length, turns)

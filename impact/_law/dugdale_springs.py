@@ -42,11 +42,12 @@ _GAP_DECADES = (-30.0, 3.0)
 _END_STEPS = 80
 
 
-def spring_turns(max_turns: int) -> int:
-    """Turning points of d or F a spring curve may hold inside its pieces, for a law whose
-    continuum curve has `max_turns`: near a turning point of the continuum curve, where its slope
-    is about 0, the slopes of a few pieces in a row may alternate in sign."""
-    return 4 * max_turns + 16
+def spring_turns(max_turns: int, capacity: int) -> int:
+    """Turning points of d or F a spring curve of `capacity` pieces may hold inside them, for a
+    law whose continuum curve has `max_turns`: towards JKR (Λ ≳ 3) d and F each turn inside
+    every piece (the narrow zone grows unstably before the next spring touches), and near a
+    turning point of the continuum curve the slopes of a few pieces in a row alternate in sign."""
+    return 2 * capacity + 4 * max_turns + 16
 
 
 def piece_state(law: DugdaleLaw, spacing, prefix, k, zone):

@@ -34,9 +34,13 @@ def march(loading: Loading, numerics: QuasiStaticNumerics):
 def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
     """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
     to beyond the program's peak, and the march along it."""
-    if numerics.springs is not None:
-        tabulation = dataclasses.replace(numerics.tabulation, max_turns=spring_turns(numerics.tabulation.max_turns))
-        numerics = dataclasses.replace(numerics, tabulation=tabulation)
+    if numerics.springs is not None:  # every piece of the spring curve may turn, and takes steps of its own
+        turns = spring_turns(numerics.tabulation.max_turns, numerics.springs)
+        numerics = dataclasses.replace(
+            numerics,
+            tabulation=dataclasses.replace(numerics.tabulation, max_turns=turns),
+            steps_per_leg=numerics.steps_per_leg or 8 * numerics.springs + 64,
+        )
     scales, unit, law, curve = finite_range_curve(loading, numerics)
     program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
     return scales, march_curve(law, curve, program, numerics)
