@@ -81,6 +81,7 @@ class _Args(eqx.Module):
     gravity: Parameter
     velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
     end: Parameter  # the segment end in s the phase runs to
+    segment: Parameter  # the segment ridden
     end_sign: Parameter
     time_limit: Parameter
     speed_scale: Parameter
@@ -88,7 +89,7 @@ class _Args(eqx.Module):
 
 def _vector_field(pseudo_time, y, args: _Args):
     s, v = y[0], y[1]
-    _, force, slope = args.curve.riding(args.law, s)
+    _, force, slope = args.curve.riding(args.law, s, args.segment)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
     return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
 
@@ -170,6 +171,7 @@ def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options
         gravity=problem.gravity,
         velocity_sign=jnp.where(advancing, -1.0, 1.0),
         end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
+        segment=c.segment,
         end_sign=jnp.where(advancing, 1.0, -1.0),
         time_limit=problem.time_limit,
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,

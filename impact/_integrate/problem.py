@@ -37,11 +37,13 @@ class Options:
     timed_loading: bool = True  # loading may start at a = 0 (no jump-in): compile its time path
     damped: bool = False  # damping compiles: a viscous force and its work (a fourth state)
     samples_per_phase: int = 0  # trajectory samples per phase; 0 keeps no trajectory
+    curve_pieces: int = 0  # pieces of a spring curve (Maugis–Dugdale spring array), each a ride
 
     @property
     def max_phases(self) -> int:
-        """Phases a run may hold: four per bounce and every branch jump, plus flights."""
-        return 4 * self.max_bounces + 2 * self.tabulation.max_turns + 8
+        """Phases a run may hold: four per bounce and every branch jump, plus flights; on a spring
+        curve, every piece ridden in and out in two contacts."""
+        return 4 * self.max_bounces + 2 * self.tabulation.max_turns + 8 + 4 * self.curve_pieces
 
 
 class Physics(eqx.Module):

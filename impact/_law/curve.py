@@ -96,10 +96,17 @@ class AbstractCurve(eqx.Module):
     def grid(self, law):
         """The parameters searched for the curve's reach and turning points, sorted."""
 
-    def riding(self, law, s):
-        """(d, F, dd/ds) at s."""
-        (depth, force), (slope, _) = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
+    def riding(self, law, s, segment=None):
+        """(d, F, dd/ds) at s; given the `segment` ridden, continued smoothly past its ends
+        (`on_segment`), as an adaptive step that crosses an end sees it."""
+        state = self.state if segment is None else lambda law, x: self.on_segment(law, x, segment)
+        (depth, force), (slope, _) = jax.jvp(lambda x: state(law, x)[:2], (s,), (jnp.ones_like(s),))
         return depth, force, slope
+
+    def on_segment(self, law, s, segment):
+        """(d, F, a, outer radius) at s on `segment` and its smooth continuation: `state`, where
+        the curve is smooth across the segment's ends."""
+        return self.state(law, s)
 
     def slopes(self, law, s):
         """(dd/ds, dF/ds) at s."""

@@ -93,8 +93,8 @@ class DoubleHertzCurve(AbstractCurve):
         """s from 0 to 40 (â up to ~e^80·û₀/3), evenly."""
         return jnp.linspace(0.0, _REACH_SPAN, _REACH_POINTS)
 
-    def riding(self, law: DoubleHertzLaw, s):
-        """(d̂, F̂, dd̂/ds)."""
+    def riding(self, law: DoubleHertzLaw, s, segment=None):
+        """(d̂, F̂, dd̂/ds) (the curve is smooth across its segments' ends: `segment` is not needed)."""
         depth, force, _, _ = self.state(law, s)
         return depth, force, self.slopes(law, s)[0]
 

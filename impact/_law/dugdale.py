@@ -237,16 +237,30 @@ class DugdaleCurve(AbstractCurve):
         return jnp.concatenate([self.junction * jnp.sort(unit), contact])
 
 
-def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
-    """Bound the curve (`reach`: `top_of_reach` for an impact, `top_of_peak` for a quasi-static
-    program) and split it there at the turning points of d(s)."""
-    partial = DugdaleCurve(
+def _unsplit(law: DugdaleLaw) -> DugdaleCurve:
+    """The curve before it is bounded and split (its junction only)."""
+    return DugdaleCurve(
         junction=law.zone_radius(jnp.ones(())),
         nodes=jnp.zeros(1),
         levels=jnp.zeros(1),
         increasing=jnp.zeros(0, bool),
         overflow=jnp.asarray(False),
     )
+
+
+def reach_radius(law: DugdaleLaw, reach: Reach):
+    """The contact radius where `build_curve` would end the curve (scaled), from its search grid
+    alone: no turning point is found."""
+    curve = _unsplit(law)
+    grid = curve.grid(law)
+    depths, forces, radii, _ = curve.state(law, grid)
+    return curve.state(law, reach(grid, depths, forces, radii))[2]
+
+
+def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
+    """Bound the curve (`reach`: `top_of_reach` for an impact, `top_of_peak` for a quasi-static
+    program) and split it there at the turning points of d(s)."""
+    partial = _unsplit(law)
     junction, grid = partial.junction, partial.grid(law)
     depths, forces, slopes = partial.riding(law, grid)
     top = reach(grid, depths, forces, partial.state(law, grid)[2])

@@ -15,7 +15,7 @@ from .._integrate.codes import RESULT_CODES
 from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, march
 from .._law.branches import Tabulation
 from .._scene.scene import Scene
-from .parameters import adhesion_for
+from .parameters import adhesion_for, spring_capacity
 
 
 @dataclass(frozen=True)
@@ -98,12 +98,6 @@ def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
         model="jkr" if adhesion is None else adhesion.model,
         tabulation=Tabulation.for_profile(scene.body.profile.build()),
     )
-
-
-def spring_capacity(count: int) -> int:
-    """Slots of the compiled spring array: the next power of two (at least 64), so that arrays
-    of similar size share one compilation (the count itself is traced)."""
-    return max(64, 1 << (int(count) - 1).bit_length())
 
 
 def indentation_loading(scene: Scene) -> Loading:

@@ -13,7 +13,7 @@ from .._integrate.adhesive_plastic import AdhesivePlastic
 from .._integrate.base import AbstractIntegrator
 from .._integrate.continuum import Continuum
 from .._integrate.double_hertz import GreenwoodJohnson
-from .._integrate.dugdale import MaugisDugdale
+from .._integrate.dugdale import MaugisDugdale, MaugisDugdaleSprings
 from .._integrate.plastic import Plastic
 from .._integrate.problem import Options, Physics
 from .._integrate.springs import SpringArray
@@ -35,6 +35,14 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
         return AdhesivePlastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.effects.plasticity is not None:
         return Plastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+    if adhesion is not None and adhesion.model == "maugis_dugdale" and scene.contact.springs != "continuum":
+        return MaugisDugdaleSprings(
+            method=solver.method,
+            rtol=solver.rtol,
+            atol=solver.atol,
+            max_steps=solver.max_steps,
+            capacity=spring_capacity(scene.contact.springs),
+        )
     if adhesion is not None and adhesion.model == "maugis_dugdale":
         return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if adhesion is not None and adhesion.model == "greenwood_johnson":
@@ -64,7 +72,22 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
         timed_loading=adhesion is None or adhesion.approach == 0.0 or _rises_from_the_tip(scene),
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
         damped=scene.effects.damping is not None,
+        curve_pieces=_spring_curve_pieces(scene),
     )
+
+
+def spring_capacity(count: int) -> int:
+    """Slots of the compiled spring array: the next power of two (at least 64), so that arrays
+    of similar size share one compilation (the count itself is traced)."""
+    return max(64, 1 << (int(count) - 1).bit_length())
+
+
+def _spring_curve_pieces(scene: Scene) -> int:
+    """Pieces of the spring curve a Maugis–Dugdale spring array rides (0 for any other law)."""
+    adhesion, springs = scene.active_adhesion, scene.contact.springs
+    if adhesion is None or adhesion.model != "maugis_dugdale" or springs == "continuum":
+        return 0
+    return spring_capacity(springs) + 1
 
 
 def _rises_from_the_tip(scene: Scene) -> bool:

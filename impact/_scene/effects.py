@@ -14,6 +14,8 @@ from .sections import Length, Section, WorkOfAdhesion
 # Profiles the Maugis–Dugdale zone is built for: smooth, unbounded, with a finite slope at the
 # tip (the zone's radius must grow from 0 where the tip comes within range).
 DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
+# Springs of a Maugis–Dugdale array: each spring event is a ride (and a quasi-static piece) of its own.
+DUGDALE_MAX_SPRINGS = 2048
 
 
 # Profiles Greenwood and Johnson's double Hertz is built for: the paraboloid of §3.9 (and the

@@ -12,7 +12,7 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .. import theory
-from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_SHAPES, Adhesion, Effects
+from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_MAX_SPRINGS, DUGDALE_SHAPES, Adhesion, Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, ProfileSpec
 from .representable import check_representable
@@ -138,8 +138,19 @@ class Scene(Section):
                 "body.profile.n",
                 "maugis_dugdale needs n >= 1: for n < 1 the tip's slope is infinite where the zone starts",
             )
-        if self.contact.springs != "continuum":
-            raise FieldProblem("contact.springs", "maugis_dugdale runs on the continuum law only ('continuum')")
+        springs = self.contact.springs
+        if springs != "continuum" and springs > DUGDALE_MAX_SPRINGS:
+            raise FieldProblem(
+                "contact.springs",
+                f"maugis_dugdale takes at most {DUGDALE_MAX_SPRINGS} springs, not {springs}: every spring event is "
+                "a ride of its own (use 'continuum' for the limit N → ∞)",
+            )
+        if springs != "continuum" and self.solver.method == "verlet":
+            raise FieldProblem(
+                "solver.method",
+                "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
+                "method (" + ", ".join(SOLVER_METHODS) + ")",
+            )
         return self
 
     @model_validator(mode="after")

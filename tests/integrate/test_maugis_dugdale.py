@@ -241,7 +241,13 @@ def test_dmt_side_impact_events_show_the_zone_closing_and_opening():
             "effects.adhesion.approach_work_of_adhesion",
             "only for model 'jkr'",
         ),
-        ({"stress": 1e7}, {"contact": {"springs": 100}}, "contact.springs", "continuum law only"),
+        ({"stress": 1e7}, {"contact": {"springs": 4096}}, "contact.springs", "at most 2048 springs, not 4096"),
+        (
+            {"stress": 1e7},
+            {"contact": {"springs": 100}, "solver": {"method": "verlet", "dt": 1e-12}},
+            "solver.method",
+            "'verlet' steps the JKR spring array only",
+        ),
         ({"stress": -1.0}, {}, "effects.adhesion.stress", "-1 Pa is outside the allowed range [1, 1e13] Pa"),
     ],
 )

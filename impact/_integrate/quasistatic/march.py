@@ -1,6 +1,7 @@
 """One quasi-static test: the continuum or the spring-array march of a loading, or the march
 along the equilibrium curve of a finite-range law."""
 
+import dataclasses
 import functools
 
 import equinox as eqx
@@ -9,7 +10,8 @@ import jax.numpy as jnp
 
 from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
-from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.dugdale import DugdaleLaw, build_curve, reach_radius
+from ..._law.dugdale_springs import build_spring_curve, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
 from .curve import march_curve
@@ -32,6 +34,13 @@ def march(loading: Loading, numerics: QuasiStaticNumerics):
 def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
     """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
     to beyond the program's peak, and the march along it."""
+    if numerics.springs is not None:  # every piece of the spring curve may turn, and takes steps of its own
+        turns = spring_turns(numerics.tabulation.max_turns, numerics.springs)
+        numerics = dataclasses.replace(
+            numerics,
+            tabulation=dataclasses.replace(numerics.tabulation, max_turns=turns),
+            steps_per_leg=numerics.steps_per_leg or 8 * numerics.springs + 64,
+        )
     scales, unit, law, curve = finite_range_curve(loading, numerics)
     program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
     return scales, march_curve(law, curve, program, numerics)
@@ -48,11 +57,21 @@ def finite_range_curve(
     reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
-    if isinstance(law, DugdaleLaw):
+    if isinstance(law, DugdaleLaw) and numerics.springs is not None:
+        curve = spring_curve(law, reach_radius(law, reach), loading, numerics.springs, numerics.tabulation.max_turns)
+    elif isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
         curve = build_double_hertz_curve(law, reach)
     return scales, unit, law, curve
+
+
+def spring_curve(law: DugdaleLaw, reach, loading: Loading, capacity: int, max_turns: int):
+    """The curve of the loading's Maugis–Dugdale spring array (`capacity` its compiled size): over
+    its `spring_length`, or by default `reach`, the contact radius where the continuum curve ends
+    (beyond the program's peak)."""
+    length = jnp.where(jnp.isnan(loading.spring_length), reach, loading.spring_length / law.scales.radial)
+    return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
 
 def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> DugdaleLaw | DoubleHertzLaw:
