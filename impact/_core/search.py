@@ -69,13 +69,27 @@ def golden_section(
     function: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int
 ) -> tuple[Array, Array]:
     """Shrink [lower, upper] around the minimum of a unimodal `function` by golden sections;
-    returns the final bracket."""
+    returns the final bracket. Each step keeps one inner point and its value: one evaluation a
+    step."""
+    lower, upper = jnp.asarray(lower), jnp.asarray(upper)
+    left = upper - GOLDEN_RATIO * (upper - lower)
+    right = lower + GOLDEN_RATIO * (upper - lower)
 
-    def step(_, bracket):
-        low, high = bracket
-        left = high - GOLDEN_RATIO * (high - low)
-        right = low + GOLDEN_RATIO * (high - low)
-        keep_left = function(left) < function(right)
-        return jnp.where(keep_left, low, left), jnp.where(keep_left, right, high)
+    def step(_, state):
+        low, high, left, right, left_value, right_value = state
+        keep_left = left_value < right_value
+        low, high = jnp.where(keep_left, low, left), jnp.where(keep_left, right, high)
+        new = jnp.where(keep_left, high - GOLDEN_RATIO * (high - low), low + GOLDEN_RATIO * (high - low))
+        value = function(new)
+        return (
+            low,
+            high,
+            jnp.where(keep_left, new, right),
+            jnp.where(keep_left, left, new),
+            jnp.where(keep_left, value, right_value),
+            jnp.where(keep_left, left_value, value),
+        )
 
-    return jax.lax.fori_loop(0, steps, step, (jnp.asarray(lower), jnp.asarray(upper)))
+    state = (lower, upper, left, right, function(left), function(right))
+    low, high, *_ = jax.lax.fori_loop(0, steps, step, state)
+    return low, high

@@ -64,13 +64,16 @@ class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
     a subclass builds the law and its curve (`build` → `CurveProblem`)."""
 
     def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
+        # The interaction starts at the onset; the state snaps to the first rising one there
+        # (the same for every bounce: found once, outside the loop over phases).
+        reach = problem.law.onset
+        landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
+        stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], -1)
+        touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
+        landing_force = problem.curve.force(problem.law, landing)
+
         def flight(c: Carry) -> Carry:
-            # The interaction starts at the onset; the state snaps to the first rising one there.
-            reach = problem.law.onset
-            landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-            stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], -1)
-            touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
-            return land(problem, options, c, reach, touch, problem.curve.force(problem.law, landing), samples=True)
+            return land(problem, options, c, reach, touch, landing_force, samples=True)
 
         return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
 

@@ -273,17 +273,26 @@ def _searched_turns(law: ContactLaw, coefficient, top, tabulation: Tabulation):
     return sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
 
 
-def sign_changes(slope, grid, rising, max_turns: int):
+def sign_changes(slope, grid, rising, max_turns: int, steps: int = _BISECTION_STEPS, newton_steps: int = 0):
     """Where `slope` changes sign between neighbours of the sorted `grid` (`rising`: slope > 0
-    there), bisected to round-off and differentiated implicitly: (points [max_turns], valid
-    [max_turns], count)."""
+    there), bisected `steps` times (to round-off by default), then refined by `newton_steps`
+    Newton steps on the slope (clamped to the bracket: for a smooth slope, fewer bisections
+    reach round-off), and differentiated implicitly: (points [max_turns], valid [max_turns],
+    count)."""
     change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
     count = jnp.sum(change)
     (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
 
     rising_below = rising[index]  # the lower end keeps its sign: bisect towards the other one
-    lo, hi = bisect(lambda x: (slope(x) > 0.0) == rising_below, grid[index], grid[index + 1], _BISECTION_STEPS)
-    return implicit_root(slope, 0.5 * (lo + hi)), jnp.arange(max_turns) < count, count
+    lo, hi = bisect(lambda x: (slope(x) > 0.0) == rising_below, grid[index], grid[index + 1], steps)
+
+    def newton(_, x):
+        value, curvature = jax.jvp(slope, (x,), (jnp.ones_like(x),))
+        usable = curvature != 0.0
+        return jnp.clip(x - jnp.where(usable, value / jnp.where(usable, curvature, 1.0), 0.0), lo, hi)
+
+    found = jax.lax.fori_loop(0, newton_steps, newton, 0.5 * (lo + hi))
+    return implicit_root(slope, found), jnp.arange(max_turns) < count, count
 
 
 def _tip_turn_bracket(slope, lower, upper):

@@ -44,10 +44,16 @@ from .scales import Scales
 
 _QUADRATURE_NODES = 32
 _RADIUS_NEWTON_STEPS = 12
-_ZONE_POINTS = 192
-# Contact states searched for turning points: s − b_J = −ln p from 0 to this, evenly.
+# States searched for turning points: zones b/b_J from 1e-12 to 1 (half in log, half even),
+# contacts with s − b_J = −ln p from 0 to the span, evenly. For the paraboloid d(s) and F(s)
+# turn once each, at a minimum (found so for Λ from 1e-3 to 1e3 on a grid of 68 000 states):
+# a coarse grid brackets them; other bodies are searched finely.
 _CONTACT_LOG_SPAN = 40.0
-_CONTACT_POINTS = 640
+_ZONE_POINTS, _CONTACT_POINTS = 192, 640
+_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS = 32, 128
+# Turning points: bisection to 2^-24 of their grid cell, then Newton steps on dd/ds.
+_TURN_BISECTION_STEPS = 24
+_TURN_NEWTON_STEPS = 2
 
 
 def degree_of(profile: Profile) -> jax.Array:
@@ -123,19 +129,17 @@ class DugdaleLaw(eqx.Module):
         rise = unit * (zone**n - junction**n) - 4.0 * stress * (zone - junction) / jnp.pi
         return rise - 2.0 * stress * junction, force
 
-    def shape_term(self, share):
-        """P(p) of the range condition."""
+    def shape_term(self, share, angles=None):
+        """P(p) of the range condition (`angles`: `zone_angles(share)`, if already at hand)."""
+        ratio, opening, angle = zone_angles(share) if angles is None else angles
         closed = self.closed_degree
-        if closed is not None:
-            angle = jnp.arctan2(jnp.sqrt(share * (2.0 - share)), 1.0 - share)  # θ = arccos u
-            if closed == 2:
-                return self.g_unit() / (2.0 * jnp.pi) * _sine_excess(2.0 * angle)
-            return 2.0 * self.g_unit() / jnp.pi * _sine_excess(angle)
+        if closed == 2:  # S(2θ): sin 2θ = 2uv, cos 2θ = (u − v)(u + v), v = sin θ
+            excess = _sine_excess(2.0 * angle, 2.0 * ratio * opening, (ratio - opening) * (ratio + opening))
+            return self.g_unit() / (2.0 * jnp.pi) * excess
+        if closed == 1:
+            return 2.0 * self.g_unit() / jnp.pi * _sine_excess(angle, opening, ratio)
         n, unit = self.degree, self.g_unit()
         nodes, weights = gauss_legendre(_QUADRATURE_NODES)
-        ratio = 1.0 - share  # u = a/b
-        opening = jnp.sqrt(share * (2.0 - share))  # √(1 − u²)
-        angle = jnp.arctan2(opening, ratio)  # θ = arccos u
         phi = angle[..., None] * nodes
         # g(cos φ) − g(u) = C_g·uⁿ·expm1(n·log1p((cos φ − cos θ)/u)), cos φ − cos θ = 2 sin·sin
         safe_ratio = jnp.maximum(ratio, 0.25)[..., None]
@@ -148,18 +152,18 @@ class DugdaleLaw(eqx.Module):
         complement = 0.5 * jnp.pi * self.f_unit() - near - angle * unit * ratio**n
         return 2.0 / jnp.pi * jnp.where(ratio >= 0.5, direct, complement)
 
-    def adhesive_term(self, share):
-        """Q(p) of the range condition."""
-        opening = jnp.sqrt(share * (2.0 - share))
-        angle = jnp.arctan2(opening, 1.0 - share)
+    def adhesive_term(self, share, angles=None):
+        """Q(p) of the range condition (`angles` as for `shape_term`)."""
+        _, opening, angle = zone_angles(share) if angles is None else angles
         return 4.0 * self.stress / jnp.pi * (opening * angle - share)
 
-    def zone_radius(self, share):
+    def zone_radius(self, share, angles=None):
         """b solving bⁿ·P + b·Q = h: Newton on ln(bⁿP + bQ) = ln h (convex in ln b) from the
         smaller one-term root, which lies above; one last step outside the loop, from the root
         differentiated implicitly, carries the derivatives of b (the curve's slope dd/ds is
         itself one: its derivative needs the second)."""
-        shape, adhesive = self.shape_term(share), self.adhesive_term(share)
+        angles = zone_angles(share) if angles is None else angles
+        shape, adhesive = self.shape_term(share, angles), self.adhesive_term(share, angles)
         if self.closed_degree == 2:  # b²P + bQ = h, P, Q ≥ 0: the positive root, without cancellation
             return 2.0 * self.range / (adhesive + jnp.sqrt(adhesive**2 + 4.0 * shape * self.range))
         if self.closed_degree == 1:
@@ -180,11 +184,10 @@ class DugdaleLaw(eqx.Module):
     def contact(self, share):
         """(d, F, a, b) of the contact with zone share p = (b − a)/b."""
         n, unit = self.exponent, self.g_unit()
-        zone = self.zone_radius(share)
-        ratio = 1.0 - share
+        angles = zone_angles(share)
+        ratio, opening, angle = angles
+        zone = self.zone_radius(share, angles)
         radius = ratio * zone
-        opening = jnp.sqrt(share * (2.0 - share))
-        angle = jnp.arctan2(opening, ratio)
         depth = unit * radius**n - 2.0 * self.stress * zone * opening
         elastic = 2.0 * (unit * radius ** (n + 1) * n / (n + 1) - 2.0 * self.stress * radius * zone * opening)
         force = elastic - self.stress * zone**2 * (2.0 * angle - 2.0 * ratio * opening)
@@ -199,13 +202,22 @@ _SERIES_BELOW = 0.5
 _SERIES = tuple((-1.0) ** (k + 1) * 2 * k / math.factorial(2 * k + 1) for k in range(1, 9))
 
 
-def _sine_excess(x):
-    """S(x) = sin x − x·cos x = ∫_0^x φ·sin φ dφ, without cancellation at small x."""
+def zone_angles(share):
+    """(u, sin θ, θ) of the zone share p = 1 − u, u = a/b = cos θ: the one inverse trigonometric
+    function of a state (sin θ = √(p(2 − p)) without cancellation at small p)."""
+    ratio = 1.0 - share
+    opening = jnp.sqrt(share * (2.0 - share))
+    return ratio, opening, jnp.arctan2(opening, ratio)
+
+
+def _sine_excess(x, sine, cosine):
+    """S(x) = sin x − x·cos x = ∫_0^x φ·sin φ dφ from sin x and cos x, without cancellation at
+    small x."""
     square = x * x
     series = jnp.zeros_like(x)
     for coefficient in reversed(_SERIES):
         series = series * square + coefficient
-    return jnp.where(x < _SERIES_BELOW, x * square * series, jnp.sin(x) - x * jnp.cos(x))
+    return jnp.where(x < _SERIES_BELOW, x * square * series, sine - x * cosine)
 
 
 class DugdaleCurve(AbstractCurve):
@@ -232,8 +244,13 @@ class DugdaleCurve(AbstractCurve):
 
     def grid(self, law: DugdaleLaw):
         """Zones b/b_J from 1e-12 to 1 (log and even), then contacts with −ln p from 0 to 40."""
-        unit = jnp.concatenate([jnp.logspace(-12.0, 0.0, _ZONE_POINTS // 2), jnp.linspace(0.0, 1.0, _ZONE_POINTS // 2)])
-        contact = self.junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, _CONTACT_POINTS + 1)[1:]
+        zones, contacts = (
+            (_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS)
+            if law.closed_degree == 2
+            else (_ZONE_POINTS, _CONTACT_POINTS)
+        )
+        unit = jnp.concatenate([jnp.logspace(-12.0, 0.0, zones // 2), jnp.linspace(0.0, 1.0, zones // 2)])
+        contact = self.junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, contacts + 1)[1:]
         return jnp.concatenate([self.junction * jnp.sort(unit), contact])
 
 
@@ -281,7 +298,9 @@ def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
 
 def _turning_points(law: DugdaleLaw, curve: DugdaleCurve, grid, rising, junction, top, max_turns: int):
     """Nodes 0, the turning points of d(s), b_J and the top, sorted; padded with the top."""
-    turns, valid, count = sign_changes(lambda s: curve.riding(law, s)[2], grid, rising, max_turns)
+    turns, valid, count = sign_changes(
+        lambda s: curve.riding(law, s)[2], grid, rising, max_turns, _TURN_BISECTION_STEPS, _TURN_NEWTON_STEPS
+    )
     # A sign change across the junction is the junction itself (a kink), already a node.
     turns = jnp.where(valid & (jnp.abs(turns - junction) > 1e-12 * junction), turns, top)
     nodes = jnp.sort(jnp.concatenate([jnp.zeros(1), turns, jnp.stack([junction, top])]))

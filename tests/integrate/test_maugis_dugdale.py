@@ -97,6 +97,25 @@ def test_paraboloid_states_solve_the_normalized_relations_3_171(tabor):
     np.testing.assert_allclose(force / force_unit, f_hat, rtol=1e-9, atol=1e-9)
 
 
+@pytest.mark.parametrize("tabor", (1e-3, 1.0, 1e3))
+def test_paraboloid_curve_turns_once_where_the_coarse_search_finds_it(tabor):
+    """d(s) of the paraboloid falls to one minimum, then rises (the coarse search grid rests on
+    it): a grid of 40 000 states sees one sign change of dd/ds, next to a node of the curve
+    where dd/ds vanishes (≤ 1e-9)."""
+    problem = problem_of(md_scene(tabor))
+    curve, law = problem.curve, problem.law
+    junction, top = float(curve.junction), float(curve.nodes[-1])
+    grid = np.concatenate([junction * np.geomspace(1e-12, 1.0, 8000), np.linspace(junction, top, 32001)[1:]])
+    slopes = np.asarray(curve.riding(law, jnp.asarray(grid))[2])
+    changes = np.flatnonzero((slopes[1:] > 0.0) != (slopes[:-1] > 0.0))
+    assert changes.size == 1
+    turn = grid[changes[0]]
+    nodes = np.asarray(curve.nodes)
+    nearest = nodes[np.argmin(np.abs(nodes - turn))]
+    assert abs(nearest - turn) <= max(grid[changes[0] + 1] - turn, 1e-9 * turn)
+    assert float(curve.riding(law, jnp.asarray(nearest))[2]) == pytest.approx(0.0, abs=1e-9)
+
+
 @pytest.mark.parametrize("tabor", (0.1, 1.0, 10.0))
 def test_zone_without_contact_and_its_junction(tabor):
     problem = problem_of(md_scene(tabor))
