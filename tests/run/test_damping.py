@@ -5,6 +5,7 @@ refusals."""
 
 import math
 
+import equinox as eqx
 import h5py
 import jax
 import jax.numpy as jnp
@@ -15,9 +16,9 @@ from typer.testing import CliRunner
 
 import impact
 from impact import simulate, theory
-from impact._integrate.continuum import Continuum
 from impact._io.run import read_run, write_run
-from impact._run.parameters import options_for, physics_for
+from impact._run.impacts import to_result
+from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve_by_field
 from impact.cli import app
 
@@ -39,6 +40,24 @@ def scene(damping: dict, shape: str = "paraboloid", **effects) -> dict:
 
 def viscoelastic(constant: float) -> dict:
     return {"model": "viscoelastic", "dissipative_constant": constant}
+
+
+def undamped(damping: dict) -> dict:
+    """The same damping model with a zero coefficient: no damping, run by the damped program."""
+    coefficient = "coefficient" if damping["model"] == "linear" else "dissipative_constant"
+    return {**damping, coefficient: 0.0}
+
+
+def simulate_at_tolerance(data: dict, rtol: float) -> impact.Result:
+    """`simulate(data, trajectory=False)` with the tolerances traced (rtol, atol = rtol/100, as
+    the default 1e-10, 1e-12): one compiled program serves every tolerance and every value of
+    the scene's traced fields."""
+    loaded = impact.load_scene(data)
+    tolerances = (jnp.asarray(rtol), jnp.asarray(rtol * 1e-2))
+    integrator = eqx.tree_at(lambda solver: (solver.rtol, solver.atol), integrator_for(loaded), tolerances)
+    physics = physics_for(loaded)
+    scales, outcome = solve_by_field(integrator, physics, options_for(loaded, trajectory=False))
+    return to_result(loaded, scales, outcome, integrator, physics)
 
 
 def kinetic_energy_lost(result) -> float:
@@ -85,11 +104,12 @@ def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio, tmp_path):
 def test_viscoelastic_paraboloid_follows_schwager_poeschel():
     # 1 − e = C1·x(1 − (C2/C1)·x + …), x = βv₀^(1/5): the relative error of the first order
     # shrinks like x itself as A → 0, with C2 ≈ 0.798 (Ramírez et al., Phys. Rev. E 60, 4465 (1999)).
+    # At the default tolerance, by the program of the next test (traced tolerances).
     orders = np.array([1e-4, 1e-3, 1e-2])
     relative = []
     energy = 0.5 * MASS * SPEED**2
     for x in orders:
-        result = simulate(scene(viscoelastic(x / UNIT_BETA)), trajectory=False)
+        result = simulate_at_tolerance(scene(viscoelastic(x / UNIT_BETA)), 1e-10)
         assert result.status == "separated"
         assert [kind for _, kind in result.events] == ["touch", "max_indentation", "separation"]
         # loading is stiffer than Hertz: the total force peaks above Hertz's at the turn
@@ -109,13 +129,9 @@ def test_viscoelastic_paraboloid_follows_schwager_poeschel():
 def test_strong_damping_converges_under_tolerance_refinement():
     # βv₀^(1/5) = 1: no series applies; the restitution converges as rtol falls (one program:
     # the tolerances are traced).
-    loaded = impact.load_scene(scene(viscoelastic(1.0 / UNIT_BETA)))
-    physics, options = physics_for(loaded), options_for(loaded, trajectory=False)
-
     def restitution(rtol):
-        integrator = Continuum(rtol=jnp.asarray(rtol), atol=jnp.asarray(rtol * 1e-2))
-        _, outcome = solve_by_field(integrator, physics, options)
-        return float(outcome["separation_velocity"] / outcome["touch_velocity"])
+        result = simulate_at_tolerance(scene(viscoelastic(1.0 / UNIT_BETA)), rtol)
+        return result.separation_velocity / result.touch_velocity
 
     values = np.array([restitution(rtol) for rtol in (1e-6, 1e-8, 1e-10, 1e-12)])
     changes = np.abs(np.diff(values))
@@ -126,13 +142,14 @@ def test_strong_damping_converges_under_tolerance_refinement():
 
 @pytest.mark.parametrize("damping", [viscoelastic(1e-4), {"model": "linear", "coefficient": 0.3}])
 def test_adhesive_damped_energy_balance_closes(damping):
-    adhesive = scene(damping, adhesion={"work_of_adhesion": 0.5})
-    adhesive["initial"]["velocity"] = 0.05
-    result = simulate(adhesive, trajectory=False)
-    undamped = simulate({**adhesive, "effects": {"adhesion": {"work_of_adhesion": 0.5}}}, trajectory=False)
+    def adhesive(damping: dict) -> dict:
+        return scene(damping, adhesion={"work_of_adhesion": 0.5}) | {"initial": {"velocity": 0.05}}
+
+    result = simulate(adhesive(damping), trajectory=False)
+    free = simulate(adhesive(undamped(damping)), trajectory=False)  # the damped run's program
     assert result.status == "separated"
     assert result.min_force < 0  # the adhesive pull before the Heß rule lets go
-    assert result.restitution < undamped.restitution
+    assert result.restitution < free.restitution
     energy = 0.5 * MASS * result.touch_velocity**2
     assert abs(kinetic_energy_lost(result) - result.dissipated_energy) <= 1e-9 * energy
     assert result.viscous_work > 0
