@@ -20,7 +20,7 @@ import equinox as eqx
 import jax.numpy as jnp
 
 from .._core.pytree import where
-from .._core.quadrature import gauss_legendre
+from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
 from .._law.curve import AbstractCurve, CurveLaw
 from .._law.scales import Scales
@@ -117,7 +117,7 @@ def _work(law: CurveLaw, curve: AbstractCurve, start, end):
     nodes, weights = gauss_legendre(_QUADRATURE_NODES)
     points = start + (end - start) * nodes
     _, force, slope = curve.riding(law, points)
-    return (end - start) * jnp.sum(weights * force * slope)
+    return (end - start) * ordered_sum(weights * force * slope)
 
 
 def _after(problem: CurveProblem, advancing, turned, segment, s_end, d_end):

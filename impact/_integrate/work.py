@@ -6,7 +6,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core import derivatives
-from .._core.quadrature import gauss_legendre
+from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.search import golden_section
 from .._law.branches import Branch
 from .._law.law import ContactLaw
@@ -59,10 +59,10 @@ def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
     log_split = jnp.maximum(jnp.log(jnp.where(positive, low, 1.0)), log_high - _LOG_PANEL)
     log_span = log_high - log_split
     logarithmic = jnp.exp(log_split + log_span * nodes)
-    top = jnp.where(positive, jnp.sum(weights * log_span * logarithmic * integrand(logarithmic)), 0.0)
+    top = jnp.where(positive, ordered_sum(weights * log_span * logarithmic * integrand(logarithmic)), 0.0)
     split = jnp.where(positive, jnp.exp(log_split), high)
     squared = low + (split - low) * nodes**2
-    bottom = jnp.sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
+    bottom = ordered_sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
     return sign * (top + bottom)
 
 

@@ -35,7 +35,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.derivatives import implicit_root
-from .._core.quadrature import gauss_legendre
+from .._core.quadrature import gauss_legendre, ordered_sum
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import sign_changes
 from .curve import AbstractCurve, Reach
@@ -145,10 +145,10 @@ class DugdaleLaw(eqx.Module):
         safe_ratio = jnp.maximum(ratio, 0.25)[..., None]
         gap = 2.0 * jnp.sin(0.5 * (angle[..., None] + phi)) * jnp.sin(0.5 * (angle[..., None] - phi))
         excess = unit * safe_ratio**n * jnp.expm1(n * jnp.log1p(gap / safe_ratio))
-        direct = angle * jnp.sum(weights * excess, axis=-1)
+        direct = angle * ordered_sum(weights * excess)
         # ∫_0^θ g(cos φ) dφ = (π/2)·f(1) − ∫_0^u g(y)/√(1 − y²) dy, y = u·t²
         inner = ratio[..., None] * nodes**2
-        near = jnp.sum(weights * unit * inner**n * 2.0 * ratio[..., None] * nodes / jnp.sqrt(1.0 - inner**2), axis=-1)
+        near = ordered_sum(weights * unit * inner**n * 2.0 * ratio[..., None] * nodes / jnp.sqrt(1.0 - inner**2))
         complement = 0.5 * jnp.pi * self.f_unit() - near - angle * unit * ratio**n
         return 2.0 / jnp.pi * jnp.where(ratio >= 0.5, direct, complement)
 

@@ -4,6 +4,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._core.derivatives import implicit_root
+from .._core.quadrature import ordered_sum
 from .._core.search import bisect
 from .law import ContactLaw
 
@@ -39,7 +40,7 @@ def radius_bound(law: ContactLaw, coefficient, speed):
             return scale**2 * (hi ** (2.0 * exponent + 1.0) - lo ** (2.0 * exponent + 1.0)) / (2.0 * exponent + 1.0)
         mid, half = 0.5 * (hi + lo), 0.5 * (hi - lo)
         points = mid[..., None] + half[..., None] * nodes
-        return half * jnp.sum(weights * law.g(points) ** 2, axis=-1)
+        return half * ordered_sum(weights * law.g(points) ** 2)
 
     low, high = _BOUND_OCTAVES
     grid = 2.0 ** (

@@ -149,11 +149,17 @@ def _execute(plan: Plan, chunk: int, devices, share, skip, on_chunk, progress: P
     }
 
 
+# Lanes each device runs at least: XLA compiles a vmapped program of one lane as the
+# unbatched one, fusing (and so rounding) its arithmetic differently from any batch (the
+# Maugis–Dugdale law's zone radius moved by an ulp); a call of one point runs it twice.
+_LEAST_LANES = 2
+
+
 def _call_sizes(shares: list[np.ndarray], chunk: int, devices: int) -> dict[int, int]:
     """Points per compiled call of each group: its (first) chunk length, padded to a multiple
-    of the device count."""
+    of the device count and to `_LEAST_LANES` per device."""
     return {
-        group: chunk_size(len(chunks_of([points], chunk)[0][1]), devices)
+        group: max(chunk_size(len(chunks_of([points], chunk)[0][1]), devices), _LEAST_LANES * devices)
         for group, points in enumerate(shares)
         if len(points)
     }
