@@ -10,7 +10,7 @@ program comes from the compilation cache (`impact._run.programs`) never loads th
 """
 
 import abc
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import equinox as eqx
 import jax
@@ -54,6 +54,10 @@ _STATE_TILE = 4
 
 class AbstractIntegrator(eqx.Module):
     """Integrates one impact (possibly several bounces) from SI parameters to scaled results."""
+
+    # Lanes a compiled batch of this integrator runs at most per device (None: any number): a
+    # sweep splits its chunks into calls of at most this many points.
+    most_lanes: ClassVar[int | None] = None
 
     @abc.abstractmethod
     def build(self, physics: Physics, options: Options):

@@ -16,6 +16,8 @@ The integrators of Maugis–Dugdale (`dugdale`) and Greenwood–Johnson (`double
 law and curve and share everything else here.
 """
 
+from typing import ClassVar
+
 import equinox as eqx
 import jax.numpy as jnp
 
@@ -62,6 +64,13 @@ class CurveProblem(eqx.Module):
 class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
     """Impacts that ride an equilibrium curve, phase by phase with an adaptive diffrax solver;
     a subclass builds the law and its curve (`build` → `CurveProblem`)."""
+
+    # XLA:CPU compiles a while loop into one kernel while the bytes it touches stay under a
+    # threshold (64 kB, `impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two
+    # round differently. A curve ride's step crosses it between 32 and 60 lanes (Maugis–Dugdale:
+    # restitutions up to 9e-7 apart, step counts up to 25), so its batches stay below: 16 lanes
+    # cost the same per impact as 512 (measured, 2 cores).
+    most_lanes: ClassVar[int | None] = 16
 
     def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
         # The interaction starts at the onset; the state snaps to the first rising one there

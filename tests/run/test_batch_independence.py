@@ -20,10 +20,12 @@ XLA compiles a vmapped program of one lane as the unbatched one, with its multip
 (`impact._run.sweep.execute`). The Maugis–Dugdale and Greenwood–Johnson laws (whose curve rides
 amplify an ulp most) check it with two points, each alone (beside its copy), together and
 swapped. Sums over an axis are added in node order (`impact._core.quadrature.ordered_sum`):
-XLA:CPU's reduce picked its order by the batch's shape from 100 points up (measured, too slow
-to compile and run here, like Maugis–Dugdale's remaining dependence on calls of 60 points or
-more: docs/src/sweeps.md). `impact.simulate` (unbatched) gives those two laws' results to a
-few ulps, not checked here.
+XLA:CPU's reduce picked its order by the batch's shape from 100 points up; and it compiles a
+loop whole or op by op by the bytes it touches, which grow with the batch, so that a curve law's
+calls of 60 points rounded otherwise than calls of 16: curve laws run calls of at most 16 points
+(both measured with more points than are affordable here: docs/src/sweeps.md; the call sizes are
+checked below). `impact.simulate` (unbatched) gives those two laws' results to a few ulps, not
+checked here.
 """
 
 from pathlib import Path
@@ -34,8 +36,11 @@ import pytest
 from impact import simulate
 from impact._core.defaults import DEFAULT_CHUNK
 from impact._run.sweep import sweep
+from impact._run.sweep.execute import _call_sizes
+from impact._run.sweep.plan import plan_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
+from impact._scene.sweep import make_spec
 
 CONFIGS = Path(__file__).parents[2] / "configs"
 # (scene, its changes, lowest and highest velocity in m/s, points): captured and separated
@@ -126,3 +131,14 @@ def test_a_power_law_point_does_not_depend_on_its_place_in_a_batch():
         for name, column in batched.results.items()
     }
     assert_bitwise(batched.results, first, "repeated points")
+
+
+@pytest.mark.parametrize(
+    ("config", "call"), [("maugis_dugdale.yaml", 16), ("greenwood_johnson.yaml", 16), ("thornton_ning.yaml", 40)]
+)
+def test_curve_laws_run_calls_of_at_most_sixteen_points(config, call):
+    # Their rides' loops compile whole up to ~32 points a call and op by op from ~60, rounding
+    # otherwise; the continuum law gives the same bits either way and runs a chunk in one call.
+    plan = plan_sweep(make_spec(load_scene(CONFIGS / config), {"initial.velocity": np.linspace(0.1, 1.0, 40).tolist()}))
+    assert _call_sizes(plan, plan.share(0, 1), 64, devices=1) == {0: call}
+    assert _call_sizes(plan, plan.share(0, 1), 1, devices=1) == {0: 2}

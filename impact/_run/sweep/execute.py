@@ -98,38 +98,46 @@ def _execute(plan: Plan, chunk: int, devices, share, skip, on_chunk, progress: P
     sharding = batch_sharding(devices)
     shares = plan.share(*share)
     work = chunks_of(shares, chunk, skip)
-    sizes = _call_sizes(shares, chunk, len(devices))
+    sizes = _call_sizes(plan, shares, chunk, len(devices))
     compiled, compile_time = _compile_groups(plan, sorted({group for group, _ in work}), sizes, devices, progress)
     start = time.perf_counter()
     fallbacks, fallback_compile = 0, COMPILE_SECONDS["unbatched"]
     pending, done = None, 0
+    finished: list[tuple[np.ndarray, dict]] = []  # (points, solved values) of the chunk's calls so far
 
-    def finish(group: int, points: np.ndarray, outputs) -> None:
+    def finish(group: int, points: np.ndarray, outputs, chunk_done: bool) -> None:
         nonlocal fallbacks, done
         values = _read_back(outputs)
         if values is None:
             # A runtime check inside the batch failed. Under vmap one lane's failed check
             # stops every lane, even a check in a branch that lane does not take (e.g. the
-            # bracket check of the event root finder), so solve the chunk's points one after
+            # bracket check of the event root finder), so solve the call's points one after
             # another, unbatched, as `simulate` would.
             values = sequential(plan, group, points, sizes[group])
             fallbacks += len(points)
-        if on_chunk is not None:
-            solved = {name: np.asarray(values[name])[: len(points)] for name in SOLVED}
-            on_chunk(points, chunk_columns(plan.spec.scene, plan.params, points, solved))
+        finished.append((points, {name: np.asarray(values[name])[: len(points)] for name in SOLVED}))
         progress.advance(len(points))
         done += len(points)
+        if chunk_done:
+            chunk_points = np.concatenate([part for part, _ in finished])
+            solved = {name: np.concatenate([values[name] for _, values in finished]) for name in SOLVED}
+            finished.clear()
+            if on_chunk is not None:
+                on_chunk(chunk_points, chunk_columns(plan.spec.scene, plan.params, chunk_points, solved))
 
     for group, points in work:
-        padded = np.concatenate([points, np.full(sizes[group] - len(points), points[-1])])
-        batch = jax.tree.map(operator.itemgetter(padded), plan.physics)
-        try:
-            outputs = compiled[group](jax.device_put(batch, sharding))  # dispatched, not awaited
-        except jax.errors.JaxRuntimeError:
-            outputs = None  # the error surfaces when reading back (`finish`), or here
-        if pending is not None:
-            finish(*pending)
-        pending = (group, points, outputs)
+        size = sizes[group]
+        for begin in range(0, len(points), size):
+            part = points[begin : begin + size]
+            padded = np.concatenate([part, np.full(size - len(part), part[-1])])
+            batch = jax.tree.map(operator.itemgetter(padded), plan.physics)
+            try:
+                outputs = compiled[group](jax.device_put(batch, sharding))  # dispatched, not awaited
+            except jax.errors.JaxRuntimeError:
+                outputs = None  # the error surfaces when reading back (`finish`), or here
+            if pending is not None:
+                finish(*pending)
+            pending = (group, part, outputs, begin + size >= len(points))
     if pending is not None:
         finish(*pending)
     fallback_compile = COMPILE_SECONDS["unbatched"] - fallback_compile
@@ -155,14 +163,19 @@ def _execute(plan: Plan, chunk: int, devices, share, skip, on_chunk, progress: P
 _LEAST_LANES = 2
 
 
-def _call_sizes(shares: list[np.ndarray], chunk: int, devices: int) -> dict[int, int]:
+def _call_sizes(plan: Plan, shares: list[np.ndarray], chunk: int, devices: int) -> dict[int, int]:
     """Points per compiled call of each group: its (first) chunk length, padded to a multiple
-    of the device count and to `_LEAST_LANES` per device."""
-    return {
-        group: max(chunk_size(len(chunks_of([points], chunk)[0][1]), devices), _LEAST_LANES * devices)
-        for group, points in enumerate(shares)
-        if len(points)
-    }
+    of the device count and to `_LEAST_LANES` per device, and at most the integrator's
+    `most_lanes` per device (a longer chunk runs in several calls)."""
+    sizes = {}
+    for group, points in enumerate(shares):
+        if len(points):
+            size = chunk_size(len(chunks_of([points], chunk)[0][1]), devices)
+            most_lanes = plan.choices[group].integrator.most_lanes
+            if most_lanes is not None:
+                size = min(size, most_lanes * devices)
+            sizes[group] = max(size, _LEAST_LANES * devices)
+    return sizes
 
 
 def _compile_groups(plan: Plan, groups: list[int], sizes: dict[int, int], devices, progress: Progress):
