@@ -11,6 +11,7 @@ times are differentiated by the implicit function theorem (optimistix's root fin
 diffrax's events), the searches of the contact law likewise (`impact._core.derivatives`).
 """
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -185,7 +186,7 @@ def _programs(choices: StaticChoices) -> tuple[Callable, Callable]:
 
 
 def _fields(module) -> dict:
-    return {name: getattr(module, name) for name in module.__dataclass_fields__}
+    return {field.name: getattr(module, field.name) for field in dataclasses.fields(module)}
 
 
 def _check(scene: Scene, paths: list[str], names: list[str], choices: StaticChoices) -> None:
