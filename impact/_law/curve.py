@@ -116,6 +116,17 @@ class AbstractCurve(eqx.Module):
         _, tangents = jax.jvp(lambda x: self.state(law, x)[:2], (s,), (jnp.ones_like(s),))
         return tangents
 
+    def split_at(self, law, nodes, overflow):
+        """The curve cut at `nodes` (sorted; repeats make empty segments): d at each node, which
+        segments rise (dd/ds > 0 at their middles) and whether it `overflow`s."""
+        middles = 0.5 * (nodes[:-1] + nodes[1:])
+        rising = (self.slopes(law, middles)[0] > 0.0) & (nodes[1:] > nodes[:-1])
+        return eqx.tree_at(
+            lambda c: (c.nodes, c.levels, c.increasing, c.overflow),
+            self,
+            (nodes, self.depth(law, nodes), rising, overflow),
+        )
+
     def depth(self, law, s):
         return self.state(law, s)[0]
 

@@ -283,17 +283,7 @@ def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
     top = reach(grid, depths, forces, partial.state(law, grid)[2])
 
     nodes, overflow = _turning_points(law, partial, jnp.minimum(grid, top), slopes > 0.0, junction, top, max_turns)
-    middles = 0.5 * (nodes[:-1] + nodes[1:])
-    return eqx.tree_at(
-        lambda c: (c.nodes, c.levels, c.increasing, c.overflow),
-        partial,
-        (
-            nodes,
-            partial.depth(law, nodes),
-            (partial.riding(law, middles)[2] > 0.0) & (nodes[1:] > nodes[:-1]),
-            overflow,
-        ),
-    )
+    return partial.split_at(law, nodes, overflow)
 
 
 def _turning_points(law: DugdaleLaw, curve: DugdaleCurve, grid, rising, junction, top, max_turns: int):

@@ -26,7 +26,6 @@ fixed d between them: an attach or a detach, or a cascade of them (snap-in, snap
 same rule as on the continuum curve.
 """
 
-import equinox as eqx
 import jax
 import jax.numpy as jnp
 
@@ -162,14 +161,5 @@ def build_spring_curve(law: DugdaleLaw, count, capacity: int, length, max_turns:
     turns, valid, found = sign_changes(slope, grid, slope(grid) > 0.0, max_turns)
     ends = jnp.minimum(jnp.arange(2 * capacity + 2, dtype=grid.dtype), top)
     nodes = jnp.sort(jnp.concatenate([ends, jnp.where(valid, turns, top)]))
-    middles = 0.5 * (nodes[:-1] + nodes[1:])
-    return eqx.tree_at(
-        lambda c: (c.nodes, c.levels, c.increasing, c.overflow),
-        partial,
-        (
-            nodes,
-            partial.depth(law, nodes),
-            (slope(middles) > 0.0) & (nodes[1:] > nodes[:-1]),
-            (found > max_turns) | (count > capacity),  # an array beyond its capacity is refused here
-        ),
-    )
+    # an array beyond its capacity is refused here
+    return partial.split_at(law, nodes, (found > max_turns) | (count > capacity))

@@ -10,7 +10,7 @@ import numpy as np
 from .. import theory
 from .._integrate.base import AbstractIntegrator
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
-from .._integrate.problem import Physics
+from .._integrate.problem import Options, Physics
 from .._scene.scene import Scene
 from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from .parameters import integrator_for, options_for, physics_for
@@ -88,8 +88,15 @@ class Result:
 
 def simulate_impact(scene: Scene, trajectory: bool = True) -> Result:
     """Run one scene of kind `impact`; `trajectory=False` skips the time series (faster)."""
-    integrator, physics = integrator_for(scene), physics_for(scene)
-    scales, outcome = solve_by_field(integrator, physics, options_for(scene, trajectory))
+    return solve_scene(scene, integrator_for(scene), options_for(scene, trajectory))
+
+
+def solve_scene(scene: Scene, integrator: AbstractIntegrator, options: Options) -> Result:
+    """The scene's impact run by `integrator` with `options` (the scene's own in
+    `simulate_impact`; a caller's where it shares one program between scenes, e.g. traced
+    tolerances or a spring capacity)."""
+    physics = physics_for(scene)
+    scales, outcome = solve_by_field(integrator, physics, options)
     return to_result(scene, scales, outcome, integrator, physics)
 
 

@@ -9,7 +9,6 @@ import equinox as eqx
 import jax
 
 from .._core.pytree import fields
-from .._core.stored import EXPORTED as EXPORTED
 from .._core.stored import call_stored
 from .._integrate.base import AbstractIntegrator
 from .._integrate.carry import Outcome

@@ -18,10 +18,9 @@ from impact._integrate.quasistatic import QuasiStaticNumerics, march
 from impact._law.dugdale import DugdaleLaw
 from impact._law.dugdale_springs import contact_margin, piece_state
 from impact._law.scales import Scales
-from impact._run.impacts import to_result
+from impact._run.impacts import solve_scene
 from impact._run.indentation import indentation_loading, indentation_numerics
-from impact._run.parameters import options_for, physics_for
-from impact._run.programs import solve_by_field
+from impact._run.parameters import options_for
 from impact.profiles import Paraboloid
 
 R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
@@ -124,9 +123,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
     options = options_for(largest, trajectory=False)
     values = []
     for count in COUNTS:
-        physics = physics_for(scene(count))
-        scales, outcome = solve_by_field(integrator, physics, options)
-        result = to_result(scene(count), scales, outcome, integrator, physics)
+        result = solve_scene(scene(count), integrator, options)
         assert result.status == "separated"
         lost = 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2)
         assert abs(result.dissipated_energy - lost) < 1e-7 * 0.5 * MASS * result.touch_velocity**2

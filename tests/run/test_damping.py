@@ -17,9 +17,8 @@ from typer.testing import CliRunner
 import impact
 from impact import simulate, theory
 from impact._io.run import read_run, write_run
-from impact._run.impacts import to_result
-from impact._run.parameters import integrator_for, options_for, physics_for
-from impact._run.programs import solve_by_field
+from impact._run.impacts import solve_scene
+from impact._run.parameters import integrator_for, options_for
 from impact.cli import app
 
 R, MASS, E_STAR, SPEED = 1e-2, 1e-3, 1e7, 1.0  # a 1 g paraboloid on a soft polymer at 1 m/s
@@ -55,9 +54,7 @@ def simulate_at_tolerance(data: dict, rtol: float) -> impact.Result:
     loaded = impact.load_scene(data)
     tolerances = (jnp.asarray(rtol), jnp.asarray(rtol * 1e-2))
     integrator = eqx.tree_at(lambda solver: (solver.rtol, solver.atol), integrator_for(loaded), tolerances)
-    physics = physics_for(loaded)
-    scales, outcome = solve_by_field(integrator, physics, options_for(loaded, trajectory=False))
-    return to_result(loaded, scales, outcome, integrator, physics)
+    return solve_scene(loaded, integrator, options_for(loaded, trajectory=False))
 
 
 def kinetic_energy_lost(result) -> float:
