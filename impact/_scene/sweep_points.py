@@ -4,7 +4,7 @@ The points go through the model validators (`mode="after"`) of the sections on t
 paths, on one copy of the base scene whose swept fields are set in place point by point (a few
 µs a point instead of a full `Scene.model_validate`): this is what a full validation would
 check, as the rest of the scene is the already valid base. The representability check (units
-from the profile, in JAX) runs for all points in one batched call. Models with other kinds of
+from the profile, in JAX) runs in batched calls of up to `_PENDING` points. Models with other kinds of
 validators fall back to a full validation per point.
 """
 
@@ -20,8 +20,11 @@ from .representable import UnitInputs, check_units, unit_inputs, units_of
 from .scene import Scene
 from .sweep_spec import MAX_LISTED, SweepSpec
 
-# The scene's representability validator: checked for all the points of a sweep at once.
+# The scene's representability validator: checked for many points of a sweep at once.
 _REPRESENTABLE = "_representable"
+# Points whose representability waits to be checked together, at most: their inputs and units
+# are Python objects of about a kilobyte each, so a sweep of 10⁶ points held 1 GB of them.
+_PENDING = 16 * 4096
 
 
 @float64
@@ -62,6 +65,16 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
 
     problems: dict[int, str] = {}
     pending: dict[tuple, list[tuple[int, UnitInputs]]] = {}
+
+    def check_pending(key: tuple) -> None:
+        group = pending.pop(key)
+        for (index, _), units in zip(group, units_of([inputs for _, inputs in group], key[0]), strict=True):
+            set_point(index)
+            try:
+                check_units(point, units)
+            except FieldProblem as error:
+                problems[index] = f"{error.field}: {error}"
+
     for index in range(spec.size):
         set_point(index)
         message = _validators_problem(models, skip=_REPRESENTABLE)
@@ -71,13 +84,10 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
             inputs = unit_inputs(point, base_profile)
             key = (point.active_adhesion is not None, jax.tree.structure(inputs))
             pending.setdefault(key, []).append((index, inputs))
-    for (adhesive, _), group in pending.items():
-        for (index, _), units in zip(group, units_of([inputs for _, inputs in group], adhesive), strict=True):
-            set_point(index)
-            try:
-                check_units(point, units)
-            except FieldProblem as error:
-                problems[index] = f"{error.field}: {error}"
+            if len(pending[key]) == _PENDING:
+                check_pending(key)
+    for key in list(pending):
+        check_pending(key)
     return problems
 
 

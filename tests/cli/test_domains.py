@@ -10,6 +10,7 @@ import yaml
 from typer.testing import CliRunner
 
 import impact
+from impact._scene import sweep_points
 from impact._scene.sweep import load_sweep
 from impact.cli import app
 
@@ -108,9 +109,13 @@ def test_a_run_without_compressive_force_says_so(tmp_path):
     assert "unbounded_contact" in result.output
 
 
-def test_sweep_points_are_refused_as_their_scenes_are():
-    """The sweep checks representability for all points in one batch: each invalid point gets the
-    message its scene alone gets, the points listed in order and the rest counted."""
+@pytest.mark.parametrize("pending", [None, 3])
+def test_sweep_points_are_refused_as_their_scenes_are(pending, monkeypatch):
+    """The sweep checks representability in batches (all the points at once, or 3 at a time as
+    a long sweep does): each invalid point gets the message its scene alone gets, the points
+    listed in order and the rest counted."""
+    if pending is not None:
+        monkeypatch.setattr(sweep_points, "_PENDING", pending)
     velocities = [1.0, 1e4, 2.0, 5e3, 3e3, 2e3, 1.5e3, 3.0]
     spec = {"scene": str(THORNTON_NING), "axes": {"initial.velocity": velocities}, "order": "given"}
     with pytest.raises(impact.SceneError) as error:
