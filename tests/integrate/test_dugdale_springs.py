@@ -12,7 +12,8 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from impact import load_scene, simulate, theory
+from impact import SceneError, load_scene, simulate, theory
+from impact._integrate.codes import RESULT_CODE
 from impact._integrate.dugdale import MaugisDugdaleSprings
 from impact._integrate.quasistatic import QuasiStaticNumerics, march
 from impact._law.dugdale import DugdaleLaw
@@ -97,13 +98,19 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
         errors.append(float(outcome.pull_off[index]) * float(scale) / exact - 1.0)
     assert 1.7 < order(COUNTS, errors) < 2.8, errors
     assert abs(errors[-1]) < 2e-3
+    # Λ = 3 (the same program): 32 springs put 0.4 across the zone, a march refused at its start
+    stress = theory.maugis_adhesive_stress(3.0, R, WORK, E_STAR)
+    coarse = eqx.tree_at(lambda x: (x.spring_count, x.adhesion.adhesive_stress), loading, (jnp.asarray(32), stress))
+    _, outcome = march(coarse, numerics)
+    assert int(outcome.status) == RESULT_CODE["unresolved_zone"]
 
 
 def test_impact_restitution_converges_at_second_order_with_energy_balance():
-    """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 5.7e-3 …
-    6.3e-5 at N = 32 … 256, slope 2.15); the loop's work is the kinetic energy lost (to 1e-7 of
-    it at rtol 1e-10; measured 1e-8); the Richardson limit of the last two counts meets the
-    continuum to 1e-5."""
+    """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 1.5e-3 …
+    1.0e-4 at N = 64 … 256, ratios 3.8 per doubling); the loop's work is the kinetic energy lost
+    (to 1e-7 of it at rtol 1e-10; measured 1e-8); the Richardson limit of the last two counts
+    meets the continuum to 1e-5. N = 32 puts 1.2 springs across the adhesive zone over the
+    default length (12.9 a_c): flagged `unresolved_zone`, as Λ = 3 at N = 256 (the same program)."""
 
     continuum = {
         "name": "md-springs",
@@ -122,13 +129,52 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
     integrator = MaugisDugdaleSprings(rtol=1e-10, atol=1e-12, capacity=COUNTS[-1])
     options = options_for(largest, trajectory=False)
     values = []
-    for count in COUNTS:
+    counts = COUNTS[1:]
+    for count in counts:
         result = solve_scene(scene(count), integrator, options)
         assert result.status == "separated"
         lost = 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2)
         assert abs(result.dissipated_energy - lost) < 1e-7 * 0.5 * MASS * result.touch_velocity**2
         values.append(result.restitution)
     errors = np.array(values) - continuum_restitution
-    assert 1.7 < order(COUNTS, errors) < 2.6, errors
+    assert 1.7 < order(counts, errors) < 2.6, errors
     limit = values[-1] + (values[-1] - values[-2]) / 3
     assert abs(limit - continuum_restitution) < 1e-5
+    coarse = load_scene({**continuum, "effects": {"adhesion": adhesion(3.0)}, "contact": {"springs": 256}})
+    for unresolved in (scene(32), coarse):  # the scene check passes: the default reaches further
+        result = solve_scene(unresolved, integrator, options)
+        assert result.status == "unresolved_zone" and math.isnan(result.restitution)
+
+
+@pytest.mark.parametrize(
+    ("length", "advice"),
+    [
+        (2e-7, "give at least 1426 springs, or 'continuum'"),
+        (
+            1e-6,
+            "that needs 7129 springs, more than the 2048 allowed: give a shorter contact.length (just beyond the "
+            "largest contact radius), or 'continuum'",
+        ),
+    ],
+)
+def test_an_array_that_cannot_resolve_the_zone_is_refused(length, advice):
+    """Λ = 10: the zone is (π/4)E*Δγ/σ0² = a_c/(2Λ²) = 0.28 nm wide; 2 springs across it over
+    contact.length L need N ≥ 2L/s (no solve)."""
+    data = {
+        "name": "md-springs",
+        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
+        "material": {"E_star": E_STAR},
+        "initial": {"velocity": 0.6},
+        "effects": {"adhesion": adhesion(10.0)},
+        "contact": {"springs": 256, "length": length},
+    }
+    with pytest.raises(SceneError) as error:
+        load_scene(data)
+    assert error.value.problems == [
+        (
+            "contact.springs",
+            f"256 springs over contact.length {length:.3g} m do not resolve the Maugis–Dugdale adhesive zone "
+            "(Tabor parameter Λ = 10): its width (π/4)E*Δγ/σ0² = 2.81e-10 m needs 2 springs across it (else the "
+            f"array dissipates like an attach-on-touch JKR contact); {advice}",
+        )
+    ]
