@@ -28,7 +28,7 @@ R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
 A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
 D_JKR = A_JKR**2 / (3 * R)
 F_JKR = 1.5 * math.pi * R * WORK
-COUNTS = (32, 64, 128, 256)  # one compiled capacity: 256
+COUNTS = (64, 128, 256)  # one compiled capacity: 256 (N = 32 does not resolve the zone: below)
 
 
 def adhesion(tabor):
@@ -72,8 +72,9 @@ def test_a_piece_through_a_continuum_state_is_that_state(tabor):
 def test_quasi_static_pull_off_converges_at_second_order(control):
     """Λ = 1: the pull-off of N springs tends to the exact critical state of (3.171) as N⁻², its
     force under force control, its depth under displacement control (measured over the default
-    length at N = 32 … 256: 5.3e-2 … 7.4e-4, slope 2.1; 3.0e-3 … 3.3e-5, slope 2.1, irregular:
-    the last stable state sits on the springs' staircase). One compilation for both controls."""
+    length at N = 64 … 256: 3.1e-2 … 1.3e-3, slope 2.3; 2.9e-3 … 8.1e-5, slope 2.6, irregular:
+    the last stable state sits on the springs' staircase). One compilation for both controls, and
+    for Λ = 3 on 32 springs (under 2 across the zone): refused at the march's start."""
     scene = load_scene(
         {
             "name": "md-springs",
@@ -98,7 +99,7 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
         errors.append(float(outcome.pull_off[index]) * float(scale) / exact - 1.0)
     assert 1.7 < order(COUNTS, errors) < 2.8, errors
     assert abs(errors[-1]) < 2e-3
-    # Λ = 3 (the same program): 32 springs put 0.4 across the zone, a march refused at its start
+    # Λ = 3 (the same program): 32 springs put under 2 across the zone, a march refused at its start
     stress = theory.maugis_adhesive_stress(3.0, R, WORK, E_STAR)
     coarse = eqx.tree_at(lambda x: (x.spring_count, x.adhesion.adhesive_stress), loading, (jnp.asarray(32), stress))
     _, outcome = march(coarse, numerics)
@@ -129,15 +130,14 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
     integrator = MaugisDugdaleSprings(rtol=1e-10, atol=1e-12, capacity=COUNTS[-1])
     options = options_for(largest, trajectory=False)
     values = []
-    counts = COUNTS[1:]
-    for count in counts:
+    for count in COUNTS:
         result = solve_scene(scene(count), integrator, options)
         assert result.status == "separated"
         lost = 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2)
         assert abs(result.dissipated_energy - lost) < 1e-7 * 0.5 * MASS * result.touch_velocity**2
         values.append(result.restitution)
     errors = np.array(values) - continuum_restitution
-    assert 1.7 < order(counts, errors) < 2.6, errors
+    assert 1.7 < order(COUNTS, errors) < 2.6, errors
     limit = values[-1] + (values[-1] - values[-2]) / 3
     assert abs(limit - continuum_restitution) < 1e-5
     coarse = load_scene({**continuum, "effects": {"adhesion": adhesion(3.0)}, "contact": {"springs": 256}})
