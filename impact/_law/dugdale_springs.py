@@ -48,9 +48,9 @@ _PIECE_GRID = 8
 _GAP_DECADES = (-30.0, 3.0)
 _END_STEPS = 80
 # Springs an array needs across the adhesive zone (s/Δx): the restitution's error against the
-# continuum collapses onto s/Δx for Λ = 1, 3, 10 (paraboloid, v0 = 0.6 m/s) and enters its N⁻²
-# regime at s/Δx ≈ 2 (errors 1.5e-3, 1.7e-3 at s/Δx = 2.5, Λ = 1, 3; 1.3e-2 at 1.2; captured
-# or off by 0.4 below 1/2).
+# continuum (paraboloid, v0 = 0.6 m/s) is the same function of s/Δx at Λ = 1 and 3 (1.2e-2,
+# 1.5e-3, 3.8e-4 at s/Δx = 1.2, 2.5, 5) and enters its N⁻² regime at s/Δx ≈ 2; below 1/2 the
+# body is captured or e is off by up to 0.4. At Λ = 10 it is larger (9e-3 at 2, 1.6e-3 at 4).
 ZONE_SPRINGS = 2.0
 
 
