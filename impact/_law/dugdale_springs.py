@@ -39,8 +39,8 @@ import jax.numpy as jnp
 from .. import theory
 from .._core.search import log_sign_change
 from .branches import sign_changes
-from .curve import AbstractCurve
-from .dugdale import DugdaleLaw
+from .curve import TOP_MARGIN, AbstractCurve, Reach
+from .dugdale import DugdaleLaw, reach_radius
 
 # Grid points per piece searched for turning points of d inside a piece.
 _PIECE_GRID = 8
@@ -52,6 +52,9 @@ _END_STEPS = 80
 # 1.5e-3, 3.8e-4 at s/Δx = 1.2, 2.5, 5) and enters its N⁻² regime at s/Δx ≈ 2; below 1/2 the
 # body is captured or e is off by up to 0.4. At Λ = 10 it is larger (9e-3 at 2, 1.6e-3 at 4).
 ZONE_SPRINGS = 2.0
+# The default array reaches this far beyond the contact radius an impact or a program reaches
+# (the continuum curve, `TOP_MARGIN` times): springs beyond the largest contact are never used.
+LENGTH_MARGIN = 1.25
 
 
 def spring_turns(max_turns: int, capacity: int) -> int:
@@ -60,6 +63,12 @@ def spring_turns(max_turns: int, capacity: int) -> int:
     every piece (the narrow zone grows unstably before the next spring touches), and near a
     turning point of the continuum curve the slopes of a few pieces in a row alternate in sign."""
     return 2 * capacity + 4 * max_turns + 16
+
+
+def default_length(law: DugdaleLaw, reach: Reach):
+    """The array's default length (scaled): `LENGTH_MARGIN` times the contact radius that the
+    impact or the program reaches (`reach`), where the continuum curve reaches `TOP_MARGIN` times."""
+    return reach_radius(law, reach) * (LENGTH_MARGIN / TOP_MARGIN)
 
 
 def zone_springs(law: DugdaleLaw, spacing):

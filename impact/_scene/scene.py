@@ -14,8 +14,7 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .. import theory
-from .._law.curve import TOP_MARGIN
-from .._law.dugdale_springs import ZONE_SPRINGS
+from .._law.dugdale_springs import LENGTH_MARGIN, ZONE_SPRINGS
 from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_MAX_SPRINGS, DUGDALE_SHAPES, Adhesion, Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, ProfileSpec
@@ -164,15 +163,15 @@ class Scene(Section):
         """Why `springs` Maugis–Dugdale springs cannot resolve the adhesive zone, or None: the
         array needs `ZONE_SPRINGS` springs across the zone's width s = (π/4)E*Δγ/σ0²
         (`theory.dugdale_zone_width`) over contact.length, or over the least default length,
-        `TOP_MARGIN` jump-in radii (a default that reaches further, with the impact's energy, is
+        `LENGTH_MARGIN` jump-in radii (a default that reaches further, with the impact's energy, is
         checked in the run: status `unresolved_zone`)."""
         adhesion = self.effects.adhesion
         assert adhesion is not None, "called for maugis_dugdale"
         E_star = self.material.effective_modulus
         width = float(theory.dugdale_zone_width(E_star, adhesion.work_of_adhesion, adhesion.adhesive_stress))
         if self.contact.length is None:
-            length = TOP_MARGIN * self._jump_in_radius()
-            over = f"the default contact.length (at least {TOP_MARGIN:g} jump-in radii, {length:.3g} m)"
+            length = LENGTH_MARGIN * self._jump_in_radius()
+            over = f"the default contact.length (at least {LENGTH_MARGIN:g} jump-in radii, {length:.3g} m)"
             more = " (more where the impact reaches further)"
         else:
             length, more = self.contact.length, ""
