@@ -4,17 +4,14 @@
 bad field by its dotted path; `scene_yaml` writes a scene back, defaults filled in.
 """
 
-import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Literal
 
-import jax
 import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .. import theory
-from .._law.dugdale_springs import LENGTH_MARGIN, ZONE_SPRINGS
 from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_MAX_SPRINGS, DUGDALE_SHAPES, Adhesion, Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, ProfileSpec
@@ -32,6 +29,7 @@ from .sections import (
     Section,
     Solver,
 )
+from .springs import unresolved_zone
 
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
 _IMPACT_ONLY = {
@@ -154,62 +152,13 @@ class Scene(Section):
                 "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
                 "method (" + ", ".join(SOLVER_METHODS) + ")",
             )
-        why = None if springs == "continuum" else self._unresolved_zone(springs)
+        why = None
+        if springs != "continuum":
+            modulus = self.material.effective_modulus
+            why = unresolved_zone(self.contact_profile, modulus, adhesion, self.contact.length, springs)
         if why is not None:
             raise FieldProblem("contact.springs", why)
         return self
-
-    def _unresolved_zone(self, springs: int) -> str | None:
-        """Why `springs` Maugis–Dugdale springs cannot resolve the adhesive zone, or None: the
-        array needs `ZONE_SPRINGS` springs across the zone's width s = (π/4)E*Δγ/σ0²
-        (`theory.dugdale_zone_width`) over contact.length, or over the least default length,
-        `LENGTH_MARGIN` jump-in radii (a default that reaches further, with the impact's energy, is
-        checked in the run: status `unresolved_zone`)."""
-        adhesion = self.effects.adhesion
-        assert adhesion is not None, "called for maugis_dugdale"
-        E_star = self.material.effective_modulus
-        width = float(theory.dugdale_zone_width(E_star, adhesion.work_of_adhesion, adhesion.adhesive_stress))
-        if self.contact.length is None:
-            length = LENGTH_MARGIN * self._jump_in_radius()
-            over = f"the default contact.length (at least {LENGTH_MARGIN:g} jump-in radii, {length:.3g} m)"
-            more = " (more where the impact reaches further)"
-        else:
-            length, more = self.contact.length, ""
-            over = f"contact.length {length:.3g} m"
-        least = math.ceil(ZONE_SPRINGS * length / width)
-        if springs >= least:
-            return None
-        if self.contact_profile.shape == "paraboloid":
-            tabor = theory.tabor_parameter(
-                self.contact_profile.R, adhesion.adhesive_stress, adhesion.adhesion_range, E_star
-            )
-            kind = f" (Tabor parameter Λ = {float(tabor):.4g})"
-        else:
-            kind = ""
-        if least <= DUGDALE_MAX_SPRINGS:
-            advice = f"give at least {least} springs{more}, or 'continuum'"
-        else:
-            advice = (
-                f"that needs {least} springs, more than the {DUGDALE_MAX_SPRINGS} allowed: give a shorter "
-                "contact.length (just beyond the largest contact radius), or 'continuum'"
-            )
-        return (
-            f"{springs} springs over {over} do not resolve the Maugis–Dugdale adhesive zone{kind}: its width "
-            f"(π/4)E*Δγ/σ0² = {width:.3g} m needs {ZONE_SPRINGS:g} springs across it (else the array dissipates "
-            f"like an attach-on-touch JKR contact); {advice}"
-        )
-
-    def _jump_in_radius(self) -> float:
-        """a₀ (m) of the JKR jump-in, g(a₀) = √(2πa₀Δγ/E*), for a body with g = A·xⁿ (Maugis–Dugdale's
-        power laws): a₀ = (2πΔγ/(E*A²))^(1/(2n − 1))."""
-        adhesion = self.effects.adhesion
-        assert adhesion is not None, "called for maugis_dugdale"
-        with jax.enable_x64(True):
-            form = self.contact_profile.build().power_form()
-            assert form is not None, "validated: maugis_dugdale bodies are power laws"
-            prefactor, exponent = (float(value) for value in form)
-        ratio = 2 * math.pi * adhesion.work_of_adhesion / (self.material.effective_modulus * prefactor**2)
-        return ratio ** (1 / (2 * exponent - 1))
 
     @model_validator(mode="after")
     def _double_hertz_supported(self):
