@@ -72,8 +72,8 @@ def test_a_piece_through_a_continuum_state_is_that_state(tabor):
 def test_quasi_static_pull_off_converges_at_second_order(control):
     """Λ = 1: the pull-off of N springs tends to the exact critical state of (3.171) as N⁻², its
     force under force control, its depth under displacement control (measured over the default
-    length at N = 64 … 256: 3.1e-2 … 1.3e-3, slope 2.3; 2.9e-3 … 8.1e-5, slope 2.6, irregular:
-    the last stable state sits on the springs' staircase). One compilation for both controls, and
+    length at N = 64 … 256: 2.4e-3 … 1.7e-4, slope 1.9; 2.2e-4 … 1.3e-5, slope 2.0). One
+    compilation for both controls, and
     for Λ = 3 on 32 springs (under 2 across the zone): refused at the march's start."""
     scene = load_scene(
         {
@@ -98,7 +98,7 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
         scale = scales.force if control == "force" else scales.normal
         errors.append(float(outcome.pull_off[index]) * float(scale) / exact - 1.0)
     assert 1.7 < order(COUNTS, errors) < 2.8, errors
-    assert abs(errors[-1]) < 2e-3
+    assert abs(errors[-1]) < 5e-4
     # Λ = 3 (the same program): 32 springs put under 2 across the zone, a march refused at its start
     stress = theory.maugis_adhesive_stress(3.0, R, WORK, E_STAR)
     coarse = eqx.tree_at(lambda x: (x.spring_count, x.adhesion.adhesive_stress), loading, (jnp.asarray(32), stress))
@@ -107,11 +107,11 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
 
 
 def test_impact_restitution_converges_at_second_order_with_energy_balance():
-    """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 1.5e-3 …
-    1.0e-4 at N = 64 … 256, ratios 3.8 per doubling); the loop's work is the kinetic energy lost
-    (to 1e-7 of it at rtol 1e-10; measured 1e-8); the Richardson limit of the last two counts
-    meets the continuum to 1e-5. N = 32 puts 1.2 springs across the adhesive zone over the
-    default length (12.9 a_c): flagged `unresolved_zone`, as Λ = 3 at N = 256 (the same program)."""
+    """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 1.3e-4 …
+    8.7e-6 at N = 64 … 256, slope 1.95); the loop's work is the kinetic energy lost (to 1e-7 of
+    it at rtol 1e-10; measured 1e-8); the Richardson limit of the last two counts meets the
+    continuum to 1e-5. Λ = 3 at N = 64 puts 1.0 spring across the adhesive zone over the default
+    length (3.6 a_c): flagged `unresolved_zone` (the same program)."""
 
     continuum = {
         "name": "md-springs",
