@@ -36,6 +36,7 @@ RESULT_CODES = (
     "phase_limit",  # more phases than the run holds
     "branch_overflow",  # the edge functions turn more often than the branch tables hold
     "overdamped",  # damping holds the body in contact: it creeps towards rest, never turning or let go
+    "unresolved_zone",  # a Maugis–Dugdale spring array too coarse for the adhesive zone: its answer would be wrong
 )
 RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
 

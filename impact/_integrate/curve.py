@@ -74,10 +74,12 @@ class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
 
     def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
         # The interaction starts at the onset; the state snaps to the first rising one there
-        # (the same for every bounce: found once, outside the loop over phases).
+        # (the same for every bounce: found once, outside the loop over phases). A curve too
+        # coarse for the law ends the run there.
         reach = problem.law.onset
         landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-        stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], -1)
+        unresolved = jnp.where(problem.curve.resolves(problem.law), -1, RESULT_CODE["unresolved_zone"])
+        stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], unresolved)
         touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
         landing_force = problem.curve.force(problem.law, landing)
 

@@ -8,8 +8,8 @@ import equinox as eqx
 import jax.numpy as jnp
 
 from .._law.curve import AbstractCurve, Reach, top_of_reach
-from .._law.dugdale import DugdaleLaw, build_curve, reach_radius
-from .._law.dugdale_springs import build_spring_curve, spring_turns
+from .._law.dugdale import DugdaleLaw, build_curve
+from .._law.dugdale_springs import build_spring_curve, default_length, spring_turns
 from .._law.scales import adhesive_scales
 from .curve import AbstractCurveIntegrator, CurveProblem
 from .problem import Options, Physics, scaled_time_limit, touch_velocity
@@ -46,14 +46,14 @@ class MaugisDugdaleSprings(MaugisDugdale):
     """Impacts of a spring array with Maugis–Dugdale adhesion (`_law.dugdale_springs`): the body
     rides the array's equilibrium curve, every spring event a jump between its pieces. The
     array has N = `Physics.spring_count` ≤ `capacity` springs (N traced: one compilation serves
-    every N up to the capacity) over `Physics.spring_length` (nan: the contact radius where the
-    continuum curve ends, beyond the impact's reach)."""
+    every N up to the capacity) over `Physics.spring_length` (nan: `default_length`, just beyond
+    the impact's reach)."""
 
     capacity: int = eqx.field(default=64, static=True)
 
     def curve(self, law: DugdaleLaw, reach: Reach, physics: Physics, options: Options) -> AbstractCurve:
         length = jnp.where(
-            jnp.isnan(physics.spring_length), reach_radius(law, reach), physics.spring_length / law.scales.radial
+            jnp.isnan(physics.spring_length), default_length(law, reach), physics.spring_length / law.scales.radial
         )
         turns = spring_turns(options.tabulation.max_turns, self.capacity)
         return build_spring_curve(law, physics.spring_count.astype(int), self.capacity, length, turns)

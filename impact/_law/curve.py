@@ -106,6 +106,11 @@ class AbstractCurve(eqx.Module):
         (depth, force), (slope, _) = jax.jvp(lambda x: state(law, x)[:2], (s,), (jnp.ones_like(s),))
         return depth, force, slope
 
+    def resolves(self, law) -> jax.Array:
+        """Whether the curve resolves the law's states: a discretised curve may be too coarse to
+        be trusted (`DugdaleSpringCurve`); a continuum curve always does."""
+        return jnp.asarray(True)
+
     def on_segment(self, law, s, segment):
         """(d, F, a, outer radius) at s on `segment` and its smooth continuation: `state`, where
         the curve is smooth across the segment's ends."""

@@ -24,21 +24,37 @@ so the next piece starts below: the connector falls and is never ridden). The cu
 (`_integrate.curve`, the quasi-static `march_curve`) then ride the rising pieces and jump at
 fixed d between them: an attach or a detach, or a cascade of them (snap-in, snap-out), by the
 same rule as on the continuum curve.
+
+The springs must resolve the adhesive zone, whose width s = (π/4)E*Δγ/σ0² (`theory.
+dugdale_zone_width`; a_c/(2Λ²) for the paraboloid) shrinks towards JKR: where Δx ≳ s a spring
+beyond the edge lies outside the narrow zone, attaches only when the surface reaches it and
+still detaches by the Dugdale condition, and the array dissipates like an attach-on-touch JKR
+contact (captured where the continuum bounces). `DugdaleSpringCurve.resolves` asks for
+`ZONE_SPRINGS` springs across the zone.
 """
 
 import jax
 import jax.numpy as jnp
 
+from .. import theory
 from .._core.search import log_sign_change
 from .branches import sign_changes
-from .curve import AbstractCurve
-from .dugdale import DugdaleLaw
+from .curve import TOP_MARGIN, AbstractCurve, Reach
+from .dugdale import DugdaleLaw, reach_radius
 
 # Grid points per piece searched for turning points of d inside a piece.
 _PIECE_GRID = 8
 # Piece ends: log bisection of b − a over [1e-30, 1e3]·(array length + 1), 80 halvings.
 _GAP_DECADES = (-30.0, 3.0)
 _END_STEPS = 80
+# Springs an array needs across the adhesive zone (s/Δx): the restitution's error against the
+# continuum (paraboloid, v0 = 0.6 m/s) is the same function of s/Δx at Λ = 1 and 3 (1.2e-2,
+# 1.5e-3, 3.8e-4 at s/Δx = 1.2, 2.5, 5) and enters its N⁻² regime at s/Δx ≈ 2; below 1/2 the
+# body is captured or e is off by up to 0.4. At Λ = 10 it is larger (9e-3 at 2, 1.6e-3 at 4).
+ZONE_SPRINGS = 2.0
+# The default array reaches this far beyond the contact radius an impact or a program reaches
+# (the continuum curve, `TOP_MARGIN` times): springs beyond the largest contact are never used.
+LENGTH_MARGIN = 1.25
 
 
 def spring_turns(max_turns: int, capacity: int) -> int:
@@ -47,6 +63,18 @@ def spring_turns(max_turns: int, capacity: int) -> int:
     every piece (the narrow zone grows unstably before the next spring touches), and near a
     turning point of the continuum curve the slopes of a few pieces in a row alternate in sign."""
     return 2 * capacity + 4 * max_turns + 16
+
+
+def default_length(law: DugdaleLaw, reach: Reach):
+    """The array's default length (scaled): `LENGTH_MARGIN` times the contact radius that the
+    impact or the program reaches (`reach`), where the continuum curve reaches `TOP_MARGIN` times."""
+    return reach_radius(law, reach) * (LENGTH_MARGIN / TOP_MARGIN)
+
+
+def zone_springs(law: DugdaleLaw, spacing):
+    """Springs across the adhesive zone, s/Δx: s of `theory.dugdale_zone_width` in the law's units
+    (E* = 1, Δγ = σ̂·ĥ: s = (π/4)·ĥ/σ̂)."""
+    return theory.dugdale_zone_width(1.0, law.stress * law.range, law.stress) / spacing
 
 
 def piece_state(law: DugdaleLaw, spacing, prefix, k, zone):
@@ -92,6 +120,11 @@ class DugdaleSpringCurve(AbstractCurve):
     def top(self):
         """s at the end of the last piece: spring N + 1, past the array, would attach."""
         return 2.0 * self.count + 1.0
+
+    def resolves(self, law: DugdaleLaw):
+        """Whether `ZONE_SPRINGS` springs or more lie across the adhesive zone (else the array's
+        answer is wrong: `unresolved_zone`)."""
+        return zone_springs(law, self.spacing) >= ZONE_SPRINGS
 
     def piece(self, law: DugdaleLaw, k, fraction):
         """(d, F, a, b) on piece k at the fraction of its way from β_k⁻ to β_k⁺."""

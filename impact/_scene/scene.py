@@ -29,6 +29,7 @@ from .sections import (
     Section,
     Solver,
 )
+from .springs import unresolved_zone
 
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
 _IMPACT_ONLY = {
@@ -151,6 +152,12 @@ class Scene(Section):
                 "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
                 "method (" + ", ".join(SOLVER_METHODS) + ")",
             )
+        why = None
+        if springs != "continuum":
+            modulus = self.material.effective_modulus
+            why = unresolved_zone(self.contact_profile, modulus, adhesion, self.contact.length, springs)
+        if why is not None:
+            raise FieldProblem("contact.springs", why)
         return self
 
     @model_validator(mode="after")

@@ -191,7 +191,10 @@ class Contact(Section):
     )
     length: Length | None = Field(
         None,
-        description="radius covered by the spring array (m); default: the body's extent or twice the energy radius",
+        description=(
+            "radius covered by the spring array (m); default: the body's extent or twice the energy radius "
+            "(maugis_dugdale: 1.25 times a bound on the largest contact radius)"
+        ),
     )
 
 

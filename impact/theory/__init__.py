@@ -131,6 +131,7 @@ from ._jkr import power_law_normalized_indentation as power_law_normalized_inden
 from ._maugis import bradley_pull_off as bradley_pull_off
 from ._maugis import dmt_pull_off as dmt_pull_off
 from ._maugis import dmt_zone_radius as dmt_zone_radius
+from ._maugis import dugdale_zone_width as dugdale_zone_width
 from ._maugis import maugis_adhesive_stress as maugis_adhesive_stress
 from ._maugis import maugis_critical_state as maugis_critical_state
 from ._maugis import maugis_junction_zone_radius as maugis_junction_zone_radius
@@ -242,6 +243,7 @@ __all__ = [
     "bradley_pull_off",
     "dmt_pull_off",
     "dmt_zone_radius",
+    "dugdale_zone_width",
     "power_law_dmt_pull_off",
     "maugis_paraboloid_state",
     "maugis_power_law_state",

@@ -242,3 +242,18 @@ def test_critical_states_of_both_controls(tabor):
         assert F == pytest.approx(-32 * tabor**3 / (9 * np.pi), rel=1e-14)
     else:
         assert a > 0 and d == pytest.approx(np.nanmin(depths), rel=1e-8)  # the scan: 3e-4 apart in ln(κ − 1)
+
+
+@pytest.mark.parametrize(("tabor", "tolerance"), [(10.0, 1e-2), (30.0, 1e-3)])
+def test_zone_width_is_the_crack_tip_zone_towards_jkr(tabor, tolerance):
+    """At the force-controlled pull-off of (3.171) the zone b − a = ã(κ − 1)·a_c, κ from
+    d̃ = 3ã² − 4ãΛ√(κ² − 1), is the crack-tip zone (π/4)E*Δγ/σ0² = a_c/(2Λ²) up to O(Λ⁻²)
+    (measured 0.992 of it at Λ = 10, 0.9991 at 30)."""
+    a, d, _ = theory.maugis_critical_state(tabor, 3)
+    root = (3 * a**2 - d) / (4 * a * tabor)  # √(κ² − 1)
+    zone = a * root**2 / (1 + np.sqrt(1 + root**2))  # ã(κ − 1)
+    a_c = (9 * np.pi * R**2 * DGAMMA / (8 * E_STAR)) ** (1 / 3)
+    stress = theory.maugis_adhesive_stress(tabor, R, DGAMMA, E_STAR)
+    width = theory.dugdale_zone_width(E_STAR, DGAMMA, stress)
+    np.testing.assert_allclose(width / a_c, 1 / (2 * tabor**2), rtol=1e-12)
+    assert abs(zone / (width / a_c) - 1) < tolerance

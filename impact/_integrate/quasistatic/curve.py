@@ -107,6 +107,7 @@ def march_curve(
     steps = numerics.steps(targets.shape[0])
     start = initial(march, numerics, steps)
     start = replace_where(start, overflow | curve.overflow, status=RESULT_CODE["branch_overflow"], done=True)
+    start = replace_where(start, ~curve.resolves(law), status=RESULT_CODE["unresolved_zone"], done=True)
     return run_march(functools.partial(step, march), start, steps, march.state(curve.nodes[-1])[0])
 
 

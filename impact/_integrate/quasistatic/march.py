@@ -10,8 +10,8 @@ import jax.numpy as jnp
 
 from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
-from ..._law.dugdale import DugdaleLaw, build_curve, reach_radius
-from ..._law.dugdale_springs import build_spring_curve, spring_turns
+from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.dugdale_springs import build_spring_curve, default_length, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
 from .curve import march_curve
@@ -58,7 +58,7 @@ def finite_range_curve(
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
     if isinstance(law, DugdaleLaw) and numerics.springs is not None:
-        curve = spring_curve(law, reach_radius(law, reach), loading, numerics.springs, numerics.tabulation.max_turns)
+        curve = spring_curve(law, default_length(law, reach), loading, numerics.springs, numerics.tabulation.max_turns)
     elif isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
@@ -68,8 +68,8 @@ def finite_range_curve(
 
 def spring_curve(law: DugdaleLaw, reach, loading: Loading, capacity: int, max_turns: int):
     """The curve of the loading's Maugis–Dugdale spring array (`capacity` its compiled size): over
-    its `spring_length`, or by default `reach`, the contact radius where the continuum curve ends
-    (beyond the program's peak)."""
+    its `spring_length`, or by default `reach` (`default_length`: just beyond the program's
+    peak)."""
     length = jnp.where(jnp.isnan(loading.spring_length), reach, loading.spring_length / law.scales.radial)
     return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
