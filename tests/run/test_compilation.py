@@ -155,7 +155,8 @@ jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
 impact.configure()
 result = impact.simulate(sys.argv[1])
 hits = events.count({CACHE_HIT!r})
-print(events.count({COMPILE!r}) - hits, hits, repr(result.restitution), "diffrax" in sys.modules, "scipy" in sys.modules)
+imported = ["diffrax" in sys.modules, "scipy" in sys.modules]
+print(events.count({COMPILE!r}) - hits, hits, repr(result.restitution), *imported)
 """
 
 
