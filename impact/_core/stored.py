@@ -9,6 +9,10 @@ it: impact's source, the versions of jax and the libraries it traces, the platfo
 static parts of its arguments and the shapes and dtypes of their arrays; a program whose key
 differs is traced anew. Without a cache directory (or without `flatbuffers`, which `jax.export`
 serializes with) it is traced in every process.
+
+The first call of a stored program on the CPU would initialize jaxlib's LAPACK kernels, which
+imports `scipy.linalg` (0.15–0.4 s of a run) whatever the program calls; a program that calls no
+LAPACK kernel is run without, and one that does initializes them as usual.
 """
 
 import contextlib
@@ -16,7 +20,7 @@ import functools
 import hashlib
 import importlib.util
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from importlib import metadata
 from pathlib import Path
 from typing import Any
@@ -25,6 +29,9 @@ import equinox as eqx
 import jax
 from jax import export
 
+# The lowering of a stored program's call; private, used only to skip an import (`_without_lapack`).
+from jax._src.export import _export  # noqa: TID251 - no public switch; absent, nothing is skipped
+
 from .cache import directory_in_use
 from .runtime import COMPILER_OPTIONS
 
@@ -32,6 +39,7 @@ EXPORTED = "exported"  # folder of the serialized programs inside the cache dire
 _LIBRARIES = ("jax", "jaxlib", "diffrax", "equinox", "optimistix", "lineax")
 
 _loaded: dict[str, Callable] = {}  # key → the program of this process
+_LAPACK = b"lapack_"  # the prefix of jaxlib's LAPACK kernels in a program's StableHLO
 
 
 def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
@@ -49,13 +57,16 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
 
     name = f"{function.__module__}.{function.__qualname__}"
     key = _key((name, repr(static), str(structure)), leaves)
-    if key not in _loaded:
-        directory = directory_in_use()
-        if directory is None or not _can_serialize():
-            _loaded[key] = jax.jit(traced, compiler_options=COMPILER_OPTIONS)
-        else:
-            _loaded[key] = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
-    return _loaded[key](*leaves)
+    if key in _loaded:
+        return _loaded[key](*leaves)
+    directory = directory_in_use()
+    if directory is None or not _can_serialize():
+        _loaded[key] = jax.jit(traced, compiler_options=COMPILER_OPTIONS)
+        return _loaded[key](*leaves)
+    exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
+    _loaded[key] = jax.jit(exported.call, compiler_options=COMPILER_OPTIONS)
+    with contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack():
+        return _loaded[key](*leaves)  # the first call lowers the program
 
 
 @functools.cache
@@ -64,11 +75,11 @@ def _can_serialize() -> bool:
     return importlib.util.find_spec("flatbuffers") is not None
 
 
-def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> Callable:
+def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> export.Exported:
     """The stored program at `path`, or `function` traced, exported and stored there (a file
     that cannot be read back is replaced; one that cannot be written is skipped)."""
     try:
-        return jax.jit(export.deserialize(bytearray(path.read_bytes())).call, compiler_options=COMPILER_OPTIONS)
+        return export.deserialize(bytearray(path.read_bytes()))
     except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
         pass
     exported = export.export(jax.jit(function))(*leaves)
@@ -80,7 +91,23 @@ def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> 
     except OSError:
         with contextlib.suppress(OSError):
             partial.unlink(missing_ok=True)
-    return jax.jit(exported.call, compiler_options=COMPILER_OPTIONS)
+    return exported
+
+
+@contextlib.contextmanager
+def _without_lapack() -> Iterator[None]:
+    """Lower stored programs without initializing jaxlib's LAPACK kernels (and importing
+    `scipy.linalg` for them): for a program that calls none. A later program that does call
+    them initializes them where it is lowered."""
+    initialize = getattr(_export, "_ensure_backends_initialized", None)
+    if initialize is None:
+        yield
+        return
+    _export._ensure_backends_initialized = lambda platforms: None
+    try:
+        yield
+    finally:
+        _export._ensure_backends_initialized = initialize
 
 
 def _key(static: tuple[str, ...], leaves: list[jax.Array]) -> str:

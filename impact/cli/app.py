@@ -1,6 +1,9 @@
 """The `impact` typer app and its console entry point `main`."""
 
+import atexit
 import gc
+import os
+import sys
 from pathlib import Path
 from typing import Annotated
 
@@ -33,9 +36,28 @@ _COLLECTION_THRESHOLDS = (100_000, 50, 100)
 
 def main() -> None:
     """Console entry point: the command line (each command configures float64, whole-loop
-    compilation and the compilation cache itself, as the global options ask)."""
+    compilation and the compilation cache itself, as the global options ask). The process ends
+    as soon as the command has: see `_end`."""
     gc.set_threshold(*_COLLECTION_THRESHOLDS)
-    app()
+    try:
+        app()
+    except SystemExit as stop:
+        _end(stop.code)
+    _end(0)
+
+
+def _end(code: object) -> None:
+    """End the process with the exit status `code` (None: 0; text: printed, then 1), after the
+    atexit handlers and with both output streams flushed, but without tearing the interpreter
+    down: freeing every module, object and JAX's compiled programs one by one took 0.9–1.4 s
+    after a run (measured on `impact run configs/thornton_ning.yaml`), a third of its time."""
+    if code is not None and not isinstance(code, int):
+        print(code, file=sys.stderr)
+        code = 1
+    atexit._run_exitfuncs()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code or 0)
 
 
 def _print_version(value: bool) -> None:

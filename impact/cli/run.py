@@ -17,8 +17,7 @@ import typer
 from rich.text import Text
 
 from .._io.files import write_text
-from .._io.h5md import read_provenance
-from .._io.run import read_run, write_run
+from .._plots.figures import MATPLOTLIB, import_meanwhile
 from .._plots.run import save_figures
 from .._run.impacts import Result
 from .._run.simulate import simulate
@@ -33,7 +32,10 @@ if TYPE_CHECKING:
     from .._run.indentation import IndentationResult
 
 # Indentation tests' modules (their quasi-static march, files and figures) are imported where a
-# run is one: an impact's run loads none of them.
+# run is one: an impact's run loads none of them. What a run needs only after its solve (h5py for
+# run.h5, matplotlib for the figures) is imported in a background thread during the solve, which
+# spends most of a second run's solve loading the compiled program with the interpreter free.
+_AFTER_SOLVE = ("impact._io.run", *MATPLOTLIB)
 
 
 def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | None, overwrite: bool) -> None:
@@ -41,6 +43,7 @@ def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | No
     scene = scene_of(scene_file, assignments)
     folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
     check_output(folder, overwrite)
+    import_meanwhile(_AFTER_SOLVE)
     start = time.perf_counter()
     result = simulate(scene)
     wall_time = time.perf_counter() - start
@@ -61,7 +64,9 @@ def validate_scene(scene_file: Path, assignments: list[str] | None) -> None:
 
 def show_run(run_file: Path) -> None:
     """`impact show`: print the summary of a stored run (run.h5)."""
+    from .._io.h5md import read_provenance
     from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance
+    from .._io.run import read_run
 
     indentation = is_indentation_run(run_file)
     try:
@@ -102,6 +107,8 @@ def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time:
     try:
         write_text(folder / "config.yaml", scene_yaml(result.scene))
         if isinstance(result, Result):
+            from .._io.run import write_run
+
             write_run(result, folder / "run.h5", wall_time=wall_time)
             save_figures(result, folder)
         else:

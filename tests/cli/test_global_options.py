@@ -34,6 +34,15 @@ def test_help_does_not_import_jax(arguments):
     assert process.stdout.split() == [exit_code, "True", "False", "False"]
 
 
+@pytest.mark.parametrize(("arguments", "status", "printed"), [(["--version"], 0, "impact "), (["--bad"], 2, "--bad")])
+def test_console_entry_point_ends_with_the_commands_status_and_its_output(arguments, status, printed):
+    """`main` ends the process itself (no interpreter teardown): the status and the text survive."""
+    command = [sys.executable, "-c", "from impact.cli import main; main()", *arguments]
+    process = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+    assert process.returncode == status
+    assert printed in process.stdout + process.stderr
+
+
 def test_help_says_where_the_cache_lives():
     result = CliRunner().invoke(app, ["--help"])
     assert result.exit_code == 0
