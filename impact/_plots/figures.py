@@ -4,14 +4,11 @@ Figures are drawn on matplotlib's Agg canvas (no pyplot, no display, no global s
 matplotlib is imported only inside the functions that draw, so `import impact` never loads it.
 """
 
-import importlib
 import math
-import threading
 from pathlib import Path
 
 from .._io.files import atomic_path
 
-MATPLOTLIB = ("matplotlib.figure", "matplotlib.backends.backend_agg")  # what drawing a figure imports
 _PREFIXES = {-18: "a", -15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
 
 
@@ -22,20 +19,6 @@ def si_prefix(magnitude: float) -> tuple[float, str]:
     exponent = 3 * math.floor(math.log10(abs(magnitude)) / 3)
     exponent = min(max(exponent, min(_PREFIXES)), max(_PREFIXES))
     return 10.0**-exponent, _PREFIXES[exponent]
-
-
-def import_meanwhile(modules: tuple[str, ...]) -> threading.Thread:
-    """Start importing `modules` in a background thread while the caller goes on (e.g. loads and
-    runs a compiled program: XLA leaves the interpreter free meanwhile, and the other core idle);
-    a later import of one of them finds it loaded, or waits for it."""
-    thread = threading.Thread(target=_import_all, args=(modules,), name="import meanwhile", daemon=True)
-    thread.start()
-    return thread
-
-
-def _import_all(modules: tuple[str, ...]) -> None:
-    for module in modules:
-        importlib.import_module(module)
 
 
 def write_figures(folder: str | Path, named) -> list[Path]:

@@ -17,7 +17,6 @@ import typer
 from rich.text import Text
 
 from .._io.files import write_text
-from .._plots.figures import MATPLOTLIB, import_meanwhile
 from .._plots.run import save_figures
 from .._run.impacts import Result
 from .._run.simulate import simulate
@@ -32,10 +31,7 @@ if TYPE_CHECKING:
     from .._run.indentation import IndentationResult
 
 # Indentation tests' modules (their quasi-static march, files and figures) are imported where a
-# run is one: an impact's run loads none of them. What a run needs only after its solve (h5py for
-# run.h5, matplotlib for the figures) is imported in a background thread during the solve, which
-# spends most of a second run's solve loading the compiled program with the interpreter free.
-_AFTER_SOLVE = ("impact._io.run", *MATPLOTLIB)
+# run is one: an impact's run loads none of them; h5py is imported where a run is written or shown.
 
 
 def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | None, overwrite: bool) -> None:
@@ -43,7 +39,6 @@ def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | No
     scene = scene_of(scene_file, assignments)
     folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
     check_output(folder, overwrite)
-    import_meanwhile(_AFTER_SOLVE)
     start = time.perf_counter()
     result = simulate(scene)
     wall_time = time.perf_counter() - start
