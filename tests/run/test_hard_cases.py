@@ -1,10 +1,10 @@
 """The stability suite: hard cases where adhesive-impact codes fail (configs/hard/*.yaml).
 
-Every case asserts its outcome, finite stored trajectories, steps well below the limit, a
-bounded wall time, and the physics check its YAML names.
+Every case asserts its outcome, finite stored trajectories, steps well below the limit (a
+runaway shows there, on any machine: no wall-time bound, which a loaded machine breaks), and
+the physics check its YAML names.
 """
 
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,16 +18,12 @@ from impact._integrate.base import AbstractAdaptiveIntegrator
 from impact._run.parameters import integrator_for, options_for
 
 HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
-WALL_TIME_BOUND = 120.0  # s, compile included
 
 
 def run_case(name: str):
     """Run a hard case; check what every case must hold; return (scene, result)."""
     scene = load_scene(HARD / f"{name}.yaml")
-    start = time.perf_counter()
     result = simulate(scene)
-    wall = time.perf_counter() - start
-    assert wall < WALL_TIME_BOUND, wall
     for series in (result.t, result.indentation, result.velocity, result.force, result.contact_radius):
         assert np.all(np.isfinite(series))
     integrator = integrator_for(scene)
