@@ -39,6 +39,18 @@ def adhesion(tabor):
     }
 
 
+def impact_scene(tabor):
+    """The benchmark paraboloid at v0 = 0.6 m/s with Maugis–Dugdale adhesion at Tabor parameter
+    `tabor` (continuum law; add a `contact` section for an array)."""
+    return {
+        "name": "md-springs",
+        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
+        "material": {"E_star": E_STAR},
+        "initial": {"velocity": 0.6},
+        "effects": {"adhesion": adhesion(tabor)},
+    }
+
+
 def order(counts, errors):
     """The slope of log |error| against log N, negated."""
     return -np.polyfit(np.log(counts), np.log(np.abs(errors)), 1)[0]
@@ -113,13 +125,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
     continuum to 1e-5. Λ = 3 at N = 64 puts 1.0 spring across the adhesive zone over the default
     length (3.6 a_c): flagged `unresolved_zone` (the same program)."""
 
-    continuum = {
-        "name": "md-springs",
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": 0.6},
-        "effects": {"adhesion": adhesion(1.0)},
-    }
+    continuum = impact_scene(1.0)
     # e of the continuum Maugis–Dugdale law (its energy balance holds to 1e-9: test_maugis_dugdale)
     continuum_restitution = simulate(continuum, trajectory=False).restitution
 
@@ -141,7 +147,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
     limit = values[-1] + (values[-1] - values[-2]) / 3
     assert abs(limit - continuum_restitution) < 1e-5
     # the scene check passes (N ≥ 55 over the least default length), the default reaches further
-    coarse = load_scene({**continuum, "effects": {"adhesion": adhesion(3.0)}, "contact": {"springs": 64}})
+    coarse = load_scene({**impact_scene(3.0), "contact": {"springs": 64}})
     result = solve_scene(coarse, integrator, options)
     assert result.status == "unresolved_zone" and math.isnan(result.restitution)
 
@@ -160,14 +166,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
 def test_an_array_that_cannot_resolve_the_zone_is_refused(length, advice):
     """Λ = 10: the zone is (π/4)E*Δγ/σ0² = a_c/(2Λ²) = 0.28 nm wide; 2 springs across it over
     contact.length L need N ≥ 2L/s (no solve)."""
-    data = {
-        "name": "md-springs",
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": 0.6},
-        "effects": {"adhesion": adhesion(10.0)},
-        "contact": {"springs": 256, "length": length},
-    }
+    data = {**impact_scene(10.0), "contact": {"springs": 256, "length": length}}
     with pytest.raises(SceneError) as error:
         load_scene(data)
     assert error.value.problems == [
