@@ -8,7 +8,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from ..._law.curve import AbstractCurve, CurveLaw, top_of_peak
+from ..._law.curve import AbstractCurve, CurveLaw, Reach, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from ..._law.dugdale import DugdaleLaw, build_curve
 from ..._law.dugdale_springs import build_spring_curve, default_length, spring_turns
@@ -58,7 +58,7 @@ def finite_range_curve(
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
     if isinstance(law, DugdaleLaw) and numerics.springs is not None:
-        curve = spring_curve(law, default_length(law, reach), loading, numerics.springs, numerics.tabulation.max_turns)
+        curve = spring_curve(law, reach, loading, numerics.springs, numerics.tabulation.max_turns)
     elif isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
     else:
@@ -66,11 +66,12 @@ def finite_range_curve(
     return scales, unit, law, curve
 
 
-def spring_curve(law: DugdaleLaw, reach, loading: Loading, capacity: int, max_turns: int):
+def spring_curve(law: DugdaleLaw, reach: Reach, loading: Loading, capacity: int, max_turns: int):
     """The curve of the loading's Maugis–Dugdale spring array (`capacity` its compiled size): over
-    its `spring_length`, or by default `reach` (`default_length`: just beyond the program's
-    peak)."""
-    length = jnp.where(jnp.isnan(loading.spring_length), reach, loading.spring_length / law.scales.radial)
+    its `spring_length`, or by default `default_length` (just beyond the program's peak, `reach`)."""
+    length = jnp.where(
+        jnp.isnan(loading.spring_length), default_length(law, reach), loading.spring_length / law.scales.radial
+    )
     return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
 
