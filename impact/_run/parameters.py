@@ -44,7 +44,13 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
             capacity=spring_capacity(scene.contact.springs),
         )
     if adhesion is not None and adhesion.model == "maugis_dugdale":
-        return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return MaugisDugdale(
+            method=solver.method,
+            rtol=solver.rtol,
+            atol=solver.atol,
+            max_steps=solver.max_steps,
+            hysteresis=adhesion.approach < adhesion.work_of_adhesion,
+        )
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.contact.springs == "continuum":
