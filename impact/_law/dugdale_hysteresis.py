@@ -149,17 +149,22 @@ class HysteresisCurve(AbstractCurve):
     def _on_part(self, law: HystereticLaw, s, where_part):
         """(d, F, a, b) at s by the formula of the part (and the frozen zone's side of φ = 0)
         holding `where_part`."""
-        # `where`, not min/max: their derivative at a tie is halved.
-        detach = self.detach.state(law.detach, jnp.where(s <= self.lower, s, self.lower))
+        part = jnp.where(where_part <= self.lower, 0, jnp.where(where_part < self.upper, 1, 2))
+        # The two curves differ only in their range and junction: one evaluation, of the part's.
+        # (`where`, not min/max, for the parameter: their derivative at a tie is halved.)
+        detaching = part == 0
+        along = jnp.where(
+            detaching,
+            jnp.where(s <= self.lower, s, self.lower),
+            jnp.where(self.start + s - self.upper > 0.0, self.start + s - self.upper, 0.0),
+        )
+        range_ = jnp.where(detaching, law.detach.range, law.approach_range)
+        outer_law = eqx.tree_at(lambda outer: outer.range, law.detach, range_)
+        junction = jnp.where(detaching, self.detach.junction, self.approach.junction)
+        outer = eqx.tree_at(lambda curve: curve.junction, self.detach, junction).state(outer_law, along)
         frozen_phi = self.switches_at[0] + where_part - self.lower
         frozen = frozen_state(law.detach, self.zone, self.switches_at[0] + s - self.lower, frozen_phi >= 0.0)
-        along = self.start + s - self.upper
-        approach = self.approach.state(law.approach, jnp.where(along > 0.0, along, 0.0))
-        part = jnp.where(where_part <= self.lower, 0, jnp.where(where_part < self.upper, 1, 2))
-        return tuple(
-            jnp.where(part == 0, d, jnp.where(part == 1, f, a))
-            for d, f, a in zip(detach, frozen, approach, strict=True)
-        )
+        return tuple(jnp.where(part == 1, f, o) for o, f in zip(outer, frozen, strict=True))
 
     def grid(self, law: HystereticLaw):
         """The detach curve's grid to s1, the frozen zone's ends, the approach curve's beyond s2."""
