@@ -296,8 +296,9 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     )
     log.event(jnp.where(up, EVENT["snap_in"], EVENT["snap_out"]), shown & moved)
     c = replace_where(c, moves, attached=True, s=landing, segment=p.segment, d=p.level)
-    # In a landing, a jump past the applied force turns the motion back.
-    overshoot = moves & c.landing & jnp.where(c.direction > 0, after[2] > c.target, after[2] < c.target)
+    # In a landing, a jump past the applied force turns the motion back (riding on across a node
+    # is no jump: on a frozen Maugis–Dugdale zone F equals the applied force to round-off there).
+    overshoot = moves & moved & c.landing & jnp.where(c.direction > 0, after[2] > c.target, after[2] < c.target)
     return replace_where(c, overshoot, direction=-c.direction)
 
 
