@@ -42,9 +42,10 @@ from .dugdale import DugdaleCurve, DugdaleLaw
 from .scales import Scales
 
 # The frozen zone's switches, φ ∈ [0, 64] in contact (p ≥ 1.6e-28, beyond every curve's top):
-# bisection to 64/2^64 = 3.5e-18, below the round-off of φ.
+# bisection to 64/2^36 ≈ 1e-9, then Newton steps (clamped to the bracket), each squaring the error.
 _LARGEST_SHARE_LOG = 64.0
-_SWITCH_STEPS = 64
+_SWITCH_STEPS = 36
+_SWITCH_NEWTON_STEPS = 2
 
 
 class HystereticLaw(eqx.Module):
@@ -97,7 +98,7 @@ def frozen_gap(law: DugdaleLaw, zone, phi):
 
 def frozen_switch(law: DugdaleLaw, zone, gap):
     """φ where the gap at b reaches `gap` (ĥ: onto the detach curve; ĥa: onto the approach curve):
-    explicit without contact, bisected in φ in contact."""
+    explicit without contact, bisected in φ in contact (the gap falls as φ grows), then Newton."""
     closing = _closing_gap(law, zone)
     safe = jnp.where(zone > 0.0, zone, 1.0)
 
@@ -106,7 +107,12 @@ def frozen_switch(law: DugdaleLaw, zone, gap):
 
     lower = jnp.zeros(jnp.broadcast_shapes(jnp.shape(zone), jnp.shape(gap)))
     lo, hi = bisect(lambda phi: excess(phi) > 0.0, lower, lower + _LARGEST_SHARE_LOG, _SWITCH_STEPS)
-    closed = implicit_root(excess, 0.5 * (lo + hi))
+
+    def newton(_, phi):
+        value, slope = jax.jvp(excess, (phi,), (jnp.ones_like(phi),))
+        return jnp.clip(phi - jnp.where(slope < 0.0, value / jnp.where(slope < 0.0, slope, -1.0), 0.0), lo, hi)
+
+    closed = implicit_root(excess, jax.lax.fori_loop(0, _SWITCH_NEWTON_STEPS, newton, 0.5 * (lo + hi)))
     return jnp.where(closing > gap, closed, closing - gap)
 
 

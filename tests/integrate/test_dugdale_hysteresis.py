@@ -140,7 +140,7 @@ def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
 )
 def test_the_path_is_continuous_at_its_switches_and_the_zone_only_grows(tabor, share, junctions):
     """At s1 (frozen zone → detach curve), s2 (approach curve → frozen zone) and where the frozen
-    contact opens both formulas give the same state (measured ≤ 3e-15 relative; asserted
+    contact opens both formulas give the same state (measured ≤ 7e-15 relative, Λ = 0.01…100; asserted
     1e-12), and the zone radius b never falls along either curve (a point beyond b_f was never
     within ha, one left behind is beyond h; also measured for the cone and n = 1.5, 3)."""
     stress = float(theory.maugis_adhesive_stress(tabor, R, WORK, E_STAR))
@@ -193,9 +193,9 @@ def test_equal_works_reproduce_the_reversible_law():
 
 def test_energy_balance_events_and_restitution_against_the_approach_work():
     """Δγa/Δγ = 0.9 … 0.3 at Λ = 1 (one compiled program): every impact loses ∮F dd of kinetic
-    energy (≤ 1e-8 relative; measured ≤ 5e-10) over touch, max_indentation, detach_start,
-    separation, and e falls with Δγa from the reversible value (measured 0.938, 0.873, 0.765,
-    0.651, 0.593). Below about Δγa = 0.1Δγ it rises again towards the Δγa → 0 limit, as the
+    energy (≤ 1e-8 relative; measured ≤ 2e-10) over touch, max_indentation, detach_start,
+    separation, and e falls with Δγa from the reversible value (measured 0.938, 0.873, 0.752,
+    0.651, 0.584). Below about Δγa = 0.1Δγ it rises again towards the Δγa → 0 limit, as the
     JKR law's does (measured 0.578 at 0.1, 0.628 at 0.01, 0.659 at 1e-6)."""
     reversible = load_scene(scene(share=None))
     options = options_for(reversible, trajectory=False)
@@ -212,7 +212,7 @@ def test_energy_balance_events_and_restitution_against_the_approach_work():
 
 def test_large_tabor_tends_to_the_jkr_hysteresis_law():
     """Δγa = Δγ/2: e − e_JKR(Δγa) shrinks like 1/Λ (fitted over Λ = 30, 100, 300; measured slope
-    −1.00, 8.4e-5 at Λ = 300), as the zone's width b − a → 0 pins the frozen contact at a_max."""
+    −0.98, 8.4e-5 at Λ = 300), as the zone's width b − a → 0 pins the frozen contact at a_max."""
     jkr = simulate(
         {
             **scene(share=None),
