@@ -210,6 +210,32 @@ def test_energy_balance_events_and_restitution_against_the_approach_work():
     assert np.all(np.diff(restitutions) < 0.0), restitutions
 
 
+@pytest.mark.parametrize(
+    "tabor, share, velocity, status, kinds",
+    [
+        (1.0, 1e-9, 0.6, "separated", ["touch", "max_indentation", "detach_start", "separation"]),
+        (1000.0, 1e-9, 0.6, "separated", ["touch", "max_indentation", "detach_start", "separation"]),
+        (0.01, 1e-9, 0.6, "separated", ["touch", "max_indentation", "contact_end", "detach_start", "separation"]),
+        (1.0, 0.5, 20.0, "separated", ["touch", "max_indentation", "detach_start", "separation"]),
+        # Captured on the frozen zone without contact: it pulls with −πσ0·b_max² over its whole depth.
+        (0.01, 0.5, 0.6, "captured", ["touch", "contact_start", "max_indentation", "contact_end", "capture"]),
+        (1.0, 0.5, 0.05, "captured", ["touch", "max_indentation", "detach_start", "capture"]),
+        # Λa = Λ·(Δγ/Δγa)^(1/3) = 1e7: the approach zone is narrower than the curve's grid resolves.
+        (1e4, 1e-9, 0.6, "radius_overflow", ["touch", "contact_start"]),
+    ],
+)
+def test_hard_cases_at_the_edges_of_the_domain(tabor, share, velocity, status, kinds):
+    """The least Δγa allowed (1e-9·Δγ) from the DMT to the JKR side, a fast and a slow impact, a
+    capture on the frozen zone, and the corner where the approach curve is not resolved (a named
+    status, not a number): each ends as stated, a separated one with ∮F dd = ΔKE (1e-8)."""
+    result = simulate(scene(tabor=tabor, share=share, velocity=velocity), trajectory=False)
+    assert result.status == status
+    assert [kind for _, kind in result.events] == kinds
+    if status == "separated":
+        lost, work = balance(result)
+        assert abs(lost - work) <= 1e-8 * 0.5 * MASS * result.touch_velocity**2
+
+
 def test_large_tabor_tends_to_the_jkr_hysteresis_law():
     """Δγa = Δγ/2: e − e_JKR(Δγa) shrinks like 1/Λ (fitted over Λ = 30, 100, 300; measured slope
     −0.98, 8.4e-5 at Λ = 300), as the zone's width b − a → 0 pins the frozen contact at a_max."""
