@@ -4,9 +4,9 @@ the chapter has none), in the scaled units of `dugdale.DugdaleLaw` (E* = 1).
 - Approach: the Maugis–Dugdale curve with the same σ0 and the range ha = Δγa/σ0: a point starts
   to attract once its gap falls below ha.
 - Frozen zone: a point that has been within ha keeps attracting with σ0 until its gap reaches
-  h = Δγ/σ0. The zone radius b grows monotonically along the curve (checked for the paraboloid,
-  Λ = 0.01…100, and the power laws of the tests), so the zone's outer edge stays at b_f, its
-  largest radius so far, while ha ≤ gap(b_f) ≤ h. The contact edge keeps K = 0: (3.154) and
+  h = Δγ/σ0. The zone radius b grows monotonically along the curve (measured on every search
+  grid: paraboloid, cone, n = 1.5 and 3, σ0 = 1e6…1e9 Pa), so the zone's outer edge stays at b_f,
+  its largest radius so far, while ha ≤ gap(b_f) ≤ h. The contact edge keeps K = 0: (3.154) and
   (3.156) with b = b_f fixed, d = g(a) − 2σ·√(b_f² − a²); the range condition (3.152) becomes the
   gap at b_f, bⁿ·P(p) + b·Q(p) (`DugdaleLaw.range_gap`). Along it dF = 2a·dd (the zone's terms
   cancel): d and F rise with a, stable under both controls. At a = 0 the zone without contact
@@ -85,15 +85,9 @@ def frozen_state(law: DugdaleLaw, zone, phi, closed=None):
 
 
 def _closing_gap(law: DugdaleLaw, zone):
-    """The gap at b of the frozen zone at φ = 0 (a = 0, d = −2σb): f(b) + 2σ·(1 − 2/π)·b (3.164)."""
+    """The gap at b of the frozen zone at φ = 0 (a = 0, d = −2σb): f(b) + 2σ·(1 − 2/π)·b (3.164);
+    without contact (φ < 0) it is f(b) − d − (4σ/π)·b = this − φ (3.162), in contact bⁿ·P + b·Q."""
     return law.f_unit() * zone**law.exponent + 2.0 * law.stress * (1.0 - 2.0 / jnp.pi) * zone
-
-
-def frozen_gap(law: DugdaleLaw, zone, phi):
-    """The gap at r = b of the frozen zone at φ: bⁿ·P(p) + b·Q(p) in contact, f(b) − d −
-    (4σ/π)·b without (it falls as φ grows)."""
-    closed = phi >= 0.0
-    return jnp.where(closed, law.range_gap(jnp.exp(-jnp.where(closed, phi, 0.0)), zone), _closing_gap(law, zone) - phi)
 
 
 def frozen_switch(law: DugdaleLaw, zone, gap):

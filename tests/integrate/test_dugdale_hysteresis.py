@@ -312,8 +312,8 @@ def test_sweeps_pass_the_approach_work_and_run_the_hysteretic_program():
             {"contact": {"springs": 64}},
             "effects.adhesion.approach_work_of_adhesion",
             "0.02 J/m² is below work_of_adhesion (0.05 J/m²): a maugis_dugdale spring array has no approach "
-            "hysteresis (its frozen zone is built for the continuum law only): leave it out, or set it to "
-            "work_of_adhesion, or use contact.springs: continuum",
+            "hysteresis (its curve is built spring by spring for one range; the frozen zone is derived for the "
+            "continuum law only): leave it out, or set it to work_of_adhesion, or use contact.springs: continuum",
         ),
         (
             {"model": "greenwood_johnson", "k": 10.0, "approach_work_of_adhesion": 0.02},
