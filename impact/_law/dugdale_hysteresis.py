@@ -208,8 +208,10 @@ def hysteresis_curve(
     quasi-static march needs them."""
     zone = jnp.asarray(zone, float)
     switches = frozen_switch(law.detach, zone, jnp.stack([law.detach.range, law.approach_range]))
+    # Equal ranges (Δγa = Δγ) leave no frozen zone: one root for both (two lanes may round apart).
+    switches = switches.at[1].set(jnp.where(law.approach_range < law.detach.range, switches[1], switches[0]))
     lower = curve_parameter(detach, zone, switches[0])
-    upper = lower + switches[1] - switches[0]
+    upper = lower + (switches[1] - switches[0])
     start = curve_parameter(approach, zone, switches[1])
     nan = jnp.full((), jnp.nan)
     junction = jnp.stack(
