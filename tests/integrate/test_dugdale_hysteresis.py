@@ -180,7 +180,7 @@ def balance(result):
 
 def test_equal_works_reproduce_the_reversible_law():
     """Δγa = Δγ on the hysteretic path (its frozen zone empty) gives the reversible program's
-    impact to round-off (measured: bit for bit; 6e-15 in e with trajectory samples): the same
+    impact to round-off (measured: bit for bit, with and without trajectory samples): the same
     events, work and forces. (A scene with Δγa = Δγ runs the reversible program itself.)"""
     reversible = load_scene(scene(share=None))
     hysteretic = solve_scene(reversible, hysteretic_of(reversible), options_for(reversible, trajectory=False))

@@ -104,7 +104,7 @@ def test_force_control_lets_go_where_the_frozen_zone_opens(share):
 def test_cycles_reload_along_the_frozen_zone_onto_the_approach_curve(control, unload_to):
     """Λ = 1, Δγa = Δγ/2, two cycles, the first unloaded to F = 0 (on the frozen zone) or d = 0 (on
     the detach curve): the second loading returns to the first one's approach curve (its peak
-    state to 1e-10; measured ≤ 2e-15) and the pull-off is the one-cycle one (bitwise)."""
+    state to 1e-10; measured ≤ 2e-14) and the pull-off is the one-cycle one (bitwise)."""
     single = run(1.0, control, 0.5)
     cycled = run(1.0, control, 0.5, cycles=2, unload_to=unload_to)
     np.testing.assert_array_equal(pull_off(cycled), pull_off(single))
