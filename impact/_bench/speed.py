@@ -39,7 +39,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .._core.runtime import COMPILER_OPTIONS
+from .._core.runtime import compiler_options
 from .._io.files import write_text
 from .._plots.bench import save_speed_figure
 from .._run.programs import solve
@@ -177,11 +177,11 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
         _STAGES[choices] = (
             jax.jit(
                 jax.vmap(lambda physics: checksum(integrator.build(physics, options))),
-                compiler_options=COMPILER_OPTIONS,
+                compiler_options=compiler_options(),
             ),
             jax.jit(
                 jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))),
-                compiler_options=COMPILER_OPTIONS,
+                compiler_options=compiler_options(),
             ),
         )
     devices = local_devices()

@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 import jax
 
-from .._core.runtime import COMPILER_OPTIONS
+from .._core.runtime import compiler_options
 
 
 def best_time(function: Callable, args: tuple, budget: float, repeats: int = 7, once: float = 1.0):
@@ -41,5 +41,5 @@ def compile_ahead(function: Callable, *args):
     """(compiled executable of `jax.jit(function)` for `args`, with the options of impact's own
     programs; seconds to trace, lower and compile)."""
     start = time.perf_counter()
-    compiled = jax.jit(function, compiler_options=COMPILER_OPTIONS).lower(*args).compile()
+    compiled = jax.jit(function, compiler_options=compiler_options()).lower(*args).compile()
     return compiled, time.perf_counter() - start

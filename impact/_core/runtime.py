@@ -8,11 +8,13 @@ changes process-wide settings); call it first in scripts that use the Python API
 import functools
 import importlib.util
 import os
+import platform
 from collections.abc import Callable
 from pathlib import Path
 from typing import ParamSpec, TypeVar
 
 import jax
+import jax.numpy as jnp
 
 from .cache import cache_directory, use_cache
 
@@ -20,13 +22,32 @@ from .cache import cache_directory, use_cache
 # Verlet loops (the law evaluated inside) are a few kB: compiled whole they run 10× faster.
 SMALL_LOOP_OPTION = "xla_cpu_small_while_loop_byte_threshold=65536"
 
-# Options of every compiled impact program, whatever the process settings: a point's result is
-# bitwise the same alone or at any place of a batch of any size. XLA:CPU vectorises the loops over
-# a vmapped batch, and lanes in SIMD registers round differently from lanes in the scalar
-# remainder (measured: Thornton–Ning restitutions a few ulps apart, Maugis–Dugdale's up to 4e-7
-# with 20 solver steps more or fewer). With float64 vectors of one element every lane runs the
-# same scalar code. Other backends ignore the option.
-COMPILER_OPTIONS = {"xla_cpu_prefer_vector_width": 64}
+# A point's result must be bitwise the same alone or at any place of a batch of any size. XLA:CPU
+# vectorises the loops over a vmapped batch; where it contracts multiply–adds into fused ones
+# (FMA), it does so differently in the vector loop, its scalar remainder, a loop compiled whole
+# and one run op by op, so that lanes rounded by their place (measured: Thornton–Ning
+# restitutions a few ulps apart, Maugis–Dugdale's up to 4e-7 with 20 solver steps more or
+# fewer). Without FMA, vector and scalar code run the same IEEE operations: `configure()` caps
+# XLA:CPU at AVX (no FMA) on x86-64, and every lane then keeps its vectors. A process started
+# otherwise (FMA available) compiles with float64 vectors of one element: every lane runs the
+# same scalar code, 1.2–1.6× slower. Other backends ignore the option.
+NO_FMA_FLAG = "--xla_cpu_max_isa=AVX"
+SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
+
+
+@functools.cache
+def contracts_multiply_adds() -> bool:
+    """Whether this process's XLA fuses a·b + c into one rounding (FMA): with a = 1 + 2⁻³⁰ and
+    b = 1 − 2⁻³⁰, a·b = 1 − 2⁻⁶⁰ rounds to 1, so a·b − 1 is 0 unfused and −2⁻⁶⁰ fused."""
+    with jax.enable_x64(True):
+        a, b, c = jnp.float64(1 + 2**-30), jnp.float64(1 - 2**-30), jnp.float64(-1.0)
+        return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
+
+
+def compiler_options() -> dict[str, int]:
+    """XLA options of every compiled impact program: none where this process runs without FMA
+    (`configure()` on x86-64), else scalar lanes (see `NO_FMA_FLAG`)."""
+    return SCALAR_LANES if contracts_multiply_adds() else {}
 
 
 def _accelerator_plugins() -> bool:
@@ -38,7 +59,8 @@ def _accelerator_plugins() -> bool:
 
 def configure(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = True) -> Path | None:
     """Enable float64; on a CPU-only install, before the backend starts and unless XLA_FLAGS
-    already sets backend options, let XLA:CPU compile loops of up to 64 kB into one kernel; and
+    already sets them, let XLA:CPU compile loops of up to 64 kB into one kernel and, on x86-64,
+    generate code without fused multiply–adds (`NO_FMA_FLAG`: batches keep their vectors); and
     store compiled programs on disk, so that a later process loads them instead of compiling.
 
     The cache lives in `cache_dir`, else in $IMPACT_CACHE_DIR, else in the per-user cache
@@ -46,9 +68,13 @@ def configure(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = 
     IMPACT_CACHE_DIR=off switches it off. A directory that cannot be written is skipped with a
     RuntimeWarning. Returns the cache directory in use (None: no cache)."""
     jax.config.update("jax_enable_x64", True)
-    flags = os.environ.get("XLA_FLAGS", "")
-    if "xla_backend_extra_options" not in flags and not _accelerator_plugins():
-        os.environ["XLA_FLAGS"] = f"{flags} --xla_backend_extra_options={SMALL_LOOP_OPTION}".strip()
+    if not _accelerator_plugins():
+        flags = os.environ.get("XLA_FLAGS", "")
+        if "xla_backend_extra_options" not in flags:
+            flags = f"{flags} --xla_backend_extra_options={SMALL_LOOP_OPTION}"
+        if "xla_cpu_max_isa" not in flags and platform.machine().lower() in ("x86_64", "amd64"):
+            flags = f"{flags} {NO_FMA_FLAG}"
+        os.environ["XLA_FLAGS"] = flags.strip()
     return use_cache(cache_directory(cache_dir, cache=cache))
 
 

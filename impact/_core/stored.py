@@ -33,7 +33,7 @@ from jax import export
 from jax._src.export import _export  # noqa: TID251 - no public switch; absent, nothing is skipped
 
 from .cache import directory_in_use
-from .runtime import COMPILER_OPTIONS
+from .runtime import compiler_options
 
 EXPORTED = "exported"  # folder of the serialized programs inside the cache directory
 _LIBRARIES = ("jax", "jaxlib", "diffrax", "equinox", "optimistix", "lineax")
@@ -61,10 +61,10 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
         return _loaded[key](*leaves)
     directory = directory_in_use()
     if directory is None or not _can_serialize():
-        _loaded[key] = jax.jit(traced, compiler_options=COMPILER_OPTIONS)
+        _loaded[key] = jax.jit(traced, compiler_options=compiler_options())
         return _loaded[key](*leaves)
     exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
-    _loaded[key] = jax.jit(exported.call, compiler_options=COMPILER_OPTIONS)
+    _loaded[key] = jax.jit(exported.call, compiler_options=compiler_options())
     with contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack():
         return _loaded[key](*leaves)  # the first call lowers the program
 

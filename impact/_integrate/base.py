@@ -45,10 +45,10 @@ _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 # A ride's state is padded with zeros to a multiple of this many components, so that a point's
 # result does not depend on its batch. A Runge–Kutta step sums its stages with the tableau's
 # constant weights; under vmap that sum is one matrix–vector product over every lane's
-# components, which XLA:CPU computes in tiles of 4 rows (the register width it assumes where
-# vectors are off: `impact._core.runtime.COMPILER_OPTIONS`) with fused multiply–adds, and the
-# rows left over one at a time without: with 3 components, the last lane of a batch of 7 rounded
-# differently from the same point in a batch of 8.
+# components, which XLA:CPU computes in tiles of 4 rows, with fused multiply–adds where the
+# process has them (`impact._core.runtime.NO_FMA_FLAG`), and the rows left over one at a time
+# without: with 3 components, the last lane of a batch of 7 rounded differently from the same
+# point in a batch of 8.
 _STATE_TILE = 4
 
 

@@ -9,7 +9,7 @@ from .._core import derivatives
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.search import golden_section
 from .._law.branches import Branch
-from .._law.law import ContactLaw
+from .._law.law import ContactLaw, power
 from .codes import ADVANCE
 
 
@@ -41,11 +41,19 @@ def branch_force(law: ContactLaw, branch: Branch, radius):
 def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
     """∫F dd while a moves along the branch from start to end: ∫F(a)·h'(a) da.
 
-    Gauss–Legendre in u = ln a over the top e^10 of the radii, where power-law behaviour a^p
-    becomes exponential (an interval [a0, 40·a0] is no harder than [a0, 2·a0]); below that
-    (from a = 0, or from a jump-in radius decades further down), in s with
-    a = a_low + (a_split − a_low)·s².
+    For ĝ = Â·aⁿ in closed form, the difference of the potential
+    W(a) = 2n²Â²/((n+1)(2n+1))·a^(2n+1) − 2nλÂ/(n+1)·a^(n+3/2) + λ²a²/2 (F·h' with
+    F = 2(Â·n/(n+1)·a^(n+1) − λ·a^(3/2)) and h' = nÂ·a^(n−1) − λ/(2√a), integrated term by
+    term). Other profiles: Gauss–Legendre in u = ln a over the top e^10 of the radii, where
+    power-law behaviour a^p becomes exponential (an interval [a0, 40·a0] is no harder than
+    [a0, 2·a0]); below that (from a = 0, or from a jump-in radius decades further down), in s
+    with a = a_low + (a_split − a_low)·s².
     """
+    form = law.power_form()
+    if form is not None:
+        coefficient = branch.coefficient if law.adhesive else jnp.zeros(())
+        potential = _power_law_potential
+        return potential(form, coefficient, end_radius) - potential(form, coefficient, start_radius)
     nodes, weights = gauss_legendre(_QUADRATURE_NODES)
 
     def integrand(radii):
@@ -64,6 +72,16 @@ def branch_work(law: ContactLaw, branch: Branch, start_radius, end_radius):
     squared = low + (split - low) * nodes**2
     bottom = ordered_sum(weights * 2.0 * (split - low) * nodes * integrand(squared))
     return sign * (top + bottom)
+
+
+def _power_law_potential(form, coefficient, radius):
+    """W(a) of `branch_work` for ĝ = Â·aⁿ (W(0) = 0)."""
+    scale, exponent = form
+    return (
+        2.0 * exponent**2 * scale**2 / ((exponent + 1.0) * (2.0 * exponent + 1.0)) * power(radius, 2.0 * exponent + 1.0)
+        - 2.0 * exponent * coefficient * scale / (exponent + 1.0) * power(radius, exponent + 1.5)
+        + 0.5 * coefficient**2 * radius**2
+    )
 
 
 def hold_work(law: ContactLaw, radius, start, end):

@@ -41,14 +41,14 @@ class ContactLaw(eqx.Module):
         """Scaled 1-D profile ĝ(x̂)."""
         if self.power_law is not None:
             coefficient, exponent = self.power_law
-            return coefficient * _power(x, exponent)
+            return coefficient * power(x, exponent)
         return self.profile.g(x * self.scales.radial) / self.scales.normal
 
     def G(self, x):
         """Scaled ∫₀^x̂ ĝ."""
         if self.power_law is not None:
             coefficient, exponent = self.power_law
-            return coefficient * x * _power(x, exponent) / (exponent + 1.0)
+            return coefficient * x * power(x, exponent) / (exponent + 1.0)
         return self.profile.G(x * self.scales.radial) / (self.scales.radial * self.scales.normal)
 
     def extent(self):
@@ -94,7 +94,7 @@ def _scaled_power_form(profile: Profile, scales: Scales):
     return coefficient * scales.radial**exponent / scales.normal, exponent
 
 
-def _power(x, exponent):
+def power(x, exponent):
     """x̂ⁿ for x̂ ≥ 0 as exp(n·ln x̂) (0 at x̂ = 0, with slope 0 there: as `PowerLaw.f`). In the
     scaled units ln x̂ = O(1), so it is within a few ulps of the power, at a fraction of the
     cost of a power with a traced exponent."""

@@ -3,10 +3,11 @@ point by point (chunk 1), in calls of 6 (chunk 7), all at once (chunk 64 and the
 reverse order gives every result bitwise equal, and (continuum law, spring array, attach
 hysteresis) equal to `impact.simulate` of the point.
 
-XLA:CPU once vectorised the lanes of a batch, so that lanes in SIMD registers and lanes in the
-scalar remainder rounded differently (restitutions apart by a few ulps, Maugis–Dugdale's step
-counts by up to 20); `impact._core.runtime.COMPILER_OPTIONS` makes every lane run scalar code.
-Twelve points make the batch wide enough to be vectorised without that option.
+XLA:CPU vectorises the lanes of a batch; with fused multiply–adds, lanes in SIMD registers and
+lanes in the scalar remainder rounded differently (restitutions apart by a few ulps,
+Maugis–Dugdale's step counts by up to 20). The tests' process runs without FMA
+(`impact.configure()`, `impact._core.runtime.NO_FMA_FLAG`) and keeps the vectors; twelve points
+make the batch wide enough to be vectorised with a remainder.
 
 A Runge–Kutta step's sum of its stages is one matrix–vector product over every lane's state,
 which XLA:CPU computes in tiles of 4 rows with fused multiply–adds and the rows left over
@@ -28,6 +29,10 @@ checked below). `impact.simulate` (unbatched) gives those two laws' results to a
 checked here.
 """
 
+import os
+import platform
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +40,7 @@ import pytest
 
 from impact import simulate
 from impact._core.defaults import DEFAULT_CHUNK
+from impact._core.runtime import NO_FMA_FLAG, SCALAR_LANES, compiler_options, contracts_multiply_adds
 from impact._run.sweep import sweep
 from impact._run.sweep.execute import _call_sizes
 from impact._run.sweep.plan import plan_sweep
@@ -143,3 +149,24 @@ def test_curve_laws_run_calls_of_at_most_sixteen_points(config, call):
     plan = plan_sweep(make_spec(load_scene(CONFIGS / config), {"initial.velocity": np.linspace(0.1, 1.0, 40).tolist()}))
     assert _call_sizes(plan, plan.share(0, 1), 64, devices=1) == {0: call}
     assert _call_sizes(plan, plan.share(0, 1), 1, devices=1) == {0: 2}
+
+
+X86 = platform.machine().lower() in ("x86_64", "amd64")
+HAS_FMA = X86 and Path("/proc/cpuinfo").exists() and " fma " in Path("/proc/cpuinfo").read_text()
+
+
+@pytest.mark.skipif(not X86, reason="the FMA flag is for XLA:CPU on x86-64")
+def test_a_configured_process_runs_without_fused_multiply_adds_and_keeps_its_vectors():
+    assert NO_FMA_FLAG in os.environ["XLA_FLAGS"]  # conftest called impact.configure()
+    assert contracts_multiply_adds() is False
+    assert compiler_options() == {}
+
+
+@pytest.mark.skipif(not HAS_FMA, reason="needs an x86-64 CPU with FMA")
+def test_a_process_with_fused_multiply_adds_runs_every_lane_scalar():
+    """A process that never called `configure()` (its XLA contracts a·b + c into one FMA) gets
+    vectors of one element, so that its lanes still round alike."""
+    probe = "from impact._core.runtime import compiler_options as o; print(o())"
+    environment = {key: value for key, value in os.environ.items() if key != "XLA_FLAGS"}
+    shown = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=environment, check=True)
+    assert shown.stdout.strip() == str(SCALAR_LANES)

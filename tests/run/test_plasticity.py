@@ -52,8 +52,10 @@ def test_restitution_meets_thorntons_closed_form(ratio):
 def test_below_the_yield_velocity_the_impact_is_elastic():
     plastic, elastic = impact_at(0.9), impact_at(0.9, plastic=False)
     assert plastic.plastic_work == 0.0  # the state stays virgin: R_p = R, δ_p = 0
-    # both integrators reach e = 1 to their solver tolerance (rtol 1e-10), not to the bit
-    assert plastic.restitution == pytest.approx(1.0, abs=2e-9)
+    # both integrators reach e = 1 to their solver tolerance (rtol 1e-10), not to the bit: the
+    # plastic one to 2.1e-9 (measured without FMA, as impact.configure() runs every x86-64
+    # machine; one CPU with FMA gave 2.06e-9, another under 2e-9), the continuum one to 8.5e-10
+    assert plastic.restitution == pytest.approx(1.0, abs=3e-9)
     assert elastic.restitution == pytest.approx(1.0, abs=2e-9)
     assert plastic.max_force == pytest.approx(elastic.max_force, rel=1e-8)
 
