@@ -22,7 +22,7 @@ class Adhesion(eqx.Module):
     """Adhesion parameters (SI, traced: new values do not recompile)."""
 
     work_of_adhesion: Parameter  # Δγ (J/m²): the Dupré work of separation
-    approach_work_of_adhesion: Parameter  # Δγa ≤ Δγ (J/m²): the JKR law's attachment on approach
+    approach_work_of_adhesion: Parameter  # Δγa ≤ Δγ (J/m²): attachment on approach (JKR, Maugis–Dugdale)
     adhesive_stress: Parameter  # σ0 (Pa) of Maugis–Dugdale adhesion; nan for the other laws
     double_hertz_factor: Parameter  # k of Greenwood–Johnson adhesion; nan for the other laws
 
@@ -36,6 +36,12 @@ class Adhesion(eqx.Module):
     def adhesion_range(self) -> Parameter:
         """h = Δγ/σ0 (m) of the Maugis–Dugdale stress (3.4)."""
         return self.work_of_adhesion / self.adhesive_stress
+
+    @property
+    def approach_range(self) -> Parameter:
+        """ha = Δγa/σ0 (m): the range over which Maugis–Dugdale's stress attaches on approach
+        (`_law.dugdale_hysteresis`)."""
+        return self.approach_work_of_adhesion / self.adhesive_stress
 
     def hess_coefficients(self, scales: Scales, E_star) -> tuple[jax.Array, jax.Array]:
         """(λ, λa) of the scaled Heß rule: the edge spring at x̂ detaches at the elongation λ·√x̂

@@ -77,7 +77,7 @@ class Carry(eqx.Module):
     event_kinds: jax.Array
     event_count: jax.Array
     trajectory: jax.Array
-    memory: Any  # what the contact law carries between contacts (a plastic state); else a 0
+    memory: Any  # what the contact law remembers (a plastic state, a frozen Maugis–Dugdale zone); else a 0
 
 
 def initial_carry(problem, options: Options, memory: Any = None) -> Carry:

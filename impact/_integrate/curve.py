@@ -14,6 +14,11 @@ a snap-in or snap-out, or the release of the body when none is left. An outward 
 the curve is a capture (the argument of `transitions.capture` holds: only the jumps dissipate).
 The integrators of Maugis–Dugdale (`dugdale`) and Greenwood–Johnson (`double_hertz`) build their
 law and curve and share everything else here.
+
+A curve that remembers (Maugis–Dugdale with approach hysteresis, `_law.dugdale_hysteresis`) is
+one path of a family, chosen by the carry's memory (the frozen zone's radius; 0 apart, where the
+path is the approach curve): loading turns back onto the frozen zone of its path anchored there,
+which unloads onto the detach curve (`detach_start`); separation clears the memory.
 """
 
 from typing import ClassVar
@@ -21,7 +26,7 @@ from typing import ClassVar
 import equinox as eqx
 import jax.numpy as jnp
 
-from .._core.pytree import where
+from .._core.pytree import replace, where
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
 from .._law.curve import AbstractCurve, CurveLaw
@@ -131,39 +136,49 @@ def _work(law: CurveLaw, curve: AbstractCurve, start, end):
     return (end - start) * ordered_sum(weights * force * slope)
 
 
-def _after(problem: CurveProblem, advancing, turned, segment, s_end, d_end):
-    """The phase after a ride ended (`Next.radius` holds s)."""
-    law, curve = problem.law, problem.curve
-    junction = curve.junction
+def _after(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segment, s_end, d_end, memory):
+    """The phase after a ride along `curve` ended (`Next.radius` holds s), and the memory of a
+    curve that `remembers`: re-anchored where loading turns back, cleared where the body leaves."""
+    law = problem.law
     # Loading reaches its segment's top: on to the next rising state at this level.
     # A rising segment that goes on from this one's end (the junction) is no jump: the state
     # stays at the node, whatever an ulp of d finds on the flat start of the next one.
     out_s, out_segment, blocked = curve.cascade_out(law, curve.nodes[segment + 1], d_end)
-    out_s = jnp.where(out_segment == segment + 1, curve.nodes[segment + 1], out_s)
+    out_s = jnp.where(curve.nodes[out_segment] == curve.nodes[segment + 1], curve.nodes[segment + 1], out_s)
     jumped_out = out_s > curve.nodes[segment + 1] + _SAME_STATE * (1.0 + out_s)
     out_event = jnp.where(jumped_out, EVENT_CODE["snap_in"], EVENT_CODE["contact_start"])
-    # Unloading reaches its segment's foot: back to the last rising state at this level.
-    in_s, in_segment, released = curve.cascade_in(law, curve.nodes[segment], d_end)
-    in_s = jnp.where(in_segment == segment - 1, curve.nodes[segment], in_s)
-    jumped_in = in_s < curve.nodes[segment] - _SAME_STATE * (1.0 + in_s)
-    in_event = jnp.where(
-        released,
-        EVENT_CODE["separation"],
-        jnp.where(jumped_in | (curve.nodes[segment] != junction), EVENT_CODE["snap_out"], EVENT_CODE["contact_end"]),
+    # Unloading reaches its segment's foot: back to the last rising state at this level (riding
+    # on across a hysteretic path's switch: from the frozen zone onto the detach curve).
+    foot = curve.nodes[segment]
+    in_s, in_segment, released = curve.cascade_in(law, foot, d_end)
+    in_s = jnp.where(curve.nodes[in_segment + 1] == foot, foot, in_s)
+    jumped_in = in_s < foot - _SAME_STATE * (1.0 + in_s)
+    goes_on = jnp.where(
+        curve.switches(foot),
+        EVENT_CODE["detach_start"],
+        jnp.where(curve.closes(foot), EVENT_CODE["contact_end"], EVENT_CODE["snap_out"]),
     )
+    in_event = jnp.where(released, EVENT_CODE["separation"], jnp.where(jumped_in, EVENT_CODE["snap_out"], goes_on))
     mode = jnp.where(
         advancing,
         jnp.where(turned, RECEDE, jnp.where(blocked, DONE, ADVANCE)),
         jnp.where(turned, DONE, jnp.where(released, FLIGHT, RECEDE)),
     )
-    new_segment = jnp.where(advancing, jnp.where(turned, segment, out_segment), jnp.where(turned, segment, in_segment))
-    new_s = jnp.where(turned, s_end, jnp.where(advancing, out_s, in_s))
+    turn_segment, turn_s = segment, s_end
+    if curve.remembers:  # unloading starts on the frozen zone of the path anchored at the turn
+        turned_curve, turned_memory, turn_s = curve.anchored(law, s_end, memory)
+        turn_segment = turned_curve.holding(turn_s, False)
+        memory = jnp.where(advancing & turned, turned_memory, jnp.where(~advancing & released, 0.0, memory))
+    new_segment = jnp.where(
+        advancing, jnp.where(turned, turn_segment, out_segment), jnp.where(turned, segment, in_segment)
+    )
+    new_s = jnp.where(turned, jnp.where(advancing, turn_s, s_end), jnp.where(advancing, out_s, in_s))
     event = jnp.where(
         advancing,
         jnp.where(turned, EVENT_CODE["max_indentation"], out_event),
         jnp.where(turned, EVENT_CODE["capture"], in_event),
     )
-    return Next(
+    nxt = Next(
         mode=mode,
         segment=new_segment,
         radius=new_s,
@@ -172,11 +187,13 @@ def _after(problem: CurveProblem, advancing, turned, segment, s_end, d_end):
         captured=~advancing & turned,
         stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
     )
+    return nxt, memory
 
 
 def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options: Options, c: Carry) -> Carry:
     """One ride along a rising segment with diffrax, ended by its located event."""
-    law, curve = problem.law, problem.curve
+    law = problem.law
+    curve = problem.curve.at(law, c.memory)
     riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
     advancing = c.mode == ADVANCE
     args = _Args(
@@ -212,6 +229,7 @@ def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options
 
     work = _work(law, curve, s_start, s_end)
     low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
-    nxt = _after(problem, advancing, turned, c.segment, s_end, d_end)
+    nxt, memory = _after(problem, curve, advancing, turned, c.segment, s_end, d_end, c.memory)
     summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    return close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    closed = close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    return replace(closed, memory=jnp.where(riding, memory, c.memory)) if curve.remembers else closed

@@ -9,7 +9,7 @@ snap-out) or, with none left, lets go. Maugis–Dugdale (`dugdale`, §3.8) and G
 
 import abc
 from collections.abc import Callable
-from typing import Protocol
+from typing import Any, ClassVar, Protocol
 
 import equinox as eqx
 import jax
@@ -83,7 +83,12 @@ class CurveLaw(Protocol):
 
 class AbstractCurve(eqx.Module):
     """The states of one law along s ≥ 0, with its segments (`nodes`: 0, turning points, …, the
-    top; `levels`: d at the nodes; `increasing`: which segments rise)."""
+    top; `levels`: d at the nodes; `increasing`: which segments rise).
+
+    A curve that `remembers` (a hysteretic law, `dugdale_hysteresis`) is one path of a family:
+    the state's memory picks the path (`at`), and turning back re-anchors it (`anchored`)."""
+
+    remembers: ClassVar[bool] = False
 
     junction: eqx.AbstractVar[jax.Array]  # s where a contact closes (unloading there ends it)
     nodes: eqx.AbstractVar[jax.Array]  # [S+1]
@@ -105,6 +110,37 @@ class AbstractCurve(eqx.Module):
         state = self.state if segment is None else lambda law, x: self.on_segment(law, x, segment)
         (depth, force), (slope, _) = jax.jvp(lambda x: state(law, x)[:2], (s,), (jnp.ones_like(s),))
         return depth, force, slope
+
+    def closes(self, s):
+        """Whether the node s is where a contact closes (riding on across it opens or closes it)."""
+        return s == self.junction
+
+    def switches(self, s):
+        """Whether the node s is where a hysteretic path changes branch (none here)."""
+        return jnp.zeros(jnp.shape(s), bool)
+
+    def force_turns(self, law, top, max_turns: int):
+        """The turning points of F(s) up to `top` (`force_turns`)."""
+        return force_turns(law, self, top, max_turns)
+
+    def holding(self, s, up):
+        """The segment a state at s moves along, up (s growing) or down: at a node, the one
+        beyond it in that direction."""
+        side = jnp.where(
+            up,
+            jnp.searchsorted(self.nodes, s, side="right", method="compare_all"),
+            jnp.searchsorted(self.nodes, s, side="left", method="compare_all"),
+        )
+        return jnp.clip(side - 1, 0, self.increasing.shape[0] - 1)
+
+    def at(self, law, memory) -> "AbstractCurve":
+        """The path of the state's `memory`: the curve itself, unless it `remembers`."""
+        return self
+
+    def anchored(self, law, s, memory) -> tuple["AbstractCurve", Any, jax.Array]:
+        """The path of a state at s that turns back, its memory and the state's place on it: the
+        same, unless the curve `remembers`."""
+        return self, memory, s
 
     def resolves(self, law) -> jax.Array:
         """Whether the curve resolves the law's states: a discretised curve may be too coarse to

@@ -181,17 +181,25 @@ class DugdaleLaw(eqx.Module):
         settled = jax.lax.fori_loop(0, _RADIUS_NEWTON_STEPS, lambda _, x: newton(x), jax.lax.stop_gradient(start))
         return jnp.exp(newton(implicit_root(residual, settled)))
 
-    def contact(self, share):
-        """(d, F, a, b) of the contact with zone share p = (b − a)/b."""
+    def contact(self, share, zone=None):
+        """(d, F, a, b) of the contact with zone share p = (b − a)/b: d from (3.154), F from
+        (3.156). Given the zone radius b (`zone`), of that b: its range condition need not hold
+        (`range_gap`)."""
         n, unit = self.exponent, self.g_unit()
         angles = zone_angles(share)
         ratio, opening, angle = angles
-        zone = self.zone_radius(share, angles)
+        zone = self.zone_radius(share, angles) if zone is None else zone
         radius = ratio * zone
         depth = unit * radius**n - 2.0 * self.stress * zone * opening
         elastic = 2.0 * (unit * radius ** (n + 1) * n / (n + 1) - 2.0 * self.stress * radius * zone * opening)
         force = elastic - self.stress * zone**2 * (2.0 * angle - 2.0 * ratio * opening)
         return depth, force, radius, zone
+
+    def range_gap(self, share, zone):
+        """The gap at r = b of the contact with zone share p and zone radius b, bⁿ·P(p) + b·Q(p)
+        (the left side of the range condition (3.152) with (3.154) inserted): h on the curve."""
+        angles = zone_angles(share)
+        return zone**self.exponent * self.shape_term(share, angles) + zone * self.adhesive_term(share, angles)
 
 
 _CLOSED_DEGREES: dict[type, int] = {Paraboloid: 2, Cone: 1}

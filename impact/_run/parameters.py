@@ -44,7 +44,13 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
             capacity=spring_capacity(scene.contact.springs),
         )
     if adhesion is not None and adhesion.model == "maugis_dugdale":
-        return MaugisDugdale(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return MaugisDugdale(
+            method=solver.method,
+            rtol=solver.rtol,
+            atol=solver.atol,
+            max_steps=solver.max_steps,
+            hysteresis=adhesion.approach < adhesion.work_of_adhesion,
+        )
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.contact.springs == "continuum":
@@ -58,7 +64,8 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
 def options_for(scene: Scene, trajectory: bool = True) -> Options:
     """The static choices of a scene besides its integrator (changing them recompiles)."""
     adhesion = scene.active_adhesion
-    partial_approach = adhesion is not None and 0.0 < adhesion.approach < adhesion.work_of_adhesion
+    jkr = adhesion is not None and adhesion.model == "jkr"  # the edge tables below are the JKR law's
+    partial_approach = adhesion is not None and jkr and 0.0 < adhesion.approach < adhesion.work_of_adhesion
     return Options(
         adhesive=adhesion is not None,
         gravity=scene.effects.gravity is not None,
@@ -69,7 +76,7 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
             scene.contact_profile.build(),
             tip_search=partial_approach,
         ),
-        timed_loading=adhesion is None or adhesion.approach == 0.0 or _rises_from_the_tip(scene),
+        timed_loading=adhesion is None or jkr and (adhesion.approach == 0.0 or _rises_from_the_tip(scene)),
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
         damped=scene.effects.damping is not None,
         curve_pieces=_spring_curve_pieces(scene),

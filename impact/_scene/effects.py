@@ -16,6 +16,10 @@ from .sections import Length, Section, WorkOfAdhesion
 DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
 # Springs of a Maugis–Dugdale array: each spring event is a ride (and a quasi-static piece) of its own.
 DUGDALE_MAX_SPRINGS = 2048
+# The least Δγa/Δγ of Maugis–Dugdale approach hysteresis: its approach range ha = Δγa/σ0 must be
+# resolved by the approach curve (measured: Δγa/Δγ = 1e-13 at Λ = 100 and 1e-14 at Λ = 0.1…10 fail;
+# e at 1e-9 is within 2e-5 of its value at 1e-12).
+DUGDALE_LEAST_APPROACH = 1e-9
 
 
 # Profiles Greenwood and Johnson's double Hertz is built for: the paraboloid of §3.9 (and the
@@ -41,8 +45,9 @@ class Adhesion(Section):
     approach_work_of_adhesion: WorkOfAdhesion | None = Field(
         None,
         description=(
-            "jkr only: work of adhesion on approach Δγa (J/m²), 0 ≤ Δγa ≤ Δγ; "
-            "default Δγ (JKR jump-in); 0 attaches on touch"
+            "jkr and maugis_dugdale: work of adhesion on approach Δγa (J/m²), Δγa ≤ Δγ; default Δγ "
+            "(no hysteresis); jkr: 0 attaches on touch; maugis_dugdale: ≥ 1e-9·Δγ, the stress attaches "
+            "over the range Δγa/σ0 and detaches over Δγ/σ0"
         ),
     )
     stress: Annotated[Number, within(d.STRESS)] | None = Field(
@@ -76,10 +81,14 @@ class Adhesion(Section):
             return self
         if self.model == "greenwood_johnson":
             return self._double_hertz_parameters()
-        if self.approach_work_of_adhesion is not None:
+        approach = self.approach_work_of_adhesion
+        if approach is not None and approach < DUGDALE_LEAST_APPROACH * self.work_of_adhesion:
             raise FieldProblem(
                 "approach_work_of_adhesion",
-                "only for model 'jkr': Maugis–Dugdale attaches where its zone equilibrium jumps",
+                f"{approach:g} J/m² is below {DUGDALE_LEAST_APPROACH:g}·work_of_adhesion "
+                f"({DUGDALE_LEAST_APPROACH * self.work_of_adhesion:g} J/m²): model 'maugis_dugdale' takes "
+                f"{DUGDALE_LEAST_APPROACH:g}·Δγ ≤ Δγa ≤ Δγ (its approach range Δγa/σ0 must be resolved; "
+                "attach on touch, Δγa = 0, is model 'jkr')",
             )
         if (self.stress is None) == (self.range is None):
             raise FieldProblem(
@@ -96,8 +105,9 @@ class Adhesion(Section):
         if self.approach_work_of_adhesion is not None:
             raise FieldProblem(
                 "approach_work_of_adhesion",
-                "only for model 'jkr': Greenwood–Johnson loads and unloads on the stable branches of "
-                "its equilibrium curve, without approach hysteresis",
+                f"{self.approach_work_of_adhesion:g} J/m² is not taken by model 'greenwood_johnson', which "
+                "loads and unloads on the stable branches of its equilibrium curve without approach "
+                "hysteresis: leave it out (approach hysteresis: model 'jkr' or 'maugis_dugdale')",
             )
         if self.k is None:
             raise FieldProblem("k", "model 'greenwood_johnson' needs the double-Hertz factor k > 0")

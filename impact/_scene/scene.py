@@ -152,6 +152,14 @@ class Scene(Section):
                 "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
                 "method (" + ", ".join(SOLVER_METHODS) + ")",
             )
+        if springs != "continuum" and adhesion.approach < adhesion.work_of_adhesion:
+            raise FieldProblem(
+                "effects.adhesion.approach_work_of_adhesion",
+                f"{adhesion.approach:g} J/m² is below work_of_adhesion ({adhesion.work_of_adhesion:g} J/m²): a "
+                "maugis_dugdale spring array has no approach hysteresis (its curve is built spring by spring for one "
+                "range; the frozen zone is derived for the continuum law only): leave it out, or set it to "
+                "work_of_adhesion, or use contact.springs: continuum",
+            )
         why = None
         if springs != "continuum":
             modulus = self.material.effective_modulus

@@ -130,9 +130,15 @@ def _effects(scene: Scene) -> str:
     adhesion, gravity = scene.active_adhesion, scene.effects.gravity
     effects = []
     if adhesion is not None and adhesion.model == "maugis_dugdale":
+        approach = adhesion.approach
+        hysteresis = (
+            f", Δγa = {approach:g} J/m², ha = {approach / adhesion.adhesive_stress:.6g} m"
+            if approach < adhesion.work_of_adhesion
+            else ""
+        )
         effects.append(
             f"Maugis–Dugdale adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², "
-            f"σ0 = {adhesion.adhesive_stress:.6g} Pa, h = {adhesion.adhesion_range:.6g} m)"
+            f"σ0 = {adhesion.adhesive_stress:.6g} Pa, h = {adhesion.adhesion_range:.6g} m{hysteresis})"
         )
     elif adhesion is not None and adhesion.model == "greenwood_johnson":
         effects.append(

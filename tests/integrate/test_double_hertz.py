@@ -179,8 +179,9 @@ BASE = {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": 1.0}
             {**BASE, "approach_work_of_adhesion": 0.0},
             {},
             "effects.adhesion.approach_work_of_adhesion",
-            "only for model 'jkr': Greenwood–Johnson loads and unloads on the stable branches of its "
-            "equilibrium curve, without approach hysteresis",
+            "0 J/m² is not taken by model 'greenwood_johnson', which loads and unloads on the stable "
+            "branches of its equilibrium curve without approach hysteresis: leave it out (approach "
+            "hysteresis: model 'jkr' or 'maugis_dugdale')",
         ),
         (
             {**BASE, "stress": 1e7},

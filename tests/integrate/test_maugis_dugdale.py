@@ -258,7 +258,7 @@ def test_dmt_side_impact_events_show_the_zone_closing_and_opening():
             {"stress": 1e7, "approach_work_of_adhesion": 0.0},
             {},
             "effects.adhesion.approach_work_of_adhesion",
-            "only for model 'jkr'",
+            "model 'maugis_dugdale' takes 1e-09·Δγ ≤ Δγa ≤ Δγ",
         ),
         ({"stress": 1e7}, {"contact": {"springs": 4096}}, "contact.springs", "at most 2048 springs, not 4096"),
         (

@@ -103,6 +103,17 @@ def maugis_dugdale_pull_off(result):
     assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
 
 
+def maugis_dugdale_hysteresis(result):
+    """Λ = 1, Δγa = Δγ/2: the kinetic energy lost is ∮F dd (1e-8), the unloading passes a frozen
+    zone onto the detach curve, and the loop between the two ranges leaves e below Thornton–Ning's
+    (which the reversible Λ = 1 particle exceeds)."""
+    mass = result.scene.reduced_mass
+    lost = 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2)
+    assert abs(lost - result.dissipated_energy) <= 1e-8 * 0.5 * mass * result.touch_velocity**2
+    assert [kind for _, kind in result.events] == ["touch", "max_indentation", "detach_start", "separation"]
+    below_thornton_ning(result)
+
+
 def maugis_dugdale_indentation_pull_off(result):
     """Displacement control, Λ = 1: the tip snaps off at the lowest indentation of (3.171)."""
     scene = result.scene
@@ -185,6 +196,7 @@ CHECKS = {
     "indentation_paraboloid": force_controlled_pull_off,
     "indentation_wavy": displacement_controlled_wavy_pull_off,
     "maugis_dugdale": maugis_dugdale_pull_off,
+    "maugis_dugdale_hysteresis": maugis_dugdale_hysteresis,
     "indentation_maugis_dugdale": maugis_dugdale_indentation_pull_off,
     "greenwood_johnson": greenwood_johnson_pull_off,
     "two_spheres": matches(thornton_ning, 1e-6),

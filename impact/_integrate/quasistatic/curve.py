@@ -16,6 +16,11 @@ or off the surface; the pull-off is where that instability began, a minimum of F
 Each step moves over one piece (an interval between turning points of d or F, or a jump at fixed
 d, or the approach) and solves one bisection: where the ride meets its target, or where the
 jump lands. The curve (a, d, F) in program order and the pull-off come back scaled.
+
+A curve that remembers (Maugis–Dugdale with approach hysteresis, `_law.dugdale_hysteresis`) is
+one path of a family: each step marches on the path of the carry's memory (the frozen zone's
+radius), a leg that ends in contact re-anchors it at the state (unloading from the approach
+curve, or reloading from the detach curve, starts on a new frozen zone) and separation clears it.
 """
 
 import functools
@@ -24,10 +29,10 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from ..._core.pytree import replace_where
+from ..._core.pytree import replace, replace_where
 from ..._core.search import bisect
 from ..._law.branches import next_rising, previous_rising
-from ..._law.curve import AbstractCurve, CurveLaw, force_turns
+from ..._law.curve import AbstractCurve, CurveLaw
 from ..codes import RESULT_CODE
 from .events import EventLog, empty_record, run_march
 from .loading import BISECTION_STEPS, EVENT, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
@@ -46,6 +51,15 @@ class CurveMarch(eqx.Module):
     targets: jax.Array  # scaled (N or m units of the law)
     legs: jax.Array
     grid: jax.Array  # u ∈ [0, 1]: where a ride is sampled
+
+    def at(self, memory) -> "CurveMarch":
+        """The march on the path of the state's `memory`: itself, unless the curve remembers
+        (`AbstractCurve.at`); then its pieces are those of that path."""
+        if not self.curve.remembers:
+            return self
+        curve = self.curve.at(self.law, memory)
+        pieces, force_rising, _ = path_pieces(self.law, curve, 0)  # its curves' turns of F, found once
+        return replace(self, curve=curve, pieces=pieces, force_rising=force_rising)
 
     def state(self, s):
         """(a, d, F) at s."""
@@ -66,6 +80,7 @@ class CurveCarry(eqx.Module):
     attached: jax.Array  # within the range of the adhesive stress
     s: jax.Array
     segment: jax.Array  # the rising segment of the curve holding s
+    memory: jax.Array  # what a curve that remembers keeps of the path (`AbstractCurve.at`); else 0
     d: jax.Array
     pre: jax.Array  # [2] s, d where the current instability began
     pull_off: jax.Array  # [3] a, d, F
@@ -81,7 +96,7 @@ class CurveCarry(eqx.Module):
 def path_pieces(law: CurveLaw, curve: AbstractCurve, max_turns: int):
     """The curve's nodes and the turning points of F(s), sorted; whether F rises on each piece;
     whether F turns more often than `max_turns`."""
-    turns, overflow = force_turns(law, curve, curve.nodes[-1], max_turns)
+    turns, overflow = curve.force_turns(law, curve.nodes[-1], max_turns)
     pieces = jnp.sort(jnp.concatenate([curve.nodes, turns]))
     middles = 0.5 * (pieces[:-1] + pieces[1:])
     return pieces, curve.slopes(law, middles)[1] > 0.0, overflow
@@ -121,6 +136,7 @@ def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> Cur
         attached=jnp.asarray(False),
         s=jnp.zeros(()),
         segment=jnp.zeros((), int),
+        memory=jnp.zeros(()),
         d=jnp.asarray(march.law.onset, float),
         **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
@@ -208,7 +224,9 @@ def evaluate(march: CurveMarch, c: CurveCarry, p: Piece, root) -> tuple[jax.Arra
     landing = jnp.where(up, jnp.maximum(root, p.start), jnp.minimum(root, p.start))
     # A rising segment that goes on from the current one's end (the junction) is no jump: the
     # state stays at the node, whatever an ulp of d finds on the flat start of the next one.
-    landing = jnp.where(p.jumping & ~p.touching & (p.segment == c.segment + jnp.where(up, 1, -1)), p.start, landing)
+    nodes = march.curve.nodes
+    adjacent = jnp.where(up, nodes[p.segment] == nodes[c.segment + 1], nodes[p.segment + 1] == nodes[c.segment])
+    landing = jnp.where(p.jumping & ~p.touching & adjacent, p.start, landing)
     stop = jnp.where(p.crossed, root, p.far)
     ride = c.s + (stop - c.s) * march.grid
     radius, depth, force = march.state(jnp.concatenate([jnp.stack([p.start, landing, c.s, c.pre[0]]), ride]))
@@ -224,6 +242,7 @@ def step(march: CurveMarch, c: CurveCarry) -> CurveCarry:
     """One piece: planned from the state, its one bisection, the states it reads (one batched
     evaluation of the curve), then applied."""
     c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
+    march = march.at(c.memory)
     log = EventLog()
     p = plan(march, c)
     lo, hi = bisect(lambda s: march.controlled(s, p.force) < p.goal, p.lower, p.upper, BISECTION_STEPS)
@@ -277,8 +296,9 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     )
     log.event(jnp.where(up, EVENT["snap_in"], EVENT["snap_out"]), shown & moved)
     c = replace_where(c, moves, attached=True, s=landing, segment=p.segment, d=p.level)
-    # In a landing, a jump past the applied force turns the motion back.
-    overshoot = moves & c.landing & jnp.where(c.direction > 0, after[2] > c.target, after[2] < c.target)
+    # In a landing, a jump past the applied force turns the motion back (riding on across a node
+    # is no jump: on a frozen Maugis–Dugdale zone F equals the applied force to round-off there).
+    overshoot = moves & moved & c.landing & jnp.where(c.direction > 0, after[2] > c.target, after[2] < c.target)
     return replace_where(c, overshoot, direction=-c.direction)
 
 
@@ -306,7 +326,7 @@ def complete(march: CurveMarch, c: CurveCarry, log: EventLog, keep, here=(0.0, 0
     more = c.leg + 1 < march.legs
     following = jnp.minimum(c.leg + 1, march.legs - 1)
     log.event(EVENT["reversal"], finished & more & c.attached)
-    return replace_where(
+    c = replace_where(
         c,
         finished,
         leg=following,
@@ -314,6 +334,15 @@ def complete(march: CurveMarch, c: CurveCarry, log: EventLog, keep, here=(0.0, 0
         direction=march.directions[following].astype(int),
         target=march.targets[following],
     )
+    return anchor(march, c, finished & c.attached) if march.curve.remembers else c
+
+
+def anchor(march: CurveMarch, c: CurveCarry, turning) -> CurveCarry:
+    """A leg ends in contact: the memory of a curve that remembers is re-anchored at the state
+    (`AbstractCurve.anchored`), and the state placed on that path, on the segment it moves
+    along next. (A landing is one jump: its path is not re-anchored on the way.)"""
+    curve, memory, place = march.curve.anchored(march.law, c.s, c.memory)
+    return replace_where(c, turning, memory=memory, s=place, segment=curve.holding(place, c.direction > 0))
 
 
 def separate(march: CurveMarch, c: CurveCarry, log: EventLog, released, before, d) -> CurveCarry:
@@ -332,6 +361,7 @@ def separate(march: CurveMarch, c: CurveCarry, log: EventLog, released, before, 
         landing=False,
         s=0.0,
         segment=0,
+        memory=0.0,
         d=d,
         target=march.targets[c.leg],
         direction=march.directions[c.leg].astype(int),

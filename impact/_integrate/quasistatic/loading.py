@@ -48,6 +48,7 @@ class QuasiStaticNumerics:
     adhesive: bool
     springs: int | None = None  # capacity of the spring array (None: continuum law)
     model: str = "jkr"  # the adhesion law: "jkr", or a finite range: "maugis_dugdale", "greenwood_johnson"
+    hysteresis: bool = False  # Maugis–Dugdale with approach hysteresis, Δγa < Δγ (`_law.dugdale_hysteresis`)
     tabulation: Tabulation = field(default_factory=Tabulation)  # turning points per edge function and their search
     samples: int = 33  # points per piece of an edge ridden
     steps_per_leg: int = 0  # 0: from the branch size (continuum) or 4N + 64 (springs)

@@ -11,6 +11,7 @@ import jax.numpy as jnp
 from ..._law.curve import AbstractCurve, CurveLaw, Reach, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from ..._law.dugdale import DugdaleLaw, build_curve
+from ..._law.dugdale_hysteresis import HystereticLaw, hysteresis_curve, with_force_turns
 from ..._law.dugdale_springs import build_spring_curve, default_length, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
@@ -57,7 +58,11 @@ def finite_range_curve(
     reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
     law = finite_range_law(loading, numerics, scales)
     curve: AbstractCurve
-    if isinstance(law, DugdaleLaw) and numerics.springs is not None:
+    if isinstance(law, HystereticLaw):
+        approach = build_curve(law.approach, numerics.tabulation.max_turns, reach)
+        detach = build_curve(law.detach, numerics.tabulation.max_turns, reach)
+        curve = with_force_turns(law, hysteresis_curve(law, approach, detach, 0.0), numerics.tabulation.max_turns)
+    elif isinstance(law, DugdaleLaw) and numerics.springs is not None:
         curve = spring_curve(law, reach, loading, numerics.springs, numerics.tabulation.max_turns)
     elif isinstance(law, DugdaleLaw):
         curve = build_curve(law, numerics.tabulation.max_turns, reach)
@@ -75,13 +80,17 @@ def spring_curve(law: DugdaleLaw, reach: Reach, loading: Loading, capacity: int,
     return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
 
-def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> DugdaleLaw | DoubleHertzLaw:
-    """The Maugis–Dugdale or Greenwood–Johnson law of the loading in the units `scales`."""
+def finite_range_law(
+    loading: Loading, numerics: QuasiStaticNumerics, scales: Scales
+) -> DugdaleLaw | HystereticLaw | DoubleHertzLaw:
+    """The Maugis–Dugdale (with `numerics.hysteresis`: its hysteretic law, Δγa ≤ Δγ) or
+    Greenwood–Johnson law of the loading in the units `scales`."""
     adhesion = loading.adhesion
     if numerics.model == "maugis_dugdale":
-        return DugdaleLaw.scaled(
+        law = DugdaleLaw.scaled(
             loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
         )
+        return HystereticLaw(law, jnp.asarray(adhesion.approach_range / scales.normal)) if numerics.hysteresis else law
     return DoubleHertzLaw.scaled(
         loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
     )

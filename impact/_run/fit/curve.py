@@ -137,6 +137,14 @@ def curve_problems(spec: FitSpec) -> list[tuple[str, str]]:
             problems.append(
                 ("scene.control", f"model 'theory' of a {adhesion.model} curve takes displacement control only")
             )
+        if adhesion.approach < adhesion.work_of_adhesion:
+            problems.append(
+                (
+                    "scene.effects.adhesion.approach_work_of_adhesion",
+                    f"{adhesion.approach:g} J/m²: model 'theory' of a maugis_dugdale curve is the reversible one "
+                    f"(approach_work_of_adhesion = work_of_adhesion, {adhesion.work_of_adhesion:g} J/m²)",
+                )
+            )
     elif scene.body.profile.shape not in SHAPES:
         shapes = ", ".join(SHAPES)
         problems.append(("scene.body.profile.shape", f"model 'theory' of a JKR curve takes {shapes}"))

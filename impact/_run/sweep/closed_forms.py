@@ -11,6 +11,7 @@ import numpy as np
 from ... import profiles, theory
 from ..._integrate.adhesive_plastic import AdhesivePlastic
 from ..._integrate.curve import AbstractCurveIntegrator
+from ..._integrate.dugdale import MaugisDugdale
 from ..._integrate.plastic import Plastic
 from ..._integrate.problem import Physics, touch_velocity
 from ..._scene.scene import Scene
@@ -24,9 +25,9 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
     NaN elsewhere. Maugis–Dugdale and Greenwood–Johnson points get their JKR limit (Λ → ∞,
-    k → ∞): no closed form has a finite range. Thornton's (1997) closed form for plastic
-    paraboloids without gravity, and Thornton & Ning's (1998) with adhesion
-    (`theory.adhesive_plastic_restitution`)."""
+    k → ∞): no closed form has a finite range (nor Maugis–Dugdale's approach hysteresis).
+    Thornton's (1997) closed form for plastic paraboloids without gravity, and Thornton & Ning's
+    (1998) with adhesion (`theory.adhesive_plastic_restitution`)."""
     options = choices.options
     if isinstance(choices.integrator, AdhesivePlastic):
         profile, v = physics.profile, touch_velocity(physics, options)
@@ -57,7 +58,8 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     profile = physics.profile
     v, m, modulus = touch_velocity(physics, options), physics.mass, physics.E_star
     work, approach = physics.adhesion.work_of_adhesion, physics.adhesion.approach_work_of_adhesion
-    reversible = (approach == work) | isinstance(choices.integrator, AbstractCurveIntegrator)
+    hysteretic = isinstance(choices.integrator, MaugisDugdale) and choices.integrator.hysteresis
+    reversible = (approach == work) | (isinstance(choices.integrator, AbstractCurveIntegrator) and not hysteretic)
     if type(profile) is profiles.Paraboloid:
         jkr = theory.thornton_ning_restitution(v, m, profile.R, modulus, work)
         on_touch = theory.attach_on_touch_restitution(v, m, profile.R, modulus, work)
@@ -116,6 +118,8 @@ def closed_form_name(scene: Scene) -> str:
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
     shape = scene.contact_profile.shape
+    if adhesion.model == "maugis_dugdale" and adhesion.approach < adhesion.work_of_adhesion:
+        return "no closed form (Maugis–Dugdale with approach hysteresis)"
     if adhesion.model == "maugis_dugdale":
         limit = {
             "paraboloid": "Thornton–Ning (3.50–51)",

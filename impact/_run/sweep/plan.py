@@ -100,14 +100,13 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
     else:
         adhesive = xp.asarray(adhesion.work_of_adhesion) > 0
         work = xp.where(adhesive, adhesion.work_of_adhesion, 0.0)
-        if adhesion.model == "maugis_dugdale":
-            stress = xp.where(adhesive, adhesion.adhesive_stress, xp.nan)
-            approach = xp.zeros(())
-        elif adhesion.model == "greenwood_johnson":
+        if adhesion.model == "greenwood_johnson":
             factor = xp.where(adhesive, adhesion.double_hertz_factor, xp.nan)
             approach = xp.zeros(())
         else:
             approach = xp.where(adhesive, adhesion.approach, 0.0)
+        if adhesion.model == "maugis_dugdale":
+            stress = xp.where(adhesive, adhesion.adhesive_stress, xp.nan)
     duration, length, springs = batch.limits.duration, batch.contact.length, batch.contact.springs
 
     def value(number):
