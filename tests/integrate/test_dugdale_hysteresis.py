@@ -96,7 +96,10 @@ def frozen_reference(g, a, b, sigma):
     d = g(a) - 2.0 * sigma / E_STAR * math.sqrt(b * b - a * a)
     elastic = 2.0 * E_STAR * quad(lambda x: d - g(x), 0.0, a, epsabs=0.0, epsrel=1e-13)[0]
     force = elastic - sigma * (-2.0 * a * math.sqrt(b * b - a * a) + 2.0 * b * b * math.acos(a / b))
-    opening = quad(lambda t: g(b * math.sin(t)) - d, math.asin(a / b), 0.5 * math.pi, epsabs=0.0, epsrel=1e-13)[0]
+    # The integrand cancels to round-off near its lower end: an absolute floor of 1e-14·g(b).
+    opening = quad(
+        lambda t: g(b * math.sin(t)) - d, math.asin(a / b), 0.5 * math.pi, epsabs=1e-14 * g(b), epsrel=1e-13
+    )[0]
     gap = 2.0 / math.pi * opening - 4.0 * sigma / (math.pi * E_STAR) * (b - a)
     return d, force, gap
 
