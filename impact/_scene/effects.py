@@ -67,7 +67,11 @@ class Adhesion(Section):
     @model_validator(mode="after")
     def _approach_not_above(self):
         if self.approach_work_of_adhesion is not None and self.approach_work_of_adhesion > self.work_of_adhesion:
-            raise FieldProblem("approach_work_of_adhesion", "must not exceed work_of_adhesion")
+            raise FieldProblem(
+                "approach_work_of_adhesion",
+                f"{self.approach_work_of_adhesion:g} J/m² is above work_of_adhesion ({self.work_of_adhesion:g} J/m²): "
+                "0 ≤ Δγa ≤ Δγ (attaching cannot gain more energy than detaching costs)",
+            )
         return self
 
     @model_validator(mode="after")

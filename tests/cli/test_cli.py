@@ -168,7 +168,8 @@ BAD_SCENES = [
         "approach above work of adhesion",
         {"effects.adhesion.approach_work_of_adhesion": 0.1},
         "effects.adhesion.approach_work_of_adhesion",
-        "must not exceed work_of_adhesion",
+        "0.1 J/m² is above work_of_adhesion (0.05 J/m²): 0 ≤ Δγa ≤ Δγ "
+        "(attaching cannot gain more energy than detaching costs)",
     ),
     (
         "negative work of adhesion",

@@ -301,7 +301,8 @@ def test_sweeps_pass_the_approach_work_and_run_the_hysteretic_program():
             {"model": "maugis_dugdale", "stress": 1e7, "approach_work_of_adhesion": 0.06},
             {},
             "effects.adhesion.approach_work_of_adhesion",
-            "must not exceed work_of_adhesion",
+            "0.06 J/m² is above work_of_adhesion (0.05 J/m²): 0 ≤ Δγa ≤ Δγ "
+            "(attaching cannot gain more energy than detaching costs)",
         ),
         (
             {"model": "maugis_dugdale", "stress": 1e7, "approach_work_of_adhesion": 0.0},
