@@ -251,10 +251,12 @@ def hysteresis_curve(
     return eqx.tree_at(lambda c: c.increasing, split, split.increasing & ~free)
 
 
-def with_force_turns(law: HystereticLaw, curve: HysteresisCurve, max_turns: int) -> HysteresisCurve:
-    """The path with the turning points of F(s) of its two curves (for a quasi-static march); it
-    `overflow`s where either turns more often than `max_turns`."""
-    approach, approach_overflow = force_turns(law.approach, curve.approach, curve.approach.nodes[-1], max_turns)
-    detach, detach_overflow = force_turns(law.detach, curve.detach, curve.detach.nodes[-1], max_turns)
-    turned = hysteresis_curve(law, curve.approach, curve.detach, curve.zone, approach, detach)
+def with_force_turns(
+    law: HystereticLaw, approach: DugdaleCurve, detach: DugdaleCurve, max_turns: int
+) -> HysteresisCurve:
+    """The path apart (b_f = 0) over the two built curves with their turning points of F(s) (for a
+    quasi-static march); it `overflow`s where either turns more often than `max_turns`."""
+    approach_turns, approach_overflow = force_turns(law.approach, approach, approach.nodes[-1], max_turns)
+    detach_turns, detach_overflow = force_turns(law.detach, detach, detach.nodes[-1], max_turns)
+    turned = hysteresis_curve(law, approach, detach, 0.0, approach_turns, detach_turns)
     return eqx.tree_at(lambda c: c.overflow, turned, turned.overflow | approach_overflow | detach_overflow)

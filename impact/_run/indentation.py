@@ -96,9 +96,7 @@ def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
         adhesive=scene.adhesive,
         springs=None if springs == "continuum" else spring_capacity(springs),
         model="jkr" if adhesion is None else adhesion.model,
-        hysteresis=adhesion is not None
-        and adhesion.model == "maugis_dugdale"
-        and adhesion.approach < adhesion.work_of_adhesion,
+        hysteresis=adhesion is not None and adhesion.model == "maugis_dugdale" and adhesion.hysteretic,
         tabulation=Tabulation.for_profile(scene.body.profile.build()),
     )
 

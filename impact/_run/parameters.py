@@ -49,7 +49,7 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
             rtol=solver.rtol,
             atol=solver.atol,
             max_steps=solver.max_steps,
-            hysteresis=adhesion.approach < adhesion.work_of_adhesion,
+            hysteresis=adhesion.hysteretic,
         )
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
@@ -65,7 +65,7 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
     """The static choices of a scene besides its integrator (changing them recompiles)."""
     adhesion = scene.active_adhesion
     jkr = adhesion is not None and adhesion.model == "jkr"  # the edge tables below are the JKR law's
-    partial_approach = adhesion is not None and jkr and 0.0 < adhesion.approach < adhesion.work_of_adhesion
+    partial_approach = adhesion is not None and jkr and adhesion.approach > 0.0 and adhesion.hysteretic
     return Options(
         adhesive=adhesion is not None,
         gravity=scene.effects.gravity is not None,
@@ -107,8 +107,7 @@ def _rises_from_the_tip(scene: Scene) -> bool:
     the jump-in is found as for the paraboloid, and no step solves for a radius."""
     profile, adhesion = scene.contact_profile, scene.active_adhesion
     assert adhesion is not None
-    partial = adhesion.approach < adhesion.work_of_adhesion
-    return isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial)
+    return isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or adhesion.hysteretic)
 
 
 def physics_for(scene: Scene) -> Physics:

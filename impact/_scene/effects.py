@@ -125,6 +125,12 @@ class Adhesion(Section):
         return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
 
     @property
+    def hysteretic(self) -> bool:
+        """Whether attaching takes less work than detaching, Δγa < Δγ: the JKR law's attach edge,
+        Maugis–Dugdale's frozen zone (`_law.dugdale_hysteresis`)."""
+        return self.approach < self.work_of_adhesion
+
+    @property
     def adhesive_stress(self) -> float:
         """σ0 (Pa) of the Maugis–Dugdale model: given, or Δγ/h."""
         if self.stress is not None:

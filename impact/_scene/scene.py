@@ -152,7 +152,7 @@ class Scene(Section):
                 "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
                 "method (" + ", ".join(SOLVER_METHODS) + ")",
             )
-        if springs != "continuum" and adhesion.approach < adhesion.work_of_adhesion:
+        if springs != "continuum" and adhesion.hysteretic:
             raise FieldProblem(
                 "effects.adhesion.approach_work_of_adhesion",
                 f"{adhesion.approach:g} J/m² is below work_of_adhesion ({adhesion.work_of_adhesion:g} J/m²): a "

@@ -133,7 +133,7 @@ def _effects(scene: Scene) -> str:
         approach = adhesion.approach
         hysteresis = (
             f", Δγa = {approach:g} J/m², ha = {approach / adhesion.adhesive_stress:.6g} m"
-            if approach < adhesion.work_of_adhesion
+            if adhesion.hysteretic
             else ""
         )
         effects.append(

@@ -11,7 +11,7 @@ import jax.numpy as jnp
 from ..._law.curve import AbstractCurve, CurveLaw, Reach, top_of_peak
 from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
 from ..._law.dugdale import DugdaleLaw, build_curve
-from ..._law.dugdale_hysteresis import HystereticLaw, hysteresis_curve, with_force_turns
+from ..._law.dugdale_hysteresis import HystereticLaw, with_force_turns
 from ..._law.dugdale_springs import build_spring_curve, default_length, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
@@ -61,7 +61,7 @@ def finite_range_curve(
     if isinstance(law, HystereticLaw):
         approach = build_curve(law.approach, numerics.tabulation.max_turns, reach)
         detach = build_curve(law.detach, numerics.tabulation.max_turns, reach)
-        curve = with_force_turns(law, hysteresis_curve(law, approach, detach, 0.0), numerics.tabulation.max_turns)
+        curve = with_force_turns(law, approach, detach, numerics.tabulation.max_turns)
     elif isinstance(law, DugdaleLaw) and numerics.springs is not None:
         curve = spring_curve(law, reach, loading, numerics.springs, numerics.tabulation.max_turns)
     elif isinstance(law, DugdaleLaw):

@@ -137,7 +137,7 @@ def curve_problems(spec: FitSpec) -> list[tuple[str, str]]:
             problems.append(
                 ("scene.control", f"model 'theory' of a {adhesion.model} curve takes displacement control only")
             )
-        if adhesion.approach < adhesion.work_of_adhesion:
+        if adhesion.hysteretic:
             problems.append(
                 (
                     "scene.effects.adhesion.approach_work_of_adhesion",

@@ -118,7 +118,7 @@ def closed_form_name(scene: Scene) -> str:
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
     shape = scene.contact_profile.shape
-    if adhesion.model == "maugis_dugdale" and adhesion.approach < adhesion.work_of_adhesion:
+    if adhesion.model == "maugis_dugdale" and adhesion.hysteretic:
         return "no closed form (Maugis–Dugdale with approach hysteresis)"
     if adhesion.model == "maugis_dugdale":
         limit = {
