@@ -61,7 +61,7 @@ def test_energy_balance_loop_area_and_pull_off(k):
     """Kinetic energy lost = ∮F dd (1e-7 of the impact energy) = the curve's loop area by
     quadrature (1e-6 of the impact energy); the least force is the force-controlled pull-off
     (rtol 1e-8), the reported Λ is Λ(k)."""
-    result = simulate(gj_scene(k), trajectory=False)
+    result = simulate(gj_scene(k))
     assert result.status == "separated"
     energy = 0.5 * MASS * result.touch_velocity**2
     lost = energy - 0.5 * MASS * result.separation_velocity**2
@@ -77,7 +77,7 @@ def test_restitution_converges_to_thornton_ning_as_k_grows():
     equivalent Λ ∝ k^(1/3) grows; below 3e-3 at k = 1e6."""
     expected = float(theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, WORK))
     factors = np.array([1e2, 1e3, 1e4, 1e5, 1e6])
-    excess = np.array([simulate(gj_scene(k), trajectory=False).restitution for k in factors]) - expected
+    excess = np.array([simulate(gj_scene(k)).restitution for k in factors]) - expected
     assert np.all(excess > 0) and np.all(np.diff(excess) < 0)
     order = np.polyfit(np.log(factors), np.log(excess), 1)[0]
     assert abs(order + 1 / 3) < 0.05
@@ -101,10 +101,10 @@ def test_dmt_side_is_reversible(k):
 def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     """Below the sticking speed the body is captured; a sphere's tip is its paraboloid r²/(2R):
     the same restitution to 1e-9 (its units differ: round-off)."""
-    result = simulate(gj_scene(1e3, velocity=0.05), trajectory=False)
+    result = simulate(gj_scene(1e3, velocity=0.05))
     assert result.status == "captured" and result.stuck and result.restitution == 0.0
-    paraboloid = simulate(gj_scene(3.0), trajectory=False)
-    sphere = simulate(gj_scene(3.0, profile={"shape": "sphere", "R": R}), trajectory=False)
+    paraboloid = simulate(gj_scene(3.0))
+    sphere = simulate(gj_scene(3.0, profile={"shape": "sphere", "R": R}))
     assert sphere.restitution == pytest.approx(paraboloid.restitution, rel=1e-9)
 
 
@@ -139,7 +139,7 @@ def test_sweep_over_k_balances_energy_and_equals_simulate():
     touch, separation = np.asarray(result.touch_velocity), np.asarray(result.separation_velocity)
     lost = 0.5 * MASS * (touch**2 - separation**2)
     assert np.all(np.abs(lost - np.asarray(result.dissipated_energy)) <= 1e-7 * 0.5 * MASS * touch**2)
-    single = simulate(gj_scene(factors[-1], velocity=0.5), trajectory=False)
+    single = simulate(gj_scene(factors[-1], velocity=0.5))
     assert math.isclose(float(result.restitution[-1]), single.restitution, rel_tol=1e-12)
     expected = float(theory.thornton_ning_restitution(0.5, MASS, R, E_STAR, WORK))
     assert np.allclose(np.asarray(result.theory_restitution), expected, rtol=1e-14)
@@ -224,7 +224,7 @@ def test_cli_runs_the_config_and_refuses_approach_with_exit_code_2(tmp_path):
     ran = CliRunner().invoke(app, ["run", str(CONFIG), "-o", str(out)])
     assert ran.exit_code == 0, ran.output
     stored = read_run(out / "run.h5")
-    assert stored.restitution == pytest.approx(simulate(load_scene(CONFIG), trajectory=False).restitution, rel=1e-12)
+    assert stored.restitution == pytest.approx(simulate(load_scene(CONFIG)).restitution, rel=1e-12)
     bad = tmp_path / "bad.yaml"
     bad.write_text(CONFIG.read_text().replace("    k: 10.0", "    k: 10.0\n    approach_work_of_adhesion: 0.01"))
     refused = CliRunner().invoke(app, ["run", str(bad), "-o", str(tmp_path / "bad")])

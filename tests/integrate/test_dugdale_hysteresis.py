@@ -187,7 +187,7 @@ def test_equal_works_reproduce_the_reversible_law():
     events, work and forces. (A scene with Δγa = Δγ runs the reversible program itself.)"""
     reversible = load_scene(scene(share=None))
     hysteretic = solve_scene(reversible, hysteretic_of(reversible), options_for(reversible, trajectory=False))
-    plain = simulate(reversible, trajectory=False)
+    plain = simulate(reversible)
     for name in ("restitution", "dissipated_energy", "max_force", "min_force", "max_indentation", "contact_time"):
         assert getattr(hysteretic, name) == pytest.approx(getattr(plain, name), rel=1e-12), name
     assert [kind for _, kind in hysteretic.events] == [kind for _, kind in plain.events]
@@ -204,7 +204,7 @@ def test_energy_balance_events_and_restitution_against_the_approach_work():
     options = options_for(reversible, trajectory=False)
     restitutions = [solve_scene(reversible, hysteretic_of(reversible), options).restitution]
     for share in (0.9, 0.7, 0.5, 0.3):
-        result = simulate(scene(share=share), trajectory=False)
+        result = simulate(scene(share=share))
         assert result.status == "separated"
         lost, work = balance(result)
         assert abs(lost - work) <= 1e-8 * 0.5 * MASS * result.touch_velocity**2
@@ -231,7 +231,7 @@ def test_hard_cases_at_the_edges_of_the_domain(tabor, share, velocity, status, k
     """The least Δγa allowed (1e-9·Δγ) from the DMT to the JKR side, a fast and a slow impact, a
     capture on the frozen zone, and the corner where the approach curve is not resolved (a named
     status, not a number): each ends as stated, a separated one with ∮F dd = ΔKE (1e-8)."""
-    result = simulate(scene(tabor=tabor, share=share, velocity=velocity), trajectory=False)
+    result = simulate(scene(tabor=tabor, share=share, velocity=velocity))
     assert result.status == status
     assert [kind for _, kind in result.events] == kinds
     if status == "separated":
@@ -250,7 +250,7 @@ def test_large_tabor_tends_to_the_jkr_hysteresis_law():
         trajectory=False,
     ).restitution
     tabors = np.array([30.0, 100.0, 300.0])
-    excess = np.array([simulate(scene(tabor=t), trajectory=False).restitution - jkr for t in tabors])
+    excess = np.array([simulate(scene(tabor=t)).restitution - jkr for t in tabors])
     assert np.all(excess > 0.0) and excess[-1] < 1.5e-4
     order = np.polyfit(np.log(tabors), np.log(excess), 1)[0]
     assert -1.1 < order < -0.9

@@ -127,7 +127,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
 
     continuum = impact_scene(1.0)
     # e of the continuum Maugis–Dugdale law (its energy balance holds to 1e-9: test_maugis_dugdale)
-    continuum_restitution = simulate(continuum, trajectory=False).restitution
+    continuum_restitution = simulate(continuum).restitution
 
     def scene(count):
         return load_scene({**continuum, "contact": {"springs": count}})

@@ -226,7 +226,7 @@ def test_restitution_converges_to_thornton_ning_as_tabor_grows():
     velocity = 0.6
     expected = float(theory.thornton_ning_restitution(velocity, MASS, R, E_STAR, WORK))
     tabors = np.array([0.1, 1.0, 10.0, 100.0, 1000.0])
-    restitution = np.array([simulate(md_scene(t, velocity), trajectory=False).restitution for t in tabors])
+    restitution = np.array([simulate(md_scene(t, velocity)).restitution for t in tabors])
     assert np.all(np.diff(restitution) < 0)
     excess = restitution - expected
     assert np.all(excess[2:] > 0)
@@ -321,7 +321,7 @@ def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
     ranges = [1e-9, 1e-10]
     result = impact.sweep(base, {"effects.adhesion.range": ranges}, chunk=2)
     for i, adhesion_range in enumerate(ranges):
-        single = simulate(md_scene(adhesion_range=adhesion_range, velocity=0.5), trajectory=False)
+        single = simulate(md_scene(adhesion_range=adhesion_range, velocity=0.5))
         assert result.status_names()[i] == single.status
         for name in ("restitution", "max_force", "min_force", "dissipated_energy"):
             assert math.isclose(float(getattr(result, name)[i]), getattr(single, name), rel_tol=1e-12), name

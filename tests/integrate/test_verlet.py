@@ -121,7 +121,7 @@ def test_without_adhesion_the_bounce_is_elastic():
     probe = load_scene(data)
     time_unit = float(build_problem(physics_for(probe), options_for(probe)).scales.time)
     data["solver"] = {"method": "verlet", "dt": 1e-4 * time_unit}
-    result = simulate(data, trajectory=False)
+    result = simulate(data)
     assert result.status == "separated"
     assert result.restitution == pytest.approx(1.0, abs=1e-3)
     assert result.contact_time == pytest.approx(float(theory.hertz_contact_time(velocity, MASS, R, E_STAR)), rel=1e-3)
@@ -129,7 +129,7 @@ def test_without_adhesion_the_bounce_is_elastic():
 
 def test_below_the_sticking_velocity_verlet_captures():
     data = scene(0.5, contact={"springs": COUNT}, solver={"method": "verlet", "dt": 1e-11})
-    result = simulate(data, trajectory=False)
+    result = simulate(data)
     assert result.status == "captured" and result.stuck and result.restitution == 0.0
 
 

@@ -29,7 +29,7 @@ def particle(velocity: float, plastic: bool = True, yield_pressure: float = P_Y,
 
 
 def run(velocity: float, plastic: bool = True, yield_pressure: float = P_Y):
-    return simulate(particle(velocity, plastic, yield_pressure), trajectory=False)
+    return simulate(particle(velocity, plastic, yield_pressure))
 
 
 def closed_form(velocity: float, yield_pressure: float = P_Y) -> float:
@@ -110,7 +110,7 @@ def test_two_bodies_meet_the_closed_form_with_effective_parameters():
     scene = particle(velocity)
     counterpart = {"profile": {"shape": "paraboloid", "R": 2 * R}, "mass": other_mass, "velocity": other_velocity}
     scene["counterpart"] = counterpart
-    result = simulate(scene, trajectory=False)
+    result = simulate(scene)
     reduced = MASS * other_mass / (MASS + other_mass)
     closing = velocity + other_velocity
     expected = theory.adhesive_plastic_restitution(closing, reduced, 2 * R / 3, E_STAR, WORK, P_Y)
@@ -127,7 +127,7 @@ def test_bounces_under_gravity_keep_the_dent():
     is that of R_p, far from a fresh paraboloid's."""
     scene = particle(10.0, gravity={})
     scene["limits"] = {"max_bounces": 3}
-    result = simulate(scene, trajectory=False)
+    result = simulate(scene)
     kinds = [kind for _, kind in result.events]
     assert kinds.count("yield") == 1 and kinds.count("touch") == 3
     assert result.max_indentation == pytest.approx(

@@ -40,7 +40,14 @@ import pytest
 
 from impact import simulate
 from impact._core.defaults import DEFAULT_CHUNK
-from impact._core.runtime import NO_FMA_FLAG, SCALAR_LANES, compiler_options, contracts_multiply_adds
+from impact._core.runtime import (
+    BATCH_EMITTERS,
+    ELEMENTAL_EMITTERS_FLAG,
+    NO_FMA_FLAG,
+    SCALAR_LANES,
+    compiler_options,
+    contracts_multiply_adds,
+)
 from impact._run.sweep import sweep
 from impact._run.sweep.execute import _call_sizes
 from impact._run.sweep.plan import plan_sweep
@@ -160,6 +167,15 @@ def test_a_configured_process_runs_without_fused_multiply_adds_and_keeps_its_vec
     assert NO_FMA_FLAG in os.environ["XLA_FLAGS"]  # conftest called impact.configure()
     assert contracts_multiply_adds() is False
     assert compiler_options() == {}
+
+
+def test_a_configured_process_compiles_one_scene_for_latency_and_a_sweeps_batches_for_speed():
+    """One scene's programs take XLA's elemental emitters (faster to compile), every program of
+    a sweep's points the fusion emitters (faster vector code), whatever the batch size: a point
+    is computed by the same code in a call of one, of six or of all."""
+    assert ELEMENTAL_EMITTERS_FLAG in os.environ["XLA_FLAGS"].split()
+    assert compiler_options(batch=True) == {**compiler_options(), **BATCH_EMITTERS}
+    assert BATCH_EMITTERS == {"xla_cpu_use_fusion_emitters": True}
 
 
 @pytest.mark.skipif(not HAS_FMA, reason="needs an x86-64 CPU with FMA")

@@ -212,7 +212,7 @@ def test_every_config_is_checked():
 
 @pytest.mark.parametrize("name", sorted(CHECKS))
 def test_config_runs_and_meets_its_reference(name):
-    result = impact.simulate(CONFIGS / f"{name}.yaml", trajectory=False)
+    result = impact.simulate(CONFIGS / f"{name}.yaml")
     assert result.success, result.status
     assert result.scene.name == name
     CHECKS[name](result)

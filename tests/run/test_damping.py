@@ -48,7 +48,7 @@ def undamped(damping: dict) -> dict:
 
 
 def simulate_at_tolerance(data: dict, rtol: float) -> impact.Result:
-    """`simulate(data, trajectory=False)` with the tolerances traced (rtol, atol = rtol/100, as
+    """`simulate(data)` with the tolerances traced (rtol, atol = rtol/100, as
     the default 1e-10, 1e-12): one compiled program serves every tolerance and every value of
     the scene's traced fields."""
     loaded = impact.load_scene(data)
@@ -77,7 +77,7 @@ def test_first_order_coefficient_is_schwager_poeschels():
 def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio, tmp_path):
     # A flat punch on the MDR foundation is a linear spring k = 2E*a; both models damp it
     # linearly (c, or 2E*a·A), and the contact ends where k·x + c·ẋ = 0.
-    result = simulate(scene(damping, "flat_punch"), trajectory=False)
+    result = simulate(scene(damping, "flat_punch"))
     stiffness = 2 * E_STAR * PUNCH
     e = float(theory.dashpot_restitution(ratio))
     assert result.status == "separated"
@@ -142,8 +142,8 @@ def test_adhesive_damped_energy_balance_closes(damping):
     def adhesive(damping: dict) -> dict:
         return scene(damping, adhesion={"work_of_adhesion": 0.5}) | {"initial": {"velocity": 0.05}}
 
-    result = simulate(adhesive(damping), trajectory=False)
-    free = simulate(adhesive(undamped(damping)), trajectory=False)  # the damped run's program
+    result = simulate(adhesive(damping))
+    free = simulate(adhesive(undamped(damping)))  # the damped run's program
     assert result.status == "separated"
     assert result.min_force < 0  # the adhesive pull before the Heß rule lets go
     assert result.restitution < free.restitution
@@ -156,7 +156,7 @@ def test_an_overdamped_contact_has_a_named_status():
     # Adhesion with A = 1 s: the body creeps into the adhesive equilibrium without ever turning.
     adhesive = scene(viscoelastic(1.0), adhesion={"work_of_adhesion": 0.5})
     adhesive["initial"]["velocity"] = 0.05
-    result = simulate(adhesive, trajectory=False)
+    result = simulate(adhesive)
     assert result.status == "overdamped"
     assert math.isnan(result.restitution)
     assert not result.success
@@ -165,7 +165,7 @@ def test_an_overdamped_contact_has_a_named_status():
 def test_a_damped_drop_comes_to_rest():
     dropped = scene(viscoelastic(3e-4), gravity={"g": 9.81})
     dropped["initial"] = {"velocity": 0.0, "gap": 1e-4}
-    result = simulate(dropped, trajectory=False)
+    result = simulate(dropped)
     assert result.status == "captured"
     assert result.bounces >= 2
     assert result.restitution > 0  # the first contact let go

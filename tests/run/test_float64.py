@@ -38,7 +38,7 @@ def test_closed_forms_answer_in_float64():
 
 def test_simulate_answers_in_float64():
     scene = impact.load_scene(SCENE)
-    result = impact.simulate(scene, trajectory=False)
+    result = impact.simulate(scene)
     assert result.status == "separated"
     assert result.restitution == pytest.approx(thornton_ning(scene.start.velocity), rel=1e-8)
 

@@ -57,7 +57,7 @@ def test_thornton_ning_restitution(material, solver, tolerance):
     m = MATERIALS[material]
     errors, force_errors = [], []
     for factor in VELOCITY_FACTORS:
-        result = simulate(paraboloid_scene(material, factor * v_s, solver=solver), trajectory=False)
+        result = simulate(paraboloid_scene(material, factor * v_s, solver=solver))
         assert result.status == "separated"
         errors.append(abs(result.restitution - tn_restitution(material, factor * v_s)))
         expected = theory.thornton_ning_max_force(factor * v_s, m["mass"], m["R"], m["E_star"], m["work_of_adhesion"])
@@ -66,10 +66,20 @@ def test_thornton_ning_restitution(material, solver, tolerance):
     assert max(force_errors) <= tolerance, max(force_errors)
 
 
+def test_without_trajectory_the_same_impact_keeps_no_time_series():
+    """`trajectory=False` leaves the samples out of the program: the same outcome to the bit."""
+    scene = paraboloid_scene("micro", 2 * sticking_velocity("micro"))
+    full, bare = simulate(scene), simulate(scene, trajectory=False)
+    assert len(full.t) > 100 and len(full.force) == len(full.t)
+    assert len(bare.t) == len(bare.indentation) == len(bare.force) == 0
+    assert bare.restitution == full.restitution and bare.stats["steps"] == full.stats["steps"]
+    assert bare.events == full.events
+
+
 def test_pull_off_force_is_reached_during_unloading():
     """Separating contacts pass the force-controlled critical point: min F = −(3/2)πΔγR (3.46)."""
     m = MATERIALS["micro"]
-    result = simulate(paraboloid_scene("micro", 3 * sticking_velocity("micro")), trajectory=False)
+    result = simulate(paraboloid_scene("micro", 3 * sticking_velocity("micro")))
     pull_off = -1.5 * np.pi * m["work_of_adhesion"] * m["R"]
     assert result.min_force == pytest.approx(pull_off, rel=1e-10)
 
@@ -101,7 +111,7 @@ def test_power_law_restitution(n):
     c = tip_constant(n)
     v_s = float(theory.power_law_sticking_velocity(m["mass"], n, c, m["E_star"], m["work_of_adhesion"]))
     for factor in (1.01, 1.5, 3.0, 10.0, 40.0):
-        result = simulate(power_law_scene(n, c, factor * v_s), trajectory=False)
+        result = simulate(power_law_scene(n, c, factor * v_s))
         expected = float(
             theory.power_law_restitution(factor * v_s, m["mass"], n, c, m["E_star"], m["work_of_adhesion"])
         )
@@ -117,13 +127,13 @@ def test_cone_restitution_is_the_power_law_n_1():
     scene = power_law_scene(1.0, c, 2.0 * v_s)
     scene["body"]["profile"] = dict(shape="cone", theta=theta)
     expected = float(theory.power_law_restitution(2.0 * v_s, m["mass"], 1.0, c, m["E_star"], m["work_of_adhesion"]))
-    assert abs(simulate(scene, trajectory=False).restitution - expected) <= 1e-6
+    assert abs(simulate(scene).restitution - expected) <= 1e-6
 
 
 @pytest.mark.parametrize("factor", [0.5, 0.999])
 def test_below_sticking_velocity_the_body_is_captured(factor):
     v_s = sticking_velocity("micro")
-    result = simulate(paraboloid_scene("micro", factor * v_s), trajectory=False)
+    result = simulate(paraboloid_scene("micro", factor * v_s))
     assert result.status == "captured" and result.stuck
     assert result.restitution == 0.0
     assert result.contact_time == np.inf
@@ -139,7 +149,7 @@ def test_no_adhesion_is_elastic_hertz(adhesion):
     if adhesion is not None:
         scene["effects"] = {"adhesion": {"work_of_adhesion": adhesion}}
     assert not options_for(load_scene(scene)).adhesive
-    result = simulate(scene, trajectory=False)
+    result = simulate(scene)
     assert abs(result.restitution - 1.0) <= 1e-9
     contact_time = float(theory.hertz_contact_time(0.5, m["mass"], m["R"], m["E_star"]))
     assert result.contact_time == pytest.approx(contact_time, rel=1e-6)
@@ -156,7 +166,7 @@ def test_spring_array_converges_to_the_continuum_at_second_order():
     errors = []
     for count in counts:
         scene = paraboloid_scene("micro", 2 * v_s, contact={"springs": int(count)})
-        result = simulate(scene, trajectory=False)
+        result = simulate(scene)
         assert result.status == "separated"
         errors.append(abs(result.restitution - tn_restitution("micro", 2 * v_s)))
     order = -np.polyfit(np.log(counts), np.log(errors), 1)[0]
@@ -167,7 +177,7 @@ def test_spring_array_converges_to_the_continuum_at_second_order():
 def test_spring_array_events_are_exact():
     """The array is integrated in closed form: its loop work equals the kinetic energy lost."""
     v_s = sticking_velocity("micro")
-    result = simulate(paraboloid_scene("micro", 2 * v_s, contact={"springs": 300}), trajectory=False)
+    result = simulate(paraboloid_scene("micro", 2 * v_s, contact={"springs": 300}))
     lost = 0.5 * MATERIALS["micro"]["mass"] * (result.touch_velocity**2 - result.separation_velocity**2)
     assert lost == pytest.approx(result.dissipated_energy, rel=1e-10)
 
@@ -181,7 +191,7 @@ def test_attach_on_touch_matches_its_reference(factor):
     of theory.attach_on_touch_restitution, and always below Thornton–Ning."""
     m = MATERIALS["micro"]
     velocity = factor * sticking_velocity("micro")
-    result = simulate(paraboloid_scene("micro", velocity, approach=0.0), trajectory=False)
+    result = simulate(paraboloid_scene("micro", velocity, approach=0.0))
     expected = float(
         theory.attach_on_touch_restitution(velocity, m["mass"], m["R"], m["E_star"], m["work_of_adhesion"])
     )
@@ -195,7 +205,7 @@ def test_attach_on_touch_energy_balance(factor):
     """Kinetic energy lost = loop area ∮F dd within 1e-8 relative (tight tolerances)."""
     m = MATERIALS["micro"]
     velocity = factor * sticking_velocity("micro")
-    result = simulate(paraboloid_scene("micro", velocity, approach=0.0, solver=TIGHT), trajectory=False)
+    result = simulate(paraboloid_scene("micro", velocity, approach=0.0, solver=TIGHT))
     lost = 0.5 * m["mass"] * (result.touch_velocity**2 - result.separation_velocity**2)
     assert lost == pytest.approx(result.dissipated_energy, rel=1e-8)
 
@@ -203,8 +213,8 @@ def test_attach_on_touch_energy_balance(factor):
 def test_attach_on_touch_captures_below_its_own_threshold():
     """The attach-on-touch capture threshold is 1.2649·v_s (root of the reference's β = 1)."""
     v_s = sticking_velocity("micro")
-    assert simulate(paraboloid_scene("micro", 1.2640 * v_s, approach=0.0), trajectory=False).stuck
-    above = simulate(paraboloid_scene("micro", 1.2660 * v_s, approach=0.0), trajectory=False)
+    assert simulate(paraboloid_scene("micro", 1.2640 * v_s, approach=0.0)).stuck
+    above = simulate(paraboloid_scene("micro", 1.2660 * v_s, approach=0.0))
     assert above.status == "separated" and 0.0 < above.restitution < 0.05
 
 
@@ -213,7 +223,7 @@ def test_gravity_touchdown_time():
     gap, g = 1e-6, 9.81
     scene = paraboloid_scene("micro", 0.0, initial={"velocity": 0.0, "gap": gap})
     scene["effects"]["gravity"] = {"g": g}
-    result = simulate(scene, trajectory=False)
+    result = simulate(scene)
     assert result.events[0][1] == "touch"
     assert result.events[0][0] == pytest.approx(np.sqrt(2 * gap / g), rel=1e-12)
     assert result.touch_velocity == pytest.approx(np.sqrt(2 * g * gap), rel=1e-12)
@@ -226,7 +236,7 @@ def test_gravity_sticky_bounces_end_captured():
     gap = (2 * v_s) ** 2 / (2 * g)
     scene = paraboloid_scene("micro", 0.0, initial={"velocity": 0.0, "gap": gap})
     scene["effects"]["gravity"] = {"g": g}
-    result = simulate(scene, trajectory=False)
+    result = simulate(scene)
     assert result.status == "captured" and result.stuck
     assert result.bounces >= 3
     assert result.stats["steps"] < 64 * 4096

@@ -30,7 +30,7 @@ def steel(velocity: float, plastic: bool = True, **sections) -> dict:
 
 
 def impact_at(ratio: float, plastic: bool = True):
-    return simulate(steel(ratio * YIELD_VELOCITY, plastic), trajectory=False)
+    return simulate(steel(ratio * YIELD_VELOCITY, plastic))
 
 
 @pytest.mark.parametrize("ratio", [1.01, 3.0, 30.0, 1e3, 1e4])

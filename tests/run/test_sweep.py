@@ -125,8 +125,10 @@ def test_sweep_equals_simulate_point_by_point(grid):
             ):
                 mine, theirs = float(getattr(grid, name)[i, j]), float(getattr(single, name))
                 assert math.isclose(mine, theirs, rel_tol=1e-12, abs_tol=0.0) or mine == theirs, (name, mine, theirs)
+            # The batch compiles the closed form with XLA's fusion emitters, an eager call with
+            # the elemental ones (`impact._core.runtime.BATCH_EMITTERS`): a few ulps apart.
             expected = theory.thornton_ning_restitution(velocity, scene.body.resolved_mass, 1e-6, 1e9, work)
-            assert math.isclose(grid.theory_restitution[i, j], float(expected), rel_tol=1e-15, abs_tol=1e-300)
+            assert math.isclose(grid.theory_restitution[i, j], float(expected), rel_tol=1e-14, abs_tol=1e-300)
     assert grid.status_names()[0, 1] == "captured" and grid.restitution[0, 1] == 0.0
     assert grid.max_theory_error() < 1e-8
 
@@ -225,9 +227,10 @@ def test_the_figure_draws_the_closed_form_beside_the_points(grid):
     for curve, work in zip(curves, WORKS, strict=True):
         v, e = curve.get_xdata(), curve.get_ydata()
         assert len(v) >= 500 and v.min() <= min(VELOCITIES) and v.max() >= max(VELOCITIES)
-        np.testing.assert_allclose(
-            e, theory.thornton_ning_restitution(v, mass, 1e-6, 1e9, work), rtol=1e-14, atol=1e-15
-        )
+        # e = √(1 − β) (3.50), compiled as the sweep's batches, the eager call otherwise: β agrees
+        # to a few ulps, which the square root amplifies to 1e-5 of e at e ≈ 1e-5.
+        expected = theory.thornton_ning_restitution(v, mass, 1e-6, 1e9, work)
+        np.testing.assert_allclose(1.0 - e**2, 1.0 - expected**2, rtol=1e-14, atol=1e-15)
     for points in simulated:
         assert len(points.get_xdata()) == len(VELOCITIES)
     rows = sticking_estimates(grid)

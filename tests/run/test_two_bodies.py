@@ -31,7 +31,7 @@ def two_spheres(**counterpart) -> dict:
 
 @pytest.fixture(scope="module")
 def pair():
-    return simulate(two_spheres(), trajectory=False)
+    return simulate(two_spheres())
 
 
 def test_same_restitution_as_the_wall_impact_with_effective_parameters(pair):
@@ -77,7 +77,7 @@ def test_kinetic_energy_lost_is_the_loop_work(pair):
 
 
 def test_a_rigid_flat_at_rest_is_the_default():
-    wall = simulate({**two_spheres(), "counterpart": None}, trajectory=False)
+    wall = simulate({**two_spheres(), "counterpart": None})
     assert wall.centre_of_mass_velocity == 0.0 and wall.counterpart_velocity_after == 0.0
     assert wall.body_velocity_after == -wall.separation_velocity
 

@@ -121,7 +121,7 @@ def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices:
     sharding = batch_sharding(devices)
     dtype = jnp.result_type(float)
     abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
-    function = jax.jit(jax.vmap(point_function(choices)), compiler_options=compiler_options())
+    function = jax.jit(jax.vmap(point_function(choices)), compiler_options=compiler_options(batch=True))
     compiled = function.lower(jax.tree.unflatten(treedef, abstract)).compile()
     _COMPILED[key] = compiled
     return compiled, time.perf_counter() - start
@@ -144,7 +144,7 @@ def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
     if key not in _MAPPED:
         start = time.perf_counter()
         point = point_function(choices)
-        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=compiler_options())
+        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=compiler_options(batch=True))
         _MAPPED[key] = function.lower(batch).compile()
         COMPILE_SECONDS["unbatched"] += time.perf_counter() - start
     try:
@@ -159,7 +159,7 @@ def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
     code solver_failure."""
     choices = plan.choices[group]
     if choices not in _SINGLE:
-        _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=compiler_options())
+        _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=compiler_options(batch=True))
     function = _SINGLE[choices]
     results = empty_results(len(points), SOLVED)
     for row, point in enumerate(points):

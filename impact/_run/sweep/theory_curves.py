@@ -7,6 +7,7 @@ from collections.abc import Mapping
 import jax
 import numpy as np
 
+from ..._core.runtime import compiler_options
 from ..._integrate.codes import RESULT_CODE
 from ..._scene.paths import with_values
 from ..._scene.sweep_spec import SweepSpec
@@ -35,7 +36,9 @@ def theory_curve(spec: SweepSpec, fixed: Mapping[str, object], path: str, values
     leaves, treedef = jax.tree.flatten(physics)
     key = (choices, treedef, tuple(leaf.shape for leaf in leaves))
     if key not in _CURVES:
-        _CURVES[key] = jax.jit(jax.vmap(lambda p: closed_form_restitution(p, choices)))
+        _CURVES[key] = jax.jit(
+            jax.vmap(lambda p: closed_form_restitution(p, choices)), compiler_options=compiler_options(batch=True)
+        )
     return np.asarray(_CURVES[key](physics))[:count]
 
 
