@@ -36,7 +36,7 @@ SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
 
 # XLA:CPU's fusion emitters (its default) give a vmapped batch faster vector code, but compile a
 # program 25–45 % slower than its elemental emitters, and one scene's program runs about as fast
-# with either (measured 2026-11-26: Thornton–Ning's impact compiled in 4.6 s instead of 7.2 s and
+# with either (measured 2026-11-26: Thornton–Ning's impact compiled in 3.9 s instead of 6.7 s and
 # ran in 12 ms both ways; a fit's programs in 4.9 s instead of 8.2 s; a sweep's batch of 10³
 # points ran 103 µs per impact instead of 84). `configure()` makes the elemental emitters the
 # process's default; a sweep's batches ask for the fusion emitters (`compiler_options`).
