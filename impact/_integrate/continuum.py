@@ -81,10 +81,15 @@ class PhaseArgs(eqx.Module):
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
     damping: tuple[Parameter, Parameter]  # (η_a, η_0) of the viscous force (η_a·a + η_0)·v
     releases: jax.Array  # the contact ends where the total force returns to zero (damped, no adhesion)
+    # Loading may be integrated in time (`Options.timed_loading`); else a timed phase is a hold.
+    timed_loading: bool = eqx.field(static=True)
 
 
 def timed_radius(d, args: PhaseArgs):
-    """Contact radius of a time-parametrized phase: held, or the branch root at d."""
+    """Contact radius of a time-parametrized phase: held, or the branch root at d (only where
+    loading is integrated in time: otherwise every timed phase is a hold)."""
+    if not args.timed_loading:
+        return args.radius
     riding = args.branch.radius(args.law, d, args.segment)
     return jnp.where(args.mode == HOLD, args.radius, riding)
 
@@ -95,7 +100,7 @@ def viscous_force(radius, velocity, args: PhaseArgs):
     return (per_radius * radius + constant) * velocity
 
 
-def _make_vector_field(timed_loading: bool, damped: bool):
+def _make_vector_field(damped: bool):
     def vector_field(s, y, args: PhaseArgs):
         x, v = y[0], y[1]
         law, branch = args.law, args.branch
@@ -103,7 +108,7 @@ def _make_vector_field(timed_loading: bool, damped: bool):
         slope = law.edge_slope(radius, branch.coefficient)
         pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         force = law.force(radius, branch.level(law, radius))
-        held_radius = timed_radius(x, args) if timed_loading else args.radius
+        held_radius = timed_radius(x, args)
         held = law.force(held_radius, x)
         if not damped:
             riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
@@ -163,7 +168,7 @@ def _first_event(t, y, args: PhaseArgs, **kwargs):
     return jnp.max(_conditions(y, args))
 
 
-def _phase_args(problem: Problem, c: Carry) -> PhaseArgs:
+def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     """How the phase starting from the carry is integrated and where it ends."""
     law = problem.law
     branch = active_branch(c.mode, problem.attach, problem.detach)
@@ -196,6 +201,7 @@ def _phase_args(problem: Problem, c: Carry) -> PhaseArgs:
         speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
         damping=(problem.damping_per_radius, problem.damping_constant),
         releases=(c.mode != ADVANCE) & ~law.adhesive,
+        timed_loading=options.timed_loading,
     )
 
 
@@ -203,11 +209,11 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     """One contact phase with diffrax, ended by its located event."""
     law = problem.law
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
-    args = _phase_args(problem, c)
+    args = _phase_args(problem, options, c)
     riding, branch = args.riding, args.branch
     start = [jnp.where(riding, c.radius, c.d), c.v, c.t] + ([jnp.zeros(())] if options.damped else [])
     solution = integrator.ride(
-        _make_vector_field(options.timed_loading, options.damped),
+        _make_vector_field(options.damped),
         _first_event,
         jnp.stack(start),
         args,
@@ -219,7 +225,7 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
-    a_end = jnp.where(riding, x_end, jnp.where(c.mode == HOLD, c.radius, branch.radius(law, x_end, c.segment)))
+    a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
     if options.samples_per_phase:
         states = dense_states(solution, options.samples_per_phase)
