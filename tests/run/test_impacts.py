@@ -1,10 +1,13 @@
 """Impacts against the chapter's closed forms and our own references (issue: core)."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from impact import simulate, theory
-from impact._run.parameters import options_for
+from impact._run.impacts import solve_scene
+from impact._run.parameters import integrator_for, options_for
 from impact._scene.scene import load_scene
 
 MATERIALS = {
@@ -74,6 +77,27 @@ def test_without_trajectory_the_same_impact_keeps_no_time_series():
     assert len(bare.t) == len(bare.indentation) == len(bare.force) == 0
     assert bare.restitution == full.restitution and bare.stats["steps"] == full.stats["steps"]
     assert bare.events == full.events
+
+
+def test_a_scene_that_never_loads_in_time_runs_as_the_general_program_does():
+    """Where loading is never integrated in time (`Options.timed_loading` false: the paraboloid
+    jumps in), every phase integrated in time is a hold, and the program leaves out the branch's
+    radius solve; the general program, which keeps it (and the branch tables its cascades then
+    look up), runs the same impact to a few ulps (the same bits here; 7.8e-16 apart in e at
+    configs/thornton_ning.yaml)."""
+    scene = load_scene(paraboloid_scene("micro", 2 * sticking_velocity("micro")))
+    options = options_for(scene)
+    assert not options.timed_loading
+    general = solve_scene(scene, integrator_for(scene), dataclasses.replace(options, timed_loading=True))
+    specialised = simulate(scene)
+    assert general.stats["steps"] == specialised.stats["steps"]
+    assert [kind for _, kind in general.events] == [kind for _, kind in specialised.events]
+    np.testing.assert_allclose([t for t, _ in general.events], [t for t, _ in specialised.events], rtol=1e-14)
+    assert general.restitution == pytest.approx(specialised.restitution, rel=1e-14, abs=0.0)
+    for name in ("t", "indentation", "velocity", "force", "contact_radius"):
+        mine, theirs = getattr(general, name), getattr(specialised, name)
+        assert mine.shape == theirs.shape and len(theirs) > 100
+        assert np.max(np.abs(mine - theirs)) <= 1e-13 * np.max(np.abs(theirs)), name
 
 
 def test_pull_off_force_is_reached_during_unloading():
