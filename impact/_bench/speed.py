@@ -11,7 +11,8 @@ For each workload × points count:
   TIGHTER_POINTS of them, evenly strided) at rtol and atol / 100; a point that failed makes
   it inf.
 - **compile**: the sweep's compile time (a later row with the same call size reuses the
-  compiled batch: 0).
+  compiled batch: 0; a batch stored by an earlier process is loaded instead: run
+  `impact --no-cache bench speed` for the compilation itself).
 - **split**: one call of the sweep's size (its points spread over the sweep) through
   `jit(vmap(build))`, `jit(vmap(build + integrate))` (`solve`, the outcome's fields that the
   point function reads), each reduced to one number per point (`checksum`), and the

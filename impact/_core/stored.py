@@ -2,13 +2,15 @@
 traced again (tracing costs Python seconds, besides the compilation that JAX's persistent cache
 saves).
 
-The first call of a program traces it once, serializes it with `jax.export` (StableHLO) into
-`exported/` of the cache directory and runs it; later processes deserialize it and JAX's
-persistent cache supplies its compiled executable. A program is keyed by everything that shapes
-it: impact's source, the versions of jax and the libraries it traces, the platform, its name, the
-static parts of its arguments and the shapes and dtypes of their arrays; a program whose key
-differs is traced anew. Without a cache directory (or without `flatbuffers`, which `jax.export`
-serializes with) it is traced in every process.
+The first call of a program (`call_stored`: one scene's programs), or its first compilation
+ahead of its calls (`compile_stored`: a sweep's batch, sharded over its devices), traces it once
+and serializes it with `jax.export` (StableHLO) into `exported/` of the cache directory; later
+processes deserialize it and JAX's persistent cache supplies its compiled executable. A program
+is keyed by everything that shapes it: impact's source, the versions of jax and the libraries it
+traces, the platform, its name, the static parts of its arguments and the shapes and dtypes of
+their arrays (and a batch's shardings); a program whose key differs is traced anew. Without a
+cache directory (or without `flatbuffers`, which `jax.export` serializes with) it is traced in
+every process.
 
 The first call of a stored program on the CPU would initialize jaxlib's LAPACK kernels, which
 imports `scipy.linalg` (0.15–0.4 s of a run) whatever the program calls; a program that calls no
@@ -69,13 +71,34 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
         return _loaded[key](*leaves)  # the first call lowers the program
 
 
+def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, options: dict) -> Callable[[Any], Any]:
+    """`function` (of one pytree of arrays) lowered for `abstract` (the same pytree of
+    `jax.ShapeDtypeStruct`, possibly sharded) and compiled with the XLA `options`; traced only
+    where the cache holds no program of its key. `label` names everything static that shapes
+    the program (the function and what it closes over)."""
+    leaves, structure = jax.tree.flatten(abstract)
+    shardings = repr([getattr(leaf, "sharding", None) for leaf in leaves])
+    key = _key((label, str(structure), shardings), leaves)
+    directory = directory_in_use()
+    if directory is None or not _can_serialize():
+        return jax.jit(function, compiler_options=options).lower(abstract).compile()
+
+    def flat(*values: jax.Array) -> Any:  # what `jax.export` serializes: arrays in, dicts out
+        return function(jax.tree.unflatten(structure, values))
+
+    exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", flat, leaves)
+    with contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack():
+        compiled = jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
+    return lambda tree: compiled(*jax.tree.leaves(tree))
+
+
 @functools.cache
 def _can_serialize() -> bool:
     """Whether `jax.export` can serialize here (it needs the flatbuffers package)."""
     return importlib.util.find_spec("flatbuffers") is not None
 
 
-def _load_or_export(path: Path, function: Callable, leaves: list[jax.Array]) -> export.Exported:
+def _load_or_export(path: Path, function: Callable, leaves: list[Any]) -> export.Exported:
     """The stored program at `path`, or `function` traced, exported and stored there (a file
     that cannot be read back is replaced; one that cannot be written is skipped)."""
     try:

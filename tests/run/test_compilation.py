@@ -186,6 +186,42 @@ def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_pat
     assert program.read_bytes() == stored
 
 
+# A fresh process that sweeps four velocities in one call and says how many programs it compiled
+# and loaded (as PROCESS), whether it imported diffrax (only tracing the batch does) and the
+# restitutions' bits.
+SWEEP_PROCESS = f"""
+import sys, jax, impact
+events = []
+jax.monitoring.register_event_duration_secs_listener(lambda event, duration, **kw: events.append(event))
+jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
+impact.configure()
+result = impact.sweep(sys.argv[1], {{"initial.velocity": [0.5, 1.0, 2.0, 4.0]}}, chunk=4)
+hits = events.count({CACHE_HIT!r})
+print(events.count({COMPILE!r}) - hits, hits, "diffrax" in sys.modules, *[value.hex() for value in result.restitution])
+"""
+
+
+def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
+    """A sweep's compiled batch is stored as a traced program too: a second process of the same
+    structure neither traces (no diffrax) nor compiles it, and gets the same bits."""
+    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
+
+    def run() -> list[str]:
+        process = subprocess.run(
+            [sys.executable, "-c", SWEEP_PROCESS, str(THORNTON_NING)], capture_output=True, text=True, env=env, cwd=ROOT
+        )
+        assert process.returncode == 0, process.stderr
+        return process.stdout.split()
+
+    compiled, loaded, traced, *restitutions = run()
+    assert int(compiled) >= 1 and loaded == "0" and traced == "True" and len(restitutions) == 4
+    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())  # the scene checks' programs, the batch
+    compiled_again, loaded_again, traced_again, *same = run()
+    assert compiled_again == "0" and int(loaded_again) >= 1 and traced_again == "False"
+    assert same == restitutions
+    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
+
+
 def test_stored_program_gives_the_traced_results_bit_for_bit():
     scene = impact.load_scene(THORNTON_NING)
     arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)

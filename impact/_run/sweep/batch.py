@@ -12,6 +12,7 @@ import numpy as np
 from jax.sharding import AxisType, NamedSharding, PartitionSpec
 
 from ..._core.runtime import compiler_options
+from ..._core.stored import compile_stored
 from ..._integrate.codes import RESULT_CODE
 from ..._integrate.problem import Physics
 from ..._scene.errors import SweepError
@@ -121,8 +122,9 @@ def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices:
     sharding = batch_sharding(devices)
     dtype = jnp.result_type(float)
     abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
-    function = jax.jit(jax.vmap(point_function(choices)), compiler_options=compiler_options(batch=True))
-    compiled = function.lower(jax.tree.unflatten(treedef, abstract)).compile()
+    label = f"{__name__}.compiled_batch {choices!r}"
+    batch = jax.tree.unflatten(treedef, abstract)
+    compiled = compile_stored(jax.vmap(point_function(choices)), label, batch, compiler_options(batch=True))
     _COMPILED[key] = compiled
     return compiled, time.perf_counter() - start
 

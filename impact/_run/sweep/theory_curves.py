@@ -8,6 +8,7 @@ import jax
 import numpy as np
 
 from ..._core.runtime import compiler_options
+from ..._core.stored import compile_stored
 from ..._integrate.codes import RESULT_CODE
 from ..._scene.paths import with_values
 from ..._scene.sweep_spec import SweepSpec
@@ -36,8 +37,11 @@ def theory_curve(spec: SweepSpec, fixed: Mapping[str, object], path: str, values
     leaves, treedef = jax.tree.flatten(physics)
     key = (choices, treedef, tuple(leaf.shape for leaf in leaves))
     if key not in _CURVES:
-        _CURVES[key] = jax.jit(
-            jax.vmap(lambda p: closed_form_restitution(p, choices)), compiler_options=compiler_options(batch=True)
+        _CURVES[key] = compile_stored(
+            jax.vmap(lambda p: closed_form_restitution(p, choices)),
+            f"{__name__}.theory_curve {choices!r}",
+            jax.tree.map(lambda leaf: jax.ShapeDtypeStruct(leaf.shape, leaf.dtype), physics),
+            compiler_options(batch=True),
         )
     return np.asarray(_CURVES[key](physics))[:count]
 
