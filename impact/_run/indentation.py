@@ -7,10 +7,13 @@ curve (a, d, F) in program order, a jump showing as two points at the same contr
 """
 
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.pytree import fields
+from .._core.stored import call_stored
 from .._integrate.codes import RESULT_CODES
 from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, march
 from .._law.branches import Tabulation
@@ -120,9 +123,15 @@ def indentation_loading(scene: Scene) -> Loading:
 
 
 def simulate_indentation(scene: Scene) -> IndentationResult:
-    """Run one scene of kind `indentation`."""
-    scales, outcome = march(indentation_loading(scene), indentation_numerics(scene))
-    return to_indentation_result(scene, scales, outcome)
+    """Run one scene of kind `indentation` (its program traced once per machine and structure:
+    `impact._core.stored`)."""
+    scales, outcome = call_stored(_march_by_field, indentation_loading(scene), indentation_numerics(scene))
+    return to_indentation_result(scene, SimpleNamespace(**scales), SimpleNamespace(**outcome))
+
+
+def _march_by_field(loading: Loading, numerics: QuasiStaticNumerics) -> tuple[dict, dict]:
+    scales, outcome = march(loading, numerics)
+    return fields(scales), fields(outcome)
 
 
 def to_indentation_result(scene: Scene, scales, outcome) -> IndentationResult:

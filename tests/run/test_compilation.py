@@ -222,6 +222,45 @@ def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
     assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
+# A fresh process that runs an indentation test and says how many programs it compiled and
+# loaded (as PROCESS), how many times it traced the march (itself, or inside `call_stored`'s
+# `traced`) and the bits of its pull-off force and of its last force sample.
+INDENTATION_PROCESS = f"""
+import sys, jax, impact
+events, traced = [], []
+jax.monitoring.register_event_duration_secs_listener(
+    lambda event, duration, **kw: (events.append(event), traced.append(kw.get("fun_name") in ("march", "traced")))
+)
+jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
+impact.configure()
+result = impact.simulate(sys.argv[1])
+hits = events.count({CACHE_HIT!r})
+print(events.count({COMPILE!r}) - hits, hits, sum(traced), result.pull_off.force.hex(), result.force[-1].hex())
+"""
+
+
+def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path):
+    """An indentation test's march is stored traced as an impact's solve is: a second process
+    neither traces nor compiles it, and gets the same bits."""
+    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
+    scene = ROOT / "configs" / "indentation_paraboloid.yaml"
+
+    def run() -> list[str]:
+        process = subprocess.run(
+            [sys.executable, "-c", INDENTATION_PROCESS, str(scene)], capture_output=True, text=True, env=env, cwd=ROOT
+        )
+        assert process.returncode == 0, process.stderr
+        return process.stdout.split()
+
+    compiled, loaded, traced, *forces = run()
+    assert int(compiled) >= 1 and loaded == "0" and int(traced) >= 1
+    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())
+    compiled_again, loaded_again, traced_again, *same = run()
+    assert compiled_again == "0" and int(loaded_again) >= 1 and traced_again == "0"
+    assert same == forces
+    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
+
+
 def test_stored_program_gives_the_traced_results_bit_for_bit():
     scene = impact.load_scene(THORNTON_NING)
     arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)
