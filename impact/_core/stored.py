@@ -67,7 +67,7 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
         return _loaded[key](*leaves)
     exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
     _loaded[key] = jax.jit(exported.call, compiler_options=compiler_options())
-    with contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack():
+    with _lowering(exported):
         return _loaded[key](*leaves)  # the first call lowers the program
 
 
@@ -87,7 +87,7 @@ def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, op
         return function(jax.tree.unflatten(structure, values))
 
     exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", flat, leaves)
-    with contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack():
+    with _lowering(exported):
         compiled = jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
     return lambda tree: compiled(*jax.tree.leaves(tree))
 
@@ -115,6 +115,11 @@ def _load_or_export(path: Path, function: Callable, leaves: list[Any]) -> export
         with contextlib.suppress(OSError):
             partial.unlink(missing_ok=True)
     return exported
+
+
+def _lowering(exported: export.Exported) -> contextlib.AbstractContextManager:
+    """Where a stored program is lowered: without jaxlib's LAPACK kernels unless it calls them."""
+    return contextlib.nullcontext() if _LAPACK in exported.mlir_module_serialized else _without_lapack()
 
 
 @contextlib.contextmanager

@@ -144,31 +144,40 @@ def test_usable_directory_is_switched_on(tmp_path, restore_cache):
     assert jax.config.jax_persistent_cache_min_compile_time_secs == 0.0
 
 
-# A fresh process that runs the scene and says how many programs it compiled and how many it
-# loaded from the cache (JAX reports a load as a backend compilation and a cache hit), whether
-# it imported diffrax (only tracing a ride does) and whether scipy (only LAPACK kernels need it).
-PROCESS = f"""
+# How a fresh process's script starts: JAX's compile and cache events recorded in `events`.
+RECORDING = """
 import sys, jax, impact
 events = []
 jax.monitoring.register_event_duration_secs_listener(lambda event, duration, **kw: events.append(event))
 jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
 impact.configure()
+"""
+# What it prints first: how many programs it compiled and how many it loaded from the cache (JAX
+# reports a load as a backend compilation and a cache hit).
+COUNTS = f"events.count({COMPILE!r}) - events.count({CACHE_HIT!r}), events.count({CACHE_HIT!r})"
+
+# A fresh process that runs the scene and says how many programs it compiled and loaded, whether
+# it imported diffrax (only tracing a ride does) and whether scipy (only LAPACK kernels need it).
+PROCESS = f"""{RECORDING}
 result = impact.simulate(sys.argv[1])
-hits = events.count({CACHE_HIT!r})
 imported = ["diffrax" in sys.modules, "scipy" in sys.modules]
-print(events.count({COMPILE!r}) - hits, hits, repr(result.restitution), *imported)
+print({COUNTS}, repr(result.restitution), *imported)
 """
 
 
-def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
-    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
+def fresh_process(script: str, scene: Path, cache: Path) -> list[str]:
+    """The words `script` prints, run in a fresh Python with `scene` as its argument and the
+    compilation cache in `cache`."""
+    env = dict(os.environ, IMPACT_CACHE_DIR=str(cache))
+    command = [sys.executable, "-c", script, str(scene)]
+    process = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
+    assert process.returncode == 0, process.stderr
+    return process.stdout.split()
 
+
+def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
     def run() -> list[str]:
-        process = subprocess.run(
-            [sys.executable, "-c", PROCESS, str(THORNTON_NING)], capture_output=True, text=True, env=env, cwd=ROOT
-        )
-        assert process.returncode == 0, process.stderr
-        return process.stdout.split()
+        return fresh_process(PROCESS, THORNTON_NING, tmp_path / "cache")
 
     compiled, loaded, restitution, traced, _ = run()
     assert int(compiled) >= 1 and loaded == "0" and traced == "True"
@@ -187,31 +196,20 @@ def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_pat
 
 
 # A fresh process that sweeps four velocities in one call and says how many programs it compiled
-# and loaded (as PROCESS), whether it imported diffrax (only tracing the batch does) and the
+# and loaded, whether it imported diffrax (only tracing the batch does) and the
 # restitutions' bits.
-SWEEP_PROCESS = f"""
-import sys, jax, impact
-events = []
-jax.monitoring.register_event_duration_secs_listener(lambda event, duration, **kw: events.append(event))
-jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
-impact.configure()
+SWEEP_PROCESS = f"""{RECORDING}
 result = impact.sweep(sys.argv[1], {{"initial.velocity": [0.5, 1.0, 2.0, 4.0]}}, chunk=4)
-hits = events.count({CACHE_HIT!r})
-print(events.count({COMPILE!r}) - hits, hits, "diffrax" in sys.modules, *[value.hex() for value in result.restitution])
+print({COUNTS}, "diffrax" in sys.modules, *[value.hex() for value in result.restitution])
 """
 
 
 def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
     """A sweep's compiled batch is stored as a traced program too: a second process of the same
     structure neither traces (no diffrax) nor compiles it, and gets the same bits."""
-    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
 
     def run() -> list[str]:
-        process = subprocess.run(
-            [sys.executable, "-c", SWEEP_PROCESS, str(THORNTON_NING)], capture_output=True, text=True, env=env, cwd=ROOT
-        )
-        assert process.returncode == 0, process.stderr
-        return process.stdout.split()
+        return fresh_process(SWEEP_PROCESS, THORNTON_NING, tmp_path / "cache")
 
     compiled, loaded, traced, *restitutions = run()
     assert int(compiled) >= 1 and loaded == "0" and traced == "True" and len(restitutions) == 4
@@ -223,34 +221,24 @@ def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
 
 
 # A fresh process that runs an indentation test and says how many programs it compiled and
-# loaded (as PROCESS), how many times it traced the march (itself, or inside `call_stored`'s
+# loaded, how many times it traced the march (itself, or inside `call_stored`'s
 # `traced`) and the bits of its pull-off force and of its last force sample.
-INDENTATION_PROCESS = f"""
-import sys, jax, impact
-events, traced = [], []
+INDENTATION_PROCESS = f"""{RECORDING}
+traced = []
 jax.monitoring.register_event_duration_secs_listener(
-    lambda event, duration, **kw: (events.append(event), traced.append(kw.get("fun_name") in ("march", "traced")))
+    lambda event, duration, **kw: traced.append(kw.get("fun_name") in ("march", "traced"))
 )
-jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
-impact.configure()
 result = impact.simulate(sys.argv[1])
-hits = events.count({CACHE_HIT!r})
-print(events.count({COMPILE!r}) - hits, hits, sum(traced), result.pull_off.force.hex(), result.force[-1].hex())
+print({COUNTS}, sum(traced), result.pull_off.force.hex(), result.force[-1].hex())
 """
 
 
 def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path):
     """An indentation test's march is stored traced as an impact's solve is: a second process
     neither traces nor compiles it, and gets the same bits."""
-    env = dict(os.environ, IMPACT_CACHE_DIR=str(tmp_path / "cache"))
-    scene = ROOT / "configs" / "indentation_paraboloid.yaml"
 
     def run() -> list[str]:
-        process = subprocess.run(
-            [sys.executable, "-c", INDENTATION_PROCESS, str(scene)], capture_output=True, text=True, env=env, cwd=ROOT
-        )
-        assert process.returncode == 0, process.stderr
-        return process.stdout.split()
+        return fresh_process(INDENTATION_PROCESS, ROOT / "configs" / "indentation_paraboloid.yaml", tmp_path / "cache")
 
     compiled, loaded, traced, *forces = run()
     assert int(compiled) >= 1 and loaded == "0" and int(traced) >= 1
