@@ -12,6 +12,11 @@ their arrays (and a batch's shardings); a program whose key differs is traced an
 cache directory (or without `flatbuffers`, which `jax.export` serializes with) it is traced in
 every process.
 
+A program traced here returns NaN where one of equinox's runtime checks fails (e.g. lineax's
+linear solve in the implicit derivative of a located event, inside a fit's Jacobian) instead of
+raising from a host callback, which `jax.export` cannot serialize: with or without a cache, so
+that a result never depends on it.
+
 The first call of a stored program on the CPU would initialize jaxlib's LAPACK kernels, which
 imports `scipy.linalg` (0.15–0.4 s of a run) whatever the program calls; a program that calls no
 LAPACK kernel is run without, and one that does initializes them as usual.
@@ -29,6 +34,10 @@ from typing import Any
 
 import equinox as eqx
 import jax
+
+# equinox's choice of what a failed runtime check does (private: no public switch scoped to one
+# trace), read where a check is traced.
+from equinox import _errors as _equinox_errors
 from jax import export
 
 # The lowering of a stored program's call; private, used only to skip an import (`_without_lapack`).
@@ -42,6 +51,10 @@ _LIBRARIES = ("jax", "jaxlib", "diffrax", "equinox", "optimistix", "lineax")
 
 _loaded: dict[str, Callable] = {}  # key → the program of this process
 _LAPACK = b"lapack_"  # the prefix of jaxlib's LAPACK kernels in a program's StableHLO
+# Kernels that `jax.export` does not list as stable across jaxlib versions (Q·x after a QR, in a
+# fit's Levenberg–Marquardt steps): serialized all the same, as a stored program is read back
+# only by the jaxlib that wrote it (its key holds the version).
+_UNLISTED_KERNELS = ("lapack_dormqr_ffi",)
 
 
 def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
@@ -64,7 +77,8 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
     directory = directory_in_use()
     if directory is None or not _can_serialize():
         _loaded[key] = jax.jit(traced, compiler_options=compiler_options())
-        return _loaded[key](*leaves)
+        with _errors_as_nan():
+            return _loaded[key](*leaves)  # the first call traces the program
     exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
     _loaded[key] = jax.jit(exported.call, compiler_options=compiler_options())
     with _lowering(exported):
@@ -81,7 +95,8 @@ def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, op
     key = _key((label, str(structure), shardings), leaves)
     directory = directory_in_use()
     if directory is None or not _can_serialize():
-        return jax.jit(function, compiler_options=options).lower(abstract).compile()
+        with _errors_as_nan():
+            return jax.jit(function, compiler_options=options).lower(abstract).compile()
 
     def flat(*values: jax.Array) -> Any:  # what `jax.export` serializes: arrays in, dicts out
         return function(jax.tree.unflatten(structure, values))
@@ -105,7 +120,9 @@ def _load_or_export(path: Path, function: Callable, leaves: list[Any]) -> export
         return export.deserialize(bytearray(path.read_bytes()))
     except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
         pass
-    exported = export.export(jax.jit(function))(*leaves)
+    with _errors_as_nan():
+        allowed = [export.DisabledSafetyCheck.custom_call(kernel) for kernel in _UNLISTED_KERNELS]
+        exported = export.export(jax.jit(function), disabled_checks=allowed)(*leaves)
     partial = path.with_name(f"{path.name}.{os.getpid()}.partial")  # written whole, then renamed
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -136,6 +153,17 @@ def _without_lapack() -> Iterator[None]:
         yield
     finally:
         _export._ensure_backends_initialized = initialize
+
+
+@contextlib.contextmanager
+def _errors_as_nan() -> Iterator[None]:
+    """Trace equinox's runtime checks as NaN where they fail, instead of a host callback that raises."""
+    chosen = _equinox_errors.EQX_ON_ERROR
+    _equinox_errors.EQX_ON_ERROR = "nan"
+    try:
+        yield
+    finally:
+        _equinox_errors.EQX_ON_ERROR = chosen
 
 
 def _key(static: tuple[str, ...], leaves: list[jax.Array]) -> str:

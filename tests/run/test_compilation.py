@@ -9,14 +9,16 @@ import subprocess
 import sys
 from pathlib import Path
 
+import equinox as eqx
 import jax
+import jax.numpy as jnp
 import numpy as np
 import platformdirs
 import pytest
 
 import impact
 from impact._core.cache import cache_directory, directory_in_use, use_cache
-from impact._core.stored import EXPORTED
+from impact._core.stored import EXPORTED, call_stored
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve, solve_by_field
 from impact._scene.scene import read_yaml
@@ -247,6 +249,54 @@ def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path
     assert compiled_again == "0" and int(loaded_again) >= 1 and traced_again == "0"
     assert same == forces
     assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
+
+
+# A fresh process that fits the drop test (the closed form) and says how many programs it
+# compiled and loaded, how many it traced (inside `call_stored`'s `traced`) and the bits of the
+# fitted values.
+FIT_PROCESS = f"""{RECORDING}
+from pathlib import Path
+from impact._run.fit import fit_spec
+from impact._scene.fit_spec import load_fit
+traced = []
+jax.monitoring.register_event_duration_secs_listener(
+    lambda event, duration, **kw: traced.append(kw.get("fun_name") == "traced")
+)
+result = fit_spec(load_fit(Path(sys.argv[1]), []), "theory")
+print({COUNTS}, sum(traced), *[value.hex() for value in result.values.values()])
+"""
+
+
+def test_second_process_loads_a_fit_instead_of_tracing_it(tmp_path):
+    """A fit's programs (the residuals at the start, the whole Levenberg–Marquardt solve) are
+    stored traced: a second process neither traces nor compiles them, and fits the same bits."""
+
+    def run() -> list[str]:
+        return fresh_process(FIT_PROCESS, ROOT / "configs" / "fits" / "drop_test.yaml", tmp_path / "cache")
+
+    compiled, _, traced, *values = run()
+    assert int(compiled) >= 1 and int(traced) >= 2 and len(values) == 2
+    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())
+    compiled_again, loaded_again, traced_again, *same = run()
+    assert compiled_again == "0" and int(loaded_again) >= 2 and traced_again == "0"
+    assert same == values
+    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
+
+
+@pytest.mark.parametrize("cache", [True, False], ids=["stored", "without a cache"])
+def test_a_failed_runtime_check_in_a_stored_program_gives_nan(cache, tmp_path, restore_cache):
+    """equinox's runtime checks (a failed linear solve in a fit's Jacobian) return NaN in a
+    stored program instead of raising from a host callback (which `jax.export` cannot store),
+    with or without a cache."""
+    use_cache(tmp_path / "jax" if cache else None)
+
+    def checked(x, label):  # the label (static) keeps the two cases' programs apart
+        return {"value": eqx.error_if(2.0 * x, x > 1.0, "x above 1")}
+
+    with jax.enable_x64(True):
+        assert float(call_stored(checked, jnp.asarray(0.5), cache)["value"]) == 1.0
+        assert np.isnan(call_stored(checked, jnp.asarray(3.0), cache)["value"])
+    assert bool(cache) == (tmp_path / "jax" / EXPORTED).is_dir()
 
 
 def test_stored_program_gives_the_traced_results_bit_for_bit():

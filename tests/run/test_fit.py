@@ -189,3 +189,23 @@ def test_the_simulation_fits_as_the_closed_form_does_and_a_second_fit_reuses_its
     with Compiles() as compiles:
         again = impact.fit(scene, other, PARAMETERS, OBSERVABLES, ["initial.velocity"])
     assert compiles.count == 0 and again.converged
+
+
+def test_progress_reports_every_step_and_ends_at_the_fit(scene):
+    """Each Levenberg–Marquardt step is reported (recorded inside the solve, reported after it):
+    steps 0, 1, … in order, one per iteration, the last at the optimum with its χ²."""
+    reported = []
+    result = impact.fit(
+        scene,
+        DROPS.drop_data(seed=3),
+        PARAMETERS,
+        OBSERVABLES,
+        ["initial.velocity"],
+        model="theory",
+        progress=lambda step, chi2, values: reported.append((step, chi2, values)),
+    )
+    assert [step for step, _, _ in reported] == list(range(result.iterations))
+    step, chi2, values = reported[-1]
+    assert chi2 == pytest.approx(result.chi2, rel=1e-12)
+    assert values == pytest.approx(result.values, rel=1e-14)
+    assert reported[0][1] > 100 * result.chi2  # the start is far from the optimum

@@ -23,7 +23,7 @@ from ..._scene.fit_spec import FitError, FitSpec
 from ..._scene.profiles import ParaboloidSpec
 from ..._scene.scene import scene_yaml
 from ..differentiable import as_function
-from .curve import curve_model, curve_problems
+from .curve import IndentationCurve, curve_model, curve_problems
 
 Model = Callable[[jax.Array], jax.Array]
 
@@ -41,19 +41,35 @@ THEORY_OBSERVABLES = {
 }
 
 
-def simulation_model(spec: FitSpec) -> Model:
-    """The simulation of the scene as a model: `impact.as_function` with the fitted paths and
-    the input columns as inputs and the observables as its (vector) output. Kept per scene,
-    paths and observables: a later fit of the same model (other data, starts or bounds)
-    reuses its compiled programs instead of tracing them again (about a minute)."""
-    if spec.scene.kind == "indentation":
-        raise FitError([("model", NOT_DIFFERENTIABLE)])
-    return _simulation(scene_yaml(spec.scene), (*spec.parameters, *spec.inputs), tuple(spec.observables))
+@dataclass(frozen=True)
+class SimulatedImpact:
+    """The simulation of a scene as a model: `impact.as_function` of the scene with the dotted
+    paths `inputs` (the fitted parameters, then the input columns) as its inputs and the
+    `observables` as its (vector) output. Equal instances share one compiled fit."""
+
+    scene: str  # the scene as YAML (hashable)
+    inputs: tuple[str, ...]
+    observables: tuple[str, ...]
+
+    def __call__(self, x: jax.Array) -> jax.Array:
+        return _simulation(self.scene, self.inputs, self.observables)(x)
 
 
 @functools.lru_cache(maxsize=8)
 def _simulation(scene: str, inputs: tuple[str, ...], observables: tuple[str, ...]) -> Model:
+    """`as_function` kept per scene, paths and observables: a later fit of the same model
+    (other data, starts or bounds) reuses its compiled programs."""
     return as_function(yaml.safe_load(scene), inputs=list(inputs), output=list(observables))
+
+
+def simulation_model(spec: FitSpec) -> SimulatedImpact:
+    """The simulation of the scene as a model (impacts only), its function built here (it
+    checks the scene and its inputs, concretely: not inside a fit's trace)."""
+    if spec.scene.kind == "indentation":
+        raise FitError([("model", NOT_DIFFERENTIABLE)])
+    model = SimulatedImpact(scene_yaml(spec.scene), (*spec.parameters, *spec.inputs), tuple(spec.observables))
+    _simulation(model.scene, model.inputs, model.observables)
+    return model
 
 
 @dataclass(frozen=True)
@@ -90,6 +106,11 @@ def theory_model(spec: FitSpec) -> Model:
     varied = tuple(THEORY_ARGUMENTS[path] for path in (*spec.parameters, *spec.inputs))
     constant = tuple((name, value) for name, value in fixed.items() if name not in varied)
     return ClosedForm(varied, constant, tuple(spec.observables))
+
+
+# impact's own models: each a frozen dataclass of text, names and numbers, whose repr names
+# its compiled programs (the key of a fit's programs stored in the cache, `impact._core.stored`).
+DESCRIBED = (SimulatedImpact, ClosedForm, IndentationCurve)
 
 
 def _check_theory(spec: FitSpec) -> None:

@@ -4,13 +4,18 @@ The residuals r = (model − data)/σ of every row and observable (σ·|data| fo
 minimised over search variables u that map smoothly onto the parameters' bounds (`bounds`); the
 Jacobian is forward-mode (`jax.jacfwd`) through the model. The uncertainty follows from the
 Jacobian in the physical parameters at the optimum (`uncertainty`). The data enter the compiled
-programs as arguments: a second fit of the same model and bounds compiles nothing.
+programs as arguments: a second fit of the same model and bounds compiles nothing, and where
+the model describes itself (impact's own models: the simulation, the closed forms) the programs
+are stored traced in the cache (`impact._core.stored`), so that a later process neither traces
+nor compiles them. The whole solve is one program without host callbacks (which would keep it
+out of the cache): each step's χ² and parameters are recorded in it and reported after it.
 """
 
 import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import equinox as eqx
 import jax
@@ -19,9 +24,10 @@ import numpy as np
 import optimistix as optx
 
 from ..._core.runtime import float64
+from ..._core.stored import call_stored
 from ..._scene.fit_spec import FUNCTION, FitSpec, make_fit_spec
 from .bounds import Bounds
-from .models import Model, simulation_model, theory_model
+from .models import DESCRIBED, Model, simulation_model, theory_model
 from .uncertainty import uncertainty
 
 # Levenberg–Marquardt stops when a step changes u (of order 1) and the residuals by less than
@@ -96,25 +102,31 @@ class Residuals:
         return self.weighted(data.bounds.physical(u), data) / data.scale
 
 
-@dataclass(frozen=True, eq=False)  # hashed by identity: a static part of the solver
-class Reporter:
-    """optimistix's `verbose` hook: hands each step's χ² and parameters to `progress`."""
+class StepRecord(eqx.Module):
+    """The state of `RecordingTrustRegion`: the trust region's own, and what each step evaluated."""
 
-    bounds: Bounds
-    names: tuple[str, ...]
-    progress: Progress
-    scale: float  # of the residuals LM sees
+    search: Any  # the trust region's state
+    steps: jax.Array  # how many steps were taken
+    losses: jax.Array  # [max_steps] ½·|r|² at the point each step evaluated (NaN after the last)
+    points: jax.Array  # [max_steps, p] that point u
 
-    def report(self, step, loss, values) -> None:
-        self.progress(
-            int(step),
-            2.0 * float(loss) * self.scale**2,
-            dict(zip(self.names, np.asarray(values).tolist(), strict=True)),
-        )
 
-    def __call__(self, **entries) -> None:
-        step, loss, u = (entries[key][1] for key in ("num_steps", "loss_this_step", "y"))
-        jax.debug.callback(self.report, step, loss, self.bounds.physical(u), ordered=True)
+class RecordingTrustRegion(optx.AbstractSearch):
+    """Levenberg–Marquardt's classical trust region, recording each step's loss and point: the
+    progress of a fit, read after the solve instead of printed from inside it."""
+
+    search: optx.ClassicalTrustRegion
+    max_steps: int = eqx.field(static=True)
+
+    def init(self, y, f_info_struct) -> StepRecord:
+        losses, points = (jnp.full(shape, jnp.nan, y.dtype) for shape in ((self.max_steps,), (self.max_steps, y.size)))
+        return StepRecord(self.search.init(y, f_info_struct), jnp.array(0), losses, points)
+
+    def step(self, first_step, y, y_eval, f_info, f_eval_info, state: StepRecord):
+        step_size, accept, result, search = self.search.step(first_step, y, y_eval, f_info, f_eval_info, state.search)
+        losses = state.losses.at[state.steps].set(0.5 * jnp.sum(f_eval_info.residual**2))
+        points = state.points.at[state.steps].set(y_eval)
+        return step_size, accept, result, StepRecord(search, state.steps + 1, losses, points)
 
 
 def fit(
@@ -142,7 +154,9 @@ def fit(
     under displacement control, `force` under force control), appended to the model's vector
     with the row's branch code (0 approach, 1 retract) from the column of labels `branch`
     (approach, retract; default: approach up to the largest control value). `progress(step, chi2,
-    values)` is called at every step. Raises `FitError` (a `SceneError`) naming a bad field."""
+    values)` is called for every step, in order, once the solve (one compiled program) has
+    ended: χ² and the parameters at the point the step evaluated. Raises `FitError` (a
+    `SceneError`) naming a bad field."""
     kind = model if isinstance(model, str) else FUNCTION
     spec = make_fit_spec(scene, data, parameters, observables, inputs, kind, branch)
     return fit_spec(spec, model, progress, max_steps)
@@ -163,10 +177,13 @@ def fit_spec(
     data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, np.float64(1.0))))
     start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
     data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(_start_residuals(residuals, start, data) ** 2)))
-    verbose = Reporter(bounds, names, progress, float(data.scale)) if progress else False
-    solver = optx.LevenbergMarquardt(rtol=TOLERANCE, atol=TOLERANCE, norm=optx.rms_norm, verbose=verbose)
-    solution = optx.least_squares(residuals, solver, start, data, max_steps=max_steps, throw=False)
-    values, weighted, jacobian, predicted = _at_optimum(solution, data)
+    solved = {name: np.asarray(value) for name, value in _compiled(_solve, residuals, max_steps, start, data).items()}
+    scale = float(data.scale)
+    if progress is not None:
+        for step in range(int(solved["steps"])):
+            chi2 = 2.0 * float(solved["losses"][step]) * scale**2
+            progress(step, chi2, dict(zip(names, solved["history"][step].tolist(), strict=True)))
+    values, weighted, jacobian, predicted = _at_optimum(solved, data)
     chi2, dof = float(weighted @ weighted), weighted.size - len(names)
     found = uncertainty(jacobian, values, names, list(spec.observables), 1.0 if given is not None else chi2 / dof)
     return FitResult(
@@ -177,8 +194,8 @@ def fit_spec(
         correlation=found.correlation,
         chi2=chi2,
         dof=dof,
-        converged=bool(solution.result == optx.RESULTS.successful),
-        iterations=int(solution.stats["num_steps"]),
+        converged=bool(solved["converged"]),
+        iterations=int(solved["steps"]),
         sigma_source=SIGMA_SOURCES[given is not None],
         unidentifiable=found.unidentifiable,
         model=predicted,
@@ -193,10 +210,48 @@ def _model(spec: FitSpec, model: "Model | str") -> Model:
     return theory_model(spec) if model == "theory" else simulation_model(spec)
 
 
-@eqx.filter_jit
-def _weighted(residuals: Residuals, u, data: Measurements):
+def _compiled(function: Callable, residuals: Residuals, *arguments: Any) -> Any:
+    """`function(residuals, *arguments)` compiled: stored traced across processes where the model
+    describes itself (`models.DESCRIBED`: its repr names its program), else traced once in this
+    process (a function passed to `impact.fit`, told apart by its identity)."""
+    if isinstance(residuals.model, DESCRIBED):
+        return call_stored(function, residuals, *arguments)
+    return _TRACED[function](residuals, *arguments)
+
+
+def _solve(residuals: Residuals, max_steps: int, start: jax.Array, data: Measurements) -> dict[str, jax.Array]:
+    """Levenberg–Marquardt from `start` (in u): the optimum (u and the parameters), the
+    residuals LM sees and their Jacobian in u (from its last accepted step: no program of the
+    model compiled anew), the slope of each bound's map there, whether it converged, its steps,
+    and each step's loss and parameters (`history`, physical)."""
+    solver = optx.LevenbergMarquardt(rtol=TOLERANCE, atol=TOLERANCE, norm=optx.rms_norm)
+    solver = eqx.tree_at(lambda lm: lm.search, solver, RecordingTrustRegion(solver.search, max_steps))
+    solution = optx.least_squares(residuals, solver, start, data, max_steps=max_steps, throw=False)
+    record = solution.state.search_state
+    return {
+        "value": solution.value,
+        "parameters": data.bounds.physical(solution.value),
+        "residual": solution.state.f_info.residual,
+        "jacobian": solution.state.f_info.jac.as_matrix(),
+        "slopes": jnp.diagonal(jax.jacfwd(data.bounds.physical)(solution.value)),
+        "converged": solution.result == optx.RESULTS.successful,
+        "steps": solution.stats["num_steps"],
+        "losses": record.losses,
+        "history": jax.vmap(data.bounds.physical)(record.points),
+    }
+
+
+def _weighted(residuals: Residuals, u: jax.Array, data: Measurements) -> jax.Array:
     """The weighted residuals at u: the model's value alone (its Jacobian is not compiled)."""
     return residuals.weighted(data.bounds.physical(u), data)
+
+
+def _row(residuals: Residuals, x: jax.Array) -> jax.Array:
+    """The model at one vector x [parameters, inputs]."""
+    return jnp.atleast_1d(residuals.model(x))
+
+
+_TRACED = {function: eqx.filter_jit(function) for function in (_solve, _weighted, _row)}
 
 
 def _start_residuals(residuals: Residuals, u, data: Measurements) -> jax.Array:
@@ -204,30 +259,22 @@ def _start_residuals(residuals: Residuals, u, data: Measurements) -> jax.Array:
     one compiled program for every row (the simulation's value compiles in a fifth of the time
     of its batch over the rows, measured on the drop test), a batched one in one call."""
     if getattr(residuals.model, "batched", None) is not None:
-        return _weighted(residuals, u, data)
+        return _compiled(_weighted, residuals, u, data)
     values = data.bounds.physical(u)
-    predicted = jnp.stack([_row(residuals.model, jnp.concatenate([values, row])) for row in data.rows])
+    predicted = jnp.stack([_compiled(_row, residuals, jnp.concatenate([values, row])) for row in data.rows])
     return ((predicted - data.measured) / data.sigma).reshape(-1)
 
 
-@eqx.filter_jit
-def _row(model: Model, x):
-    return jnp.atleast_1d(model(x))
-
-
-def _at_optimum(solution: optx.Solution, data: Measurements) -> tuple[np.ndarray, ...]:
-    """The parameters, weighted residuals, their Jacobian and the model at the optimum, from
-    Levenberg–Marquardt's last accepted step (its residuals and Jacobian are those at the value
-    it returns): no program of the model compiled anew. The Jacobian in u is the one in the
-    parameters times the slope of each bound's map (elementwise), over the residuals' scale; a
-    map saturated at its bound (slope 0 in float64) leaves its parameter a column of zeros: not
-    determined by the data."""
-    info = solution.state.f_info
-    values = np.asarray(data.bounds.physical(solution.value))
-    slopes = np.diagonal(np.asarray(jax.jacfwd(data.bounds.physical)(solution.value)))
+def _at_optimum(solved: dict[str, np.ndarray], data: Measurements) -> tuple[np.ndarray, ...]:
+    """The parameters, weighted residuals, their Jacobian and the model at the optimum. The
+    Jacobian in u is the one in the parameters times the slope of each bound's map
+    (elementwise), over the residuals' scale; a map saturated at its bound (slope 0 in float64)
+    leaves its parameter a column of zeros: not determined by the data."""
+    values = solved["parameters"]
     scale = float(data.scale)
-    weighted = np.asarray(info.residual) * scale
-    in_u = np.asarray(info.jac.as_matrix()) * scale
+    weighted = solved["residual"] * scale
+    in_u = solved["jacobian"] * scale
+    slopes = solved["slopes"]
     jacobian = np.divide(in_u, slopes, out=np.zeros_like(in_u), where=slopes != 0)
     predicted = weighted.reshape(data.measured.shape) * np.asarray(data.sigma) + np.asarray(data.measured)
     return values, weighted, jacobian, predicted
