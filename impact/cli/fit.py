@@ -16,6 +16,7 @@ import shutil
 from pathlib import Path
 
 from .._io.fit import write_fit, write_fit_yaml
+from .._plots.figures import import_ahead
 from .._plots.fit import save_fit_figure
 from .._run.fit import FitResult, fit_spec
 from .._scene.errors import SceneError
@@ -33,6 +34,7 @@ def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwri
         refuse(f"{fit_file} is not a valid fit", error.problems)
     folder = output or Path("runs") / "fits" / fit_file.stem
     check_output(folder, overwrite, holds="fit")
+    import_ahead()  # matplotlib, for the figure, while the fit computes
     try:
         result = fit_spec(spec, spec.model, progress=_progress(spec))
     except SceneError as error:

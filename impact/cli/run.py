@@ -17,6 +17,7 @@ import typer
 from rich.text import Text
 
 from .._io.files import write_text
+from .._plots.figures import import_ahead
 from .._plots.run import save_figures
 from .._run.impacts import Result
 from .._run.simulate import simulate
@@ -39,6 +40,7 @@ def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | No
     scene = scene_of(scene_file, assignments)
     folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
     check_output(folder, overwrite)
+    import_ahead()  # matplotlib, for the figures, while the run loads and computes
     start = time.perf_counter()
     result = simulate(scene)
     wall_time = time.perf_counter() - start

@@ -37,6 +37,7 @@ from rich.text import Text
 from .._core.defaults import DEFAULT_CHUNK
 from .._io import sweep as sweep_store
 from .._io.sweep_journal import SweepWriter, journal_state
+from .._plots.figures import import_ahead
 from .._plots.sweep import save_restitution_figure
 from .._plots.sweep_losses import save_losses_figure
 from .._run.sweep import Plan, SweepResult, execute, local_devices, plan_sweep, sticking_estimates
@@ -118,6 +119,8 @@ def run_sweep(
     plan = plan_sweep(spec)
     expected = sum(len(points) for points in plan.share(*share))
     writer = _writer(path, plan, resume, overwrite, expected=expected, chunk=chunk, share=share)
+    if share[1] == 1:
+        import_ahead()  # matplotlib, for the figures, while the sweep computes
     stats = _solve(plan, writer, expected, chunk=chunk, devices=device_list, share=share)
     sweep_store.set_attributes(
         path, **{f"last_{key}": value for key, value in stats.items() if isinstance(value, (int, float))}

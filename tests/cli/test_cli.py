@@ -296,3 +296,25 @@ def test_show_refuses_what_is_not_a_run(tmp_path):
     (tmp_path / "notes.h5").write_text("not HDF5")
     assert_refused(invoke("show", tmp_path / "absent.h5"), tmp_path, {"notes.h5"}, "no such file")
     assert_refused(invoke("show", tmp_path / "notes.h5"), tmp_path, {"notes.h5"}, "not an HDF5 file")
+
+
+# A fresh interpreter that imports matplotlib ahead in a thread (as `impact run`, `sweep` and
+# `fit` do before they compute), with matplotlib importable or not, and says what it imported.
+AHEAD = """
+import sys
+if sys.argv[1] == "broken":
+    sys.modules["matplotlib"] = None  # importing it raises ImportError
+from impact._plots.figures import import_ahead
+import_ahead().join()
+print("matplotlib.figure" in sys.modules, "matplotlib.backends.backend_agg" in sys.modules)
+"""
+
+
+@pytest.mark.parametrize(("matplotlib", "imported"), [("present", ["True", "True"]), ("broken", ["False", "False"])])
+def test_matplotlib_is_imported_ahead_by_a_thread_that_prints_nothing(matplotlib, imported):
+    """The figure's modules are imported ahead; a failed import is left to the figure (which
+    raises it) and prints nothing from the thread."""
+    command = [sys.executable, "-c", AHEAD, matplotlib]
+    process = subprocess.run(command, capture_output=True, text=True, cwd=CONFIGS.parent)
+    assert process.returncode == 0 and process.stderr == ""
+    assert process.stdout.split() == imported
