@@ -2,8 +2,9 @@
 traced again (tracing costs Python seconds, besides the compilation that JAX's persistent cache
 saves).
 
-The first call of a program (`call_stored`: one scene's programs), or its first compilation
-ahead of its calls (`compile_stored`: a sweep's batch, sharded over its devices), traces it once
+The first call of a program (`call_stored`: one scene's programs, a fit's), or its first
+compilation ahead of its calls (`compile_stored`: a sweep's batch, sharded over its devices;
+`impact.as_function`'s value and Jacobian), traces it once
 and serializes it with `jax.export` (StableHLO) into `exported/` of the cache directory; later
 processes deserialize it and JAX's persistent cache supplies its compiled executable. A program
 is keyed by everything that shapes it: impact's source, the versions of jax and the libraries it

@@ -12,19 +12,22 @@ diffrax's events), the searches of the contact law likewise (`impact._core.deriv
 """
 
 import dataclasses
+import functools
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import jax
 import jax.numpy as jnp
 import numpy as np
+import yaml
 
-from .._core.runtime import float64
+from .._core.runtime import compiler_options, float64
+from .._core.stored import compile_stored
 from .._integrate.base import AbstractAdaptiveIntegrator
 from .._integrate.verlet import Verlet
 from .._scene.errors import SceneError
 from .._scene.paths import AbsentSection, NoField, resolve_field, with_values
-from .._scene.scene import Scene, load_scene
+from .._scene.scene import Scene, load_scene, scene_yaml
 from .._scene.sweep_axes import numeric_field
 from .sweep.batch import point_function
 from .sweep.plan import StaticChoices, physics_with, static_choices
@@ -73,27 +76,10 @@ def as_function(
     names = [output] if isinstance(output, str) else list(output)
     choices = static_choices(scene)
     _check(scene, paths, names, choices)
-    value_point, forward_point = _programs(choices)
-
-    def results(point: Callable, x: jax.Array) -> jax.Array:
-        values = point(physics_with(scene, dict(zip(paths, x, strict=True)), jnp))
-        success = jnp.isfinite(values["restitution"])
-        out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in names])
-        return out[0] if isinstance(output, str) else out
-
-    @_compiled_once
-    @jax.jit
-    def jacobian(x: jax.Array) -> tuple[jax.Array, jax.Array]:
-        """(f(x), ∂f/∂x [outputs…, inputs]): one forward-mode tangent per input, the point
-        repeated with it (a tangent batched over an unbatched point trips optimistix's implicit
-        solve at diffrax's events). Compiled once: jacfwd, grad and jacrev all call it."""
-        size = x.shape[0]
-        values, columns = jax.vmap(
-            lambda point, tangent: jax.jvp(lambda y: results(forward_point, y), (point,), (tangent,))
-        )(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
-        return values[0], jnp.moveaxis(columns, 0, -1)
-
-    value = _compiled_once(jax.jit(lambda x: results(value_point, x)))
+    impact = Impact(scene_yaml(scene), tuple(paths), tuple(names), isinstance(output, str))
+    _prepared(impact)  # here: loading a scene computes (its checks), which a trace cannot
+    value = _compiled_once(_value, impact)
+    jacobian = _compiled_once(_jacobian, impact)
 
     # Not itself under jax.jit: a jitted custom_jvp function, vmapped and differentiated inside
     # an outer jit (a fit: jit(jvp(vmap(f)))), returned its outputs transposed (jax 0.10.2).
@@ -110,6 +96,52 @@ def as_function(
         return value(primals[0]), derivative @ tangents[0]
 
     return _in_float64(solved, jacobian, paths, () if isinstance(output, str) else (len(names),))
+
+
+@dataclasses.dataclass(frozen=True)
+class Impact:
+    """What names the programs of one f: the scene (YAML), the input paths, the output names
+    and whether f answers a scalar (one name given as a string)."""
+
+    scene: str
+    paths: tuple[str, ...]
+    names: tuple[str, ...]
+    scalar: bool
+
+
+@functools.cache
+def _prepared(impact: Impact) -> tuple[Scene, Callable, Callable]:
+    """The scene of f and its two point functions (`_programs`), kept for every f made."""
+    scene = load_scene(yaml.safe_load(impact.scene))
+    return (scene, *_programs(static_choices(scene)))
+
+
+def _results(impact: Impact, point: Callable, x: jax.Array) -> jax.Array:
+    """The outputs of `point` at x: NaN where the impact does not end in a success."""
+    scene = _prepared(impact)[0]
+    values = point(physics_with(scene, dict(zip(impact.paths, x, strict=True)), jnp))
+    success = jnp.isfinite(values["restitution"])
+    out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in impact.names])
+    return out[0] if impact.scalar else out
+
+
+def _value(impact: Impact, x: jax.Array) -> jax.Array:
+    """f(x), by the point function of an ordinary run."""
+    return _results(impact, _prepared(impact)[1], x)
+
+
+def _jacobian(impact: Impact, x: jax.Array) -> tuple[jax.Array, jax.Array]:
+    """(f(x), ∂f/∂x [outputs…, inputs]): one forward-mode tangent per input, the point
+    repeated with it (a tangent batched over an unbatched point trips optimistix's implicit
+    solve at diffrax's events). grad, jacfwd and jacrev all call it."""
+    forward = _prepared(impact)[2]
+
+    def tangent_of(point: jax.Array, tangent: jax.Array) -> tuple[jax.Array, jax.Array]:
+        return jax.jvp(lambda y: _results(impact, forward, y), (point,), (tangent,))
+
+    size = x.shape[0]
+    values, columns = jax.vmap(tangent_of)(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
+    return values[0], jnp.moveaxis(columns, 0, -1)
 
 
 def _in_float64(
@@ -155,12 +187,15 @@ def _in_float64(
     return f
 
 
-def _compiled_once(program: Callable) -> Callable:
-    """`program` (a jitted function of one vector) compiled once per shape and dtype of a
-    concrete vector, ahead of time, and that executable run for every concrete vector. Called
+def _compiled_once(function: Callable, impact: Impact) -> Callable:
+    """`function(impact, x)` compiled ahead once per shape and dtype of a concrete vector x and
+    that executable run for every concrete vector; stored traced in the cache
+    (`impact._core.stored`), so that a later process neither traces nor compiles it. Called
     from the rule of a custom_jvp function, a jitted function is lowered and compiled again
     under each transformation (jacfwd, grad and a plain call each compiled the Thornton–Ning
-    Jacobian, ~25 s, jax 0.10.2). A tracer (f under an outer jit or vmap) goes to `program`."""
+    Jacobian, ~25 s, jax 0.10.2). A tracer (f under an outer jit or vmap) goes to the jitted
+    function."""
+    program = jax.jit(functools.partial(function, impact))
     executables: dict[tuple, Callable] = {}
 
     def once(x):
@@ -169,7 +204,9 @@ def _compiled_once(program: Callable) -> Callable:
         x = np.asarray(x)
         key = (x.shape, x.dtype)
         if key not in executables:
-            executables[key] = program.lower(jax.ShapeDtypeStruct(x.shape, x.dtype)).compile()
+            abstract = jax.ShapeDtypeStruct(x.shape, x.dtype)
+            label = f"{function.__module__}.{function.__qualname__} {impact!r}"
+            executables[key] = compile_stored(program, label, abstract, compiler_options())
         return executables[key](x)
 
     return once

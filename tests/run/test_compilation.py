@@ -283,6 +283,39 @@ def test_second_process_loads_a_fit_instead_of_tracing_it(tmp_path):
     assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
+# A fresh process that evaluates f = impact.as_function(scene, [initial.velocity], restitution)
+# and its derivative at one point and says how many programs it compiled and loaded, how many
+# it traced and lowered (inside `compile_stored`: `flat`) and the bits of f and f'.
+GRADIENT_PROCESS = f"""{RECORDING}
+traced = []
+jax.monitoring.register_event_duration_secs_listener(
+    lambda event, duration, **kw: traced.append(kw.get("fun_name") == "jit(flat)")
+)
+f = impact.as_function(sys.argv[1], ["initial.velocity"], "restitution")
+x = jax.numpy.array([1.0])
+value, slope = float(f(x)), float(jax.grad(f)(x)[0])
+print({COUNTS}, sum(traced), value.hex(), slope.hex())
+"""
+
+
+def test_second_process_loads_a_functions_programs_instead_of_tracing_them(tmp_path):
+    """`impact.as_function`'s programs (its value and its forward-mode Jacobian, on concrete
+    inputs) are stored traced: a second process neither traces nor compiles them, and gets the
+    same bits. (A spring array: its Jacobian compiles fastest.)"""
+
+    def run() -> list[str]:
+        return fresh_process(GRADIENT_PROCESS, ROOT / "configs" / "spring_array.yaml", tmp_path / "cache")
+
+    compiled, _, traced, *values = run()
+    assert int(compiled) >= 2 and int(traced) == 2 and len(values) == 2
+    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())  # the scene check's, f's and f′'s
+    assert len(stored) == 3
+    compiled_again, loaded_again, traced_again, *same = run()
+    assert compiled_again == "0" and int(loaded_again) >= 2 and traced_again == "0"
+    assert same == values
+    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
+
+
 @pytest.mark.parametrize("cache", [True, False], ids=["stored", "without a cache"])
 def test_a_failed_runtime_check_in_a_stored_program_gives_nan(cache, tmp_path, restore_cache):
     """equinox's runtime checks (a failed linear solve in a fit's Jacobian) return NaN in a
