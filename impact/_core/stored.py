@@ -75,12 +75,12 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
     key = _key((name, repr(static), str(structure)), leaves)
     if key in _loaded:
         return _loaded[key](*leaves)
-    directory = directory_in_use()
-    if directory is None or not _can_serialize():
-        _loaded[key] = jax.jit(traced, compiler_options=compiler_options())
+    jitted = jax.jit(traced, compiler_options=compiler_options())
+    exported = _load_or_export(key, jitted, leaves)
+    if exported is None:  # not stored: traced here (or by the export that failed: its trace is reused)
+        _loaded[key] = jitted
         with _errors_as_nan():
-            return _loaded[key](*leaves)  # the first call traces the program
-    exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", traced, leaves)
+            return jitted(*leaves)
     _loaded[key] = jax.jit(exported.call, compiler_options=compiler_options())
     with _lowering(exported):
         return _loaded[key](*leaves)  # the first call lowers the program
@@ -94,17 +94,16 @@ def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, op
     leaves, structure = jax.tree.flatten(abstract)
     shardings = repr([getattr(leaf, "sharding", None) for leaf in leaves])
     key = _key((label, str(structure), shardings), leaves)
-    directory = directory_in_use()
-    if directory is None or not _can_serialize():
-        with _errors_as_nan():
-            return jax.jit(function, compiler_options=options).lower(abstract).compile()
 
     def flat(*values: jax.Array) -> Any:  # what `jax.export` serializes: arrays in, dicts out
         return function(jax.tree.unflatten(structure, values))
 
-    exported = _load_or_export(directory / EXPORTED / f"{key}.jaxexport", flat, leaves)
-    with _lowering(exported):
-        compiled = jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
+    jitted = jax.jit(flat, compiler_options=options)
+    exported = _load_or_export(key, jitted, leaves)
+    with _errors_as_nan() if exported is None else _lowering(exported):
+        compiled = (
+            (jitted if exported is None else jax.jit(exported.call, compiler_options=options)).lower(*leaves).compile()
+        )
     return lambda tree: compiled(*jax.tree.leaves(tree))
 
 
@@ -114,16 +113,26 @@ def _can_serialize() -> bool:
     return importlib.util.find_spec("flatbuffers") is not None
 
 
-def _load_or_export(path: Path, function: Callable, leaves: list[Any]) -> export.Exported:
-    """The stored program at `path`, or `function` traced, exported and stored there (a file
-    that cannot be read back is replaced; one that cannot be written is skipped)."""
+def _load_or_export(key: str, jitted: jax.stages.Wrapped, leaves: list[Any]) -> export.Exported | None:
+    """The stored program of `key`, or `jitted` traced, exported and stored (a file that cannot
+    be read back is replaced; one that cannot be written is skipped). None without a cache
+    directory or `flatbuffers`, or where the program cannot be exported: it holds a host
+    callback (an equinox check that raises, from a trace that a library's own jit cache kept
+    from outside `_errors_as_nan`) or a kernel that `jax.export` refuses."""
+    directory = directory_in_use()
+    if directory is None or not _can_serialize():
+        return None
+    path = directory / EXPORTED / f"{key}.jaxexport"
     try:
         return export.deserialize(bytearray(path.read_bytes()))
     except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
         pass
-    with _errors_as_nan():
-        allowed = [export.DisabledSafetyCheck.custom_call(kernel) for kernel in _UNLISTED_KERNELS]
-        exported = export.export(jax.jit(function), disabled_checks=allowed)(*leaves)
+    allowed = [export.DisabledSafetyCheck.custom_call(kernel) for kernel in _UNLISTED_KERNELS]
+    try:
+        with _errors_as_nan():
+            exported = export.export(jitted, disabled_checks=allowed)(*leaves)
+    except (NotImplementedError, ValueError):  # what export refuses; an error of the program raises again
+        return None
     partial = path.with_name(f"{path.name}.{os.getpid()}.partial")  # written whole, then renamed
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

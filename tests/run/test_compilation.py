@@ -352,3 +352,17 @@ def test_validating_a_sweep_compiles_per_structure_not_per_point():
         spec = load_sweep(ROOT / "configs" / "sweeps" / "thornton_ning_fast.yaml")
     assert spec.size >= 10_000
     assert compiles.count == 0
+
+
+def test_a_program_that_cannot_be_stored_is_traced_in_its_process(tmp_path, restore_cache):
+    """A program `jax.export` refuses (here a host callback: an equinox check traced in raise
+    mode by a library's own jit cache, say) runs traced in its process, and nothing is stored."""
+    use_cache(tmp_path / "jax")
+
+    def logged(x):
+        jax.debug.callback(lambda value: None, x)
+        return {"value": 2.0 * x}
+
+    with jax.enable_x64(True):
+        assert float(call_stored(logged, jnp.asarray(1.5))["value"]) == 3.0
+    assert list((tmp_path / "jax").rglob("*.jaxexport")) == []
