@@ -146,11 +146,14 @@ def test_usable_directory_is_switched_on(tmp_path, restore_cache):
     assert jax.config.jax_persistent_cache_min_compile_time_secs == 0.0
 
 
-# How a fresh process's script starts: JAX's compile and cache events recorded in `events`.
+# How a fresh process's script starts: JAX's compile and cache events recorded in `events`, the
+# names of the programs traced, lowered and compiled in `programs`.
 RECORDING = """
 import sys, jax, impact
-events = []
-jax.monitoring.register_event_duration_secs_listener(lambda event, duration, **kw: events.append(event))
+events, programs = [], []  # every event; the program each timed one was about
+jax.monitoring.register_event_duration_secs_listener(
+    lambda event, duration, **kw: (events.append(event), programs.append(kw.get("fun_name")))
+)
 jax.monitoring.register_event_listener(lambda event, **kw: events.append(event))
 impact.configure()
 """
@@ -175,6 +178,16 @@ def fresh_process(script: str, scene: Path, cache: Path) -> list[str]:
     process = subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT)
     assert process.returncode == 0, process.stderr
     return process.stdout.split()
+
+
+def twice(script: str, scene: Path, cache: Path) -> tuple[list[str], list[str]]:
+    """The words `script` prints in two fresh processes in turn, sharing the cache `cache`; the
+    second stores no traced program the first did not."""
+    first = fresh_process(script, scene, cache)
+    stored = sorted((cache / EXPORTED).iterdir())
+    second = fresh_process(script, scene, cache)
+    assert sorted((cache / EXPORTED).iterdir()) == stored
+    return first, second
 
 
 def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
@@ -210,28 +223,20 @@ def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
     """A sweep's compiled batch is stored as a traced program too: a second process of the same
     structure neither traces (no diffrax) nor compiles it, and gets the same bits."""
 
-    def run() -> list[str]:
-        return fresh_process(SWEEP_PROCESS, THORNTON_NING, tmp_path / "cache")
-
-    compiled, loaded, traced, *restitutions = run()
+    first, second = twice(SWEEP_PROCESS, THORNTON_NING, tmp_path / "cache")
+    compiled, loaded, traced, *restitutions = first
     assert int(compiled) >= 1 and loaded == "0" and traced == "True" and len(restitutions) == 4
-    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())  # the scene checks' programs, the batch
-    compiled_again, loaded_again, traced_again, *same = run()
+    compiled_again, loaded_again, traced_again, *same = second
     assert compiled_again == "0" and int(loaded_again) >= 1 and traced_again == "False"
     assert same == restitutions
-    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
 # A fresh process that runs an indentation test and says how many programs it compiled and
 # loaded, how many times it traced the march (itself, or inside `call_stored`'s
 # `traced`) and the bits of its pull-off force and of its last force sample.
 INDENTATION_PROCESS = f"""{RECORDING}
-traced = []
-jax.monitoring.register_event_duration_secs_listener(
-    lambda event, duration, **kw: traced.append(kw.get("fun_name") in ("march", "traced"))
-)
 result = impact.simulate(sys.argv[1])
-print({COUNTS}, sum(traced), result.pull_off.force.hex(), result.force[-1].hex())
+print({COUNTS}, programs.count("march") + programs.count("traced"), result.pull_off.force.hex(), result.force[-1].hex())
 """
 
 
@@ -239,16 +244,12 @@ def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path
     """An indentation test's march is stored traced as an impact's solve is: a second process
     neither traces nor compiles it, and gets the same bits."""
 
-    def run() -> list[str]:
-        return fresh_process(INDENTATION_PROCESS, ROOT / "configs" / "indentation_paraboloid.yaml", tmp_path / "cache")
-
-    compiled, loaded, traced, *forces = run()
+    first, second = twice(INDENTATION_PROCESS, ROOT / "configs" / "indentation_paraboloid.yaml", tmp_path / "cache")
+    compiled, loaded, traced, *forces = first
     assert int(compiled) >= 1 and loaded == "0" and int(traced) >= 1
-    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())
-    compiled_again, loaded_again, traced_again, *same = run()
+    compiled_again, loaded_again, traced_again, *same = second
     assert compiled_again == "0" and int(loaded_again) >= 1 and traced_again == "0"
     assert same == forces
-    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
 # A fresh process that fits the drop test (the closed form) and says how many programs it
@@ -258,12 +259,8 @@ FIT_PROCESS = f"""{RECORDING}
 from pathlib import Path
 from impact._run.fit import fit_spec
 from impact._scene.fit_spec import load_fit
-traced = []
-jax.monitoring.register_event_duration_secs_listener(
-    lambda event, duration, **kw: traced.append(kw.get("fun_name") == "traced")
-)
 result = fit_spec(load_fit(Path(sys.argv[1]), []), "theory")
-print({COUNTS}, sum(traced), *[value.hex() for value in result.values.values()])
+print({COUNTS}, programs.count("traced"), *[value.hex() for value in result.values.values()])
 """
 
 
@@ -271,30 +268,22 @@ def test_second_process_loads_a_fit_instead_of_tracing_it(tmp_path):
     """A fit's programs (the residuals at the start, the whole Levenberg–Marquardt solve) are
     stored traced: a second process neither traces nor compiles them, and fits the same bits."""
 
-    def run() -> list[str]:
-        return fresh_process(FIT_PROCESS, ROOT / "configs" / "fits" / "drop_test.yaml", tmp_path / "cache")
-
-    compiled, _, traced, *values = run()
+    first, second = twice(FIT_PROCESS, ROOT / "configs" / "fits" / "drop_test.yaml", tmp_path / "cache")
+    compiled, _, traced, *values = first
     assert int(compiled) >= 1 and int(traced) >= 2 and len(values) == 2
-    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())
-    compiled_again, loaded_again, traced_again, *same = run()
+    compiled_again, loaded_again, traced_again, *same = second
     assert compiled_again == "0" and int(loaded_again) >= 2 and traced_again == "0"
     assert same == values
-    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
 # A fresh process that evaluates f = impact.as_function(scene, [initial.velocity], restitution)
 # and its derivative at one point and says how many programs it compiled and loaded, how many
 # it traced and lowered (inside `compile_stored`: `flat`) and the bits of f and f'.
 GRADIENT_PROCESS = f"""{RECORDING}
-traced = []
-jax.monitoring.register_event_duration_secs_listener(
-    lambda event, duration, **kw: traced.append(kw.get("fun_name") == "jit(flat)")
-)
 f = impact.as_function(sys.argv[1], ["initial.velocity"], "restitution")
 x = jax.numpy.array([1.0])
 value, slope = float(f(x)), float(jax.grad(f)(x)[0])
-print({COUNTS}, sum(traced), value.hex(), slope.hex())
+print({COUNTS}, programs.count("jit(flat)"), value.hex(), slope.hex())
 """
 
 
@@ -303,17 +292,13 @@ def test_second_process_loads_a_functions_programs_instead_of_tracing_them(tmp_p
     inputs) are stored traced: a second process neither traces nor compiles them, and gets the
     same bits. (A spring array: its Jacobian compiles fastest.)"""
 
-    def run() -> list[str]:
-        return fresh_process(GRADIENT_PROCESS, ROOT / "configs" / "spring_array.yaml", tmp_path / "cache")
-
-    compiled, _, traced, *values = run()
+    first, second = twice(GRADIENT_PROCESS, ROOT / "configs" / "spring_array.yaml", tmp_path / "cache")
+    compiled, _, traced, *values = first
     assert int(compiled) >= 2 and int(traced) == 2 and len(values) == 2
-    stored = sorted((tmp_path / "cache" / EXPORTED).iterdir())  # the scene check's, f's and f′'s
-    assert len(stored) == 3
-    compiled_again, loaded_again, traced_again, *same = run()
+    assert len(list((tmp_path / "cache" / EXPORTED).iterdir())) == 3  # the scene check's, f's and f′'s
+    compiled_again, loaded_again, traced_again, *same = second
     assert compiled_again == "0" and int(loaded_again) >= 2 and traced_again == "0"
     assert same == values
-    assert sorted((tmp_path / "cache" / EXPORTED).iterdir()) == stored
 
 
 @pytest.mark.parametrize("cache", [True, False], ids=["stored", "without a cache"])
