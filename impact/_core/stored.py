@@ -100,10 +100,12 @@ def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, op
 
     jitted = jax.jit(flat, compiler_options=options)
     exported = _load_or_export(key, jitted, leaves)
-    with _errors_as_nan() if exported is None else _lowering(exported):
-        compiled = (
-            (jitted if exported is None else jax.jit(exported.call, compiler_options=options)).lower(*leaves).compile()
-        )
+    if exported is None:  # not stored: traced here (or by the export that failed: its trace is reused)
+        with _errors_as_nan():
+            compiled = jitted.lower(*leaves).compile()
+    else:
+        with _lowering(exported):
+            compiled = jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
     return lambda tree: compiled(*jax.tree.leaves(tree))
 
 

@@ -51,5 +51,5 @@ def _import_drawing() -> None:
     try:
         import matplotlib.backends.backend_agg  # noqa: F401 - what `savefig` to PNG draws with
         import matplotlib.figure  # noqa: F401
-    except Exception:  # noqa: BLE001, S110 - raised again where the figures are drawn
+    except Exception:  # noqa: BLE001 - raised again where the figures are drawn
         pass

@@ -7,8 +7,8 @@ values under `scene.`, a parameter's start under `parameters.<path>.start`: see
 `impact._scene.overrides`); fit.h5 then stores the fit file as overridden. Bad input (the fit
 file, its scene or data, an override, the output folder) exits with code 2, names the
 field, prints no traceback and writes nothing. Each Levenberg–Marquardt step prints its χ² and
-parameters (when the solve has ended); DIR then receives fit.yaml, fit.h5 and fit.png, each written atomically (a folder
-created here is removed again if a write fails).
+parameters (when the solve has ended); DIR then receives fit.yaml, fit.h5 and fit.png, each
+written atomically (a folder created here is removed again if a write fails).
 """
 
 import math
