@@ -76,10 +76,10 @@ def as_function(
     names = [output] if isinstance(output, str) else list(output)
     choices = static_choices(scene)
     _check(scene, paths, names, choices)
-    impact = Impact(scene_yaml(scene), tuple(paths), tuple(names), isinstance(output, str))
-    _prepared(impact)  # here: loading a scene computes (its checks), which a trace cannot
-    value = _compiled_once(_value, impact)
-    jacobian = _compiled_once(_jacobian, impact)
+    described = SceneFunction(scene_yaml(scene), tuple(paths), tuple(names), isinstance(output, str))
+    _prepared(described)  # here: loading a scene computes (its checks), which a trace cannot
+    value = _compiled_once(_value, described)
+    jacobian = _compiled_once(_jacobian, described)
 
     # Not itself under jax.jit: a jitted custom_jvp function, vmapped and differentiated inside
     # an outer jit (a fit: jit(jvp(vmap(f)))), returned its outputs transposed (jax 0.10.2).
@@ -99,7 +99,7 @@ def as_function(
 
 
 @dataclasses.dataclass(frozen=True)
-class Impact:
+class SceneFunction:
     """What names the programs of one f: the scene (YAML), the input paths, the output names
     and whether f answers a scalar (one name given as a string)."""
 
@@ -110,34 +110,34 @@ class Impact:
 
 
 @functools.cache
-def _prepared(impact: Impact) -> tuple[Scene, Callable, Callable]:
+def _prepared(described: SceneFunction) -> tuple[Scene, Callable, Callable]:
     """The scene of f and its two point functions (`_programs`), kept for every f made."""
-    scene = load_scene(yaml.safe_load(impact.scene))
+    scene = load_scene(yaml.safe_load(described.scene))
     return (scene, *_programs(static_choices(scene)))
 
 
-def _results(impact: Impact, point: Callable, x: jax.Array) -> jax.Array:
+def _results(described: SceneFunction, point: Callable, x: jax.Array) -> jax.Array:
     """The outputs of `point` at x: NaN where the impact does not end in a success."""
-    scene = _prepared(impact)[0]
-    values = point(physics_with(scene, dict(zip(impact.paths, x, strict=True)), jnp))
+    scene = _prepared(described)[0]
+    values = point(physics_with(scene, dict(zip(described.paths, x, strict=True)), jnp))
     success = jnp.isfinite(values["restitution"])
-    out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in impact.names])
-    return out[0] if impact.scalar else out
+    out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in described.names])
+    return out[0] if described.scalar else out
 
 
-def _value(impact: Impact, x: jax.Array) -> jax.Array:
+def _value(described: SceneFunction, x: jax.Array) -> jax.Array:
     """f(x), by the point function of an ordinary run."""
-    return _results(impact, _prepared(impact)[1], x)
+    return _results(described, _prepared(described)[1], x)
 
 
-def _jacobian(impact: Impact, x: jax.Array) -> tuple[jax.Array, jax.Array]:
+def _jacobian(described: SceneFunction, x: jax.Array) -> tuple[jax.Array, jax.Array]:
     """(f(x), ∂f/∂x [outputs…, inputs]): one forward-mode tangent per input, the point
     repeated with it (a tangent batched over an unbatched point trips optimistix's implicit
     solve at diffrax's events). grad, jacfwd and jacrev all call it."""
-    forward = _prepared(impact)[2]
+    forward = _prepared(described)[2]
 
     def tangent_of(point: jax.Array, tangent: jax.Array) -> tuple[jax.Array, jax.Array]:
-        return jax.jvp(lambda y: _results(impact, forward, y), (point,), (tangent,))
+        return jax.jvp(lambda y: _results(described, forward, y), (point,), (tangent,))
 
     size = x.shape[0]
     values, columns = jax.vmap(tangent_of)(jnp.broadcast_to(x, (size, size)), jnp.eye(size, dtype=x.dtype))
@@ -187,15 +187,15 @@ def _in_float64(
     return f
 
 
-def _compiled_once(function: Callable, impact: Impact) -> Callable:
-    """`function(impact, x)` compiled ahead once per shape and dtype of a concrete vector x and
+def _compiled_once(function: Callable, described: SceneFunction) -> Callable:
+    """`function(described, x)` compiled ahead once per shape and dtype of a concrete vector x and
     that executable run for every concrete vector; stored traced in the cache
     (`impact._core.stored`), so that a later process neither traces nor compiles it. Called
     from the rule of a custom_jvp function, a jitted function is lowered and compiled again
     under each transformation (jacfwd, grad and a plain call each compiled the Thornton–Ning
     Jacobian, ~25 s, jax 0.10.2). A tracer (f under an outer jit or vmap) goes to the jitted
     function."""
-    program = jax.jit(functools.partial(function, impact))
+    program = jax.jit(functools.partial(function, described))
     executables: dict[tuple, Callable] = {}
 
     def once(x):
@@ -205,7 +205,7 @@ def _compiled_once(function: Callable, impact: Impact) -> Callable:
         key = (x.shape, x.dtype)
         if key not in executables:
             abstract = jax.ShapeDtypeStruct(x.shape, x.dtype)
-            label = f"{function.__module__}.{function.__qualname__} {impact!r}"
+            label = f"{function.__module__}.{function.__qualname__} {described!r}"
             executables[key] = compile_stored(program, label, abstract, compiler_options())
         return executables[key](x)
 
