@@ -6,9 +6,10 @@
 values under `scene.`, a parameter's start under `parameters.<path>.start`: see
 `impact._scene.overrides`); fit.h5 then stores the fit file as overridden. Bad input (the fit
 file, its scene or data, an override, the output folder) exits with code 2, names the
-field, prints no traceback and writes nothing. Each Levenberg–Marquardt step prints its χ² and
-parameters (when the solve has ended); DIR then receives fit.yaml, fit.h5 and fit.png, each
-written atomically (a folder created here is removed again if a write fails).
+field, prints no traceback and writes nothing. It says what it fits, then prints each
+Levenberg–Marquardt step's χ² and parameters when the solve has ended; DIR then receives
+fit.yaml, fit.h5 and fit.png, each written atomically (a folder created here is removed again
+if a write fails).
 """
 
 import math
@@ -35,6 +36,7 @@ def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwri
     folder = output or Path("runs") / "fits" / fit_file.stem
     check_output(folder, overwrite, holds="fit")
     import_ahead()  # matplotlib, for the figure, while the fit computes
+    say(_announcement(spec))
     try:
         result = fit_spec(spec, spec.model, progress=_progress(spec))
     except SceneError as error:
@@ -42,6 +44,15 @@ def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwri
     _write(result, folder)
     _summary(result)
     say(f"fit written to {folder}")
+
+
+def _announcement(spec: FitSpec) -> str:
+    """What the fit is about to do, said before it starts (its steps are printed when it ends)."""
+    values = "value" if len(spec.parameters) == 1 else "values"
+    return (
+        f"fitting {len(spec.parameters)} {values} to {spec.rows} rows with model {spec.model!r} "
+        f"(Levenberg–Marquardt; its steps are printed when it ends)"
+    )
 
 
 def _progress(spec: FitSpec):

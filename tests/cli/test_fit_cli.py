@@ -33,6 +33,8 @@ def test_fit_prints_its_steps_and_writes_three_files(fitted):
     folder, result = fitted
     assert result.exit_code == 0, result.output
     assert "step   0  χ² = " in result.output and "converged after" in result.output
+    said = "fitting 2 values to 30 rows with model 'theory' (Levenberg–Marquardt; its steps are printed when it ends)"
+    assert result.output.splitlines()[0] == said
     assert {entry.name for entry in folder.iterdir()} == {"fit.yaml", "fit.h5", "fit.png"}
     assert (folder / "fit.png").read_bytes().startswith(b"\x89PNG")
 
