@@ -19,7 +19,6 @@ from pathlib import Path
 import jax
 import jax.numpy as jnp
 import numpy as np
-import yaml
 
 from .._core.runtime import compiler_options, float64
 from .._core.stored import compile_stored
@@ -77,7 +76,7 @@ def as_function(
     choices = static_choices(scene)
     _check(scene, paths, names, choices)
     described = SceneFunction(scene_yaml(scene), tuple(paths), tuple(names), isinstance(output, str))
-    _prepared(described)  # here: loading a scene computes (its checks), which a trace cannot
+    _PREPARED.setdefault(described, (scene, *_programs(choices)))
     value = _compiled_once(_value, described)
     jacobian = _compiled_once(_jacobian, described)
 
@@ -109,16 +108,15 @@ class SceneFunction:
     scalar: bool
 
 
-@functools.cache
-def _prepared(described: SceneFunction) -> tuple[Scene, Callable, Callable]:
-    """The scene of f and its two point functions (`_programs`), kept for every f made."""
-    scene = load_scene(yaml.safe_load(described.scene))
-    return (scene, *_programs(static_choices(scene)))
+# The scene of every f made and its two point functions (`_programs`), by f's description: what
+# a trace of f's programs reads (the scene loaded where f is made: loading one computes its
+# checks, which a trace cannot).
+_PREPARED: dict[SceneFunction, tuple[Scene, Callable, Callable]] = {}
 
 
 def _results(described: SceneFunction, point: Callable, x: jax.Array) -> jax.Array:
     """The outputs of `point` at x: NaN where the impact does not end in a success."""
-    scene = _prepared(described)[0]
+    scene = _PREPARED[described][0]
     values = point(physics_with(scene, dict(zip(described.paths, x, strict=True)), jnp))
     success = jnp.isfinite(values["restitution"])
     out = jnp.stack([jnp.where(success, values[name], jnp.nan) for name in described.names])
@@ -127,14 +125,14 @@ def _results(described: SceneFunction, point: Callable, x: jax.Array) -> jax.Arr
 
 def _value(described: SceneFunction, x: jax.Array) -> jax.Array:
     """f(x), by the point function of an ordinary run."""
-    return _results(described, _prepared(described)[1], x)
+    return _results(described, _PREPARED[described][1], x)
 
 
 def _jacobian(described: SceneFunction, x: jax.Array) -> tuple[jax.Array, jax.Array]:
     """(f(x), ∂f/∂x [outputs…, inputs]): one forward-mode tangent per input, the point
     repeated with it (a tangent batched over an unbatched point trips optimistix's implicit
     solve at diffrax's events). grad, jacfwd and jacrev all call it."""
-    forward = _prepared(described)[2]
+    forward = _PREPARED[described][2]
 
     def tangent_of(point: jax.Array, tangent: jax.Array) -> tuple[jax.Array, jax.Array]:
         return jax.jvp(lambda y: _results(described, forward, y), (point,), (tangent,))
