@@ -12,6 +12,7 @@ _BOUND_STEPS_PER_OCTAVE = 4
 _BOUND_OCTAVES = (-12, 120)  # the grid 2^(k/4) reaches from 2^-12 to 2^120 (scaled)
 _BOUND_NODES = 4
 _BISECTION_STEPS = 60
+_POWER_BISECTION_STEPS = 64
 
 
 def radius_bound(law: ContactLaw, coefficient, speed):
@@ -19,22 +20,27 @@ def radius_bound(law: ContactLaw, coefficient, speed):
 
     Loading along the attach edge h stores W(a) = [a·h² − 2G·h − λ²a²/2] + ∫g² da from the
     adhesion scale a = 1 (integrate ∫F dh by parts with F = 2(a·h − G)); the bound is where W
-    first exceeds ½v² + 1 with a > 1 (the +1 covers the adhesion scale). W is tabulated on
-    a_k = 2^(k/4) (∫g² in closed form for a power law, else Gauss–Legendre on each step), then
-    bisected inside the step. Capped by the body's extent. Returns (radius, found): an edge that
-    never stores enough (n < 1/2, or n = 1/2 with a force attractive at every radius) pulls the
-    contact open without limit.
+    first exceeds ½v² + 1 with a > 1 (the +1 covers the adhesion scale): for ĝ = Â·aⁿ found on
+    the stretch where W rises (`power_law_bound`), else on a table of W (`tabulated_bound`).
+    Capped by the body's extent. Returns (radius, found): an edge that never stores enough (n <
+    1/2, or n = 1/2 with a force attractive at every radius) pulls the contact open without limit.
     """
-    energy = 0.5 * speed**2 + 1.0
-    nodes, weights = (jnp.asarray(v) for v in np.polynomial.legendre.leggauss(_BOUND_NODES))
+    bound, found = (tabulated_bound if law.power_form() is None else power_law_bound)(law, coefficient, speed)
+    return jnp.minimum(bound, law.extent()), found
+
+
+def _stored_work(law: ContactLaw, coefficient):
+    """(boundary term a·h² − 2G·h − λ²a²/2 of W, ∫_lo^hi g² da): closed form for ĝ = Â·aⁿ,
+    else Gauss–Legendre on each interval."""
 
     def boundary(a):
         h = law.edge(a, coefficient)
         return a * h**2 - 2.0 * law.G(a) * h - coefficient**2 * a**2 / 2.0
 
     form = law.power_form()
+    nodes, weights = (jnp.asarray(v) for v in np.polynomial.legendre.leggauss(_BOUND_NODES))
 
-    def squared_area(lo, hi):  # ∫_lo^hi g² da: in closed form for g = Â·aⁿ
+    def squared_area(lo, hi):
         if form is not None:
             scale, exponent = form
             return scale**2 * (hi ** (2.0 * exponent + 1.0) - lo ** (2.0 * exponent + 1.0)) / (2.0 * exponent + 1.0)
@@ -42,15 +48,20 @@ def radius_bound(law: ContactLaw, coefficient, speed):
         points = mid[..., None] + half[..., None] * nodes
         return half * ordered_sum(weights * law.g(points) ** 2)
 
+    return boundary, squared_area
+
+
+def tabulated_bound(law: ContactLaw, coefficient, speed):
+    """`radius_bound` of any edge (before the extent cap): W tabulated on a_k = 2^(k/4), the
+    first step where it reaches ½v² + 1 above a = 1 bisected."""
+    energy = 0.5 * speed**2 + 1.0
+    boundary, squared_area = _stored_work(law, coefficient)
     low, high = _BOUND_OCTAVES
     grid = 2.0 ** (
         jnp.arange(low * _BOUND_STEPS_PER_OCTAVE, high * _BOUND_STEPS_PER_OCTAVE + 1) / _BOUND_STEPS_PER_OCTAVE
     )
     grid = jnp.minimum(grid, law.extent())
-    if form is None:
-        areas = jnp.concatenate([jnp.zeros(1), jnp.cumsum(squared_area(grid[:-1], grid[1:]))])
-    else:
-        areas = squared_area(grid[0], grid)
+    areas = jnp.concatenate([jnp.zeros(1), jnp.cumsum(squared_area(grid[:-1], grid[1:]))])
     one = -low * _BOUND_STEPS_PER_OCTAVE  # index of a = 1
     work = boundary(grid) - boundary(grid[one]) + areas - areas[one]
     enough = (work >= energy) & (grid > 1.0)
@@ -62,4 +73,43 @@ def radius_bound(law: ContactLaw, coefficient, speed):
 
     _, bound = bisect(lambda a: excess(a) < 0.0, start, grid[index], _BISECTION_STEPS)
     bound = implicit_root(excess, bound)  # a spring array's default length follows it
-    return jnp.minimum(jnp.where(jnp.any(enough), bound, grid[-1]), law.extent()), jnp.any(enough)
+    return jnp.where(jnp.any(enough), bound, grid[-1]), jnp.any(enough)
+
+
+def power_law_bound(law: ContactLaw, coefficient, speed):
+    """`radius_bound` for ĝ = Â·aⁿ without a table (before the extent cap). Here
+    W(a) = 2n²Â²/((n+1)(2n+1))·a^(2n+1) − 2nλÂ/(n+1)·a^(n+3/2) + λ²a²/2 turns where
+    u = a^(n−½) is λ/(2nÂ) or λ(n+1)/(nÂ) (W' = a·Q(u), Q quadratic in u), so its first crossing
+    of ½v² + 1 above a = 1 lies where W rises: up to its local maximum if W there already reaches
+    that energy, else beyond its local minimum. Bisected there in log a: 64 halvings of at most
+    120 octaves, to the last bit."""
+    energy = 0.5 * speed**2 + 1.0
+    boundary, squared_area = _stored_work(law, coefficient)
+    scale, exponent = law.power_form()
+    power = exponent - 0.5
+    usable = (coefficient > 0.0) & (power != 0.0)
+    largest = 2.0 ** _BOUND_OCTAVES[1]
+
+    def radius(u):  # a = u^(1/(n−½))
+        return jnp.where(usable, jnp.exp(jnp.log(u) / jnp.where(usable, power, 1.0)), 1.0)
+
+    # u grows with a for n > ½: W peaks at the near root and bottoms at the far one; else the reverse.
+    near, far = (
+        radius(coefficient / (2.0 * exponent * scale)),
+        radius(coefficient * (exponent + 1.0) / (exponent * scale)),
+    )
+    peak, trough = jnp.where(power > 0.0, near, far), jnp.where(power > 0.0, far, near)
+
+    def excess(a):  # W(a) − W(1) − (½v² + 1)
+        return boundary(a) - boundary(1.0) + squared_area(1.0, a) - energy
+
+    rising_first = (peak > 1.0) & (excess(jnp.maximum(peak, 1.0)) >= 0.0)
+    lower = jnp.where(rising_first, 1.0, jnp.maximum(trough, 1.0))
+    upper = jnp.where(rising_first, peak, largest)
+    found = rising_first | ~(excess(largest) < 0.0)  # W overflows (nan) only far above the energy
+    _, bound = bisect(lambda a: excess(a) < 0.0, lower, upper, _POWER_BISECTION_STEPS, midpoint=_geometric_mean)
+    return jnp.where(found, implicit_root(excess, bound), largest), found
+
+
+def _geometric_mean(lower, upper):
+    return jnp.sqrt(lower) * jnp.sqrt(upper)

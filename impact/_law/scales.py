@@ -58,7 +58,10 @@ def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, t
         return jnp.sqrt(2.0 * jnp.pi * x * approach_work_of_adhesion / E_star)
 
     lower, upper = _bracket(profile)
-    radial, crosses = log_sign_change(lambda x: profile.g(x) - elongation(x), lower, upper, _BISECTION_STEPS)
+    # g(x) = A·xⁿ meets √(2π·x·Δγa/E*) where x^(2n−1) = 2πΔγa/(E*·A²).
+    radial, crosses = _radius_where(
+        profile, lambda x: profile.g(x) - elongation(x), 2.0 * jnp.pi * approach_work_of_adhesion / E_star, -1.0
+    )
     # A jump-in needs h = g − Δl below zero at the bracket's lower end (for n < 1/2 the crossing
     # is the far zero of h instead; for a tiny Δγa the jump-in lies below the bracket); it
     # reaches the crossing, or the wall of a body that h stays below (the flat punch).
@@ -73,10 +76,27 @@ def adhesive_scales(profile: Profile, E_star, approach_work_of_adhesion, mass, t
 def energy_scales(profile: Profile, E_star, mass, touch_velocity) -> Scales:
     """Units from the impact energy: E*·ℓx·g(ℓx)² = ½·m·v²."""
     energy = 0.5 * mass * touch_velocity**2
-    lower, upper = _bracket(profile)
-    radial, _ = log_sign_change(lambda x: E_star * x * profile.g(x) ** 2 - energy, lower, upper, _BISECTION_STEPS)
+    # g(x) = A·xⁿ: x^(2n+1) = energy/(E*·A²).
+    radial, _ = _radius_where(profile, lambda x: E_star * x * profile.g(x) ** 2 - energy, energy / E_star, 1.0)
     normal = jnp.sqrt(energy / (E_star * radial))
     return _complete(radial, normal, E_star, mass)
+
+
+def _radius_where(profile: Profile, excess, power_constant, power_offset: float):
+    """Where `excess` changes sign in the bracket of the profile: (radius, found), the upper end
+    where it does not. For a profile g = A·xⁿ (`Profile.power_form`) the excess vanishes where
+    A²·x^(2n + offset) = constant, and the radius is stated, ln x = (ln constant − 2 ln A)/(2n +
+    offset) (to ~1e-15·|ln x| relative); else bisected in log x."""
+    lower, upper = _bracket(profile)
+    form = profile.power_form()
+    if form is None:
+        return log_sign_change(excess, lower, upper, _BISECTION_STEPS)
+    scale, exponent = form
+    power = 2.0 * exponent + power_offset
+    solvable = power != 0.0
+    log_radius = (jnp.log(power_constant) - 2.0 * jnp.log(scale)) / jnp.where(solvable, power, 1.0)
+    found = solvable & (log_radius > jnp.log(lower)) & (log_radius < jnp.log(upper))
+    return jnp.where(found, jnp.exp(log_radius), upper), found
 
 
 def _complete(radial, normal, E_star, mass) -> Scales:
