@@ -173,9 +173,13 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     law = problem.law
     branch = active_branch(c.mode, problem.attach, problem.detach)
     # A segment rising from (or within 1e-6 of) a steep tip (h' → ∞ at a = 0, power laws
-    # n < 1) is integrated in time: in a, the pace q would never let a get there.
-    steep = (branch.nodes[c.segment] < _TIP_FAR) & (
-        law.edge_slope(_TIP_NEAR, branch.coefficient) > law.edge_slope(_TIP_FAR, branch.coefficient)
+    # n < 1) is integrated in time: in a, the pace q would never let a get there. Where the
+    # scene never loads in time, no tip is steep (and a rounded slope of ĝ = Â·a must not say so).
+    steep = (
+        (branch.nodes[c.segment] < _TIP_FAR)
+        & (law.edge_slope(_TIP_NEAR, branch.coefficient) > law.edge_slope(_TIP_FAR, branch.coefficient))
+        if options.timed_loading
+        else jnp.asarray(False)
     )
     riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
     # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the

@@ -1,6 +1,8 @@
 """Impacts against the chapter's closed forms and our own references (issue: core)."""
 
 import dataclasses
+from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -9,6 +11,8 @@ from impact import simulate, theory
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for
 from impact._scene.scene import load_scene
+
+CONFIGS = Path(__file__).parents[2] / "configs"
 
 MATERIALS = {
     # micro-particle on a stiff polymer, and a softer, stickier pair
@@ -79,25 +83,51 @@ def test_without_trajectory_the_same_impact_keeps_no_time_series():
     assert bare.events == full.events
 
 
-def test_a_scene_that_never_loads_in_time_runs_as_the_general_program_does():
-    """Where loading is never integrated in time (`Options.timed_loading` false: the paraboloid
-    jumps in), every phase integrated in time is a hold, and the program leaves out the branch's
-    radius solve; the general program, which keeps it (and the branch tables its cascades then
-    look up), runs the same impact to a few ulps (the same bits here; 7.8e-16 apart in e at
-    configs/thornton_ning.yaml)."""
-    scene = load_scene(paraboloid_scene("micro", 2 * sticking_velocity("micro")))
+class Agreement(NamedTuple):
+    """How closely the general program runs a scene that never loads in time (relative)."""
+
+    steps: int  # solver steps apart
+    events: float  # event times
+    restitution: float
+    trajectory: float  # of the largest value of each series (compared where the steps agree)
+
+
+# Scenes that never load in time. The paraboloid that jumps in runs the same bits here (7.8e-16
+# apart in e at configs/thornton_ning.yaml). Attaching on touch (Δγa = 0) or without adhesion,
+# loading rides from the tip, whose slope ĝ' = 2Âa is finite; the discarded timed values change
+# how XLA rounds the receding phase, so the steps round otherwise: one step more or fewer, the
+# contact time 1.4e-11 apart without adhesion (its error against Hertz is 2e-10 in both).
+NEVER_TIMED = {
+    "jump-in": (lambda: paraboloid_scene("micro", 2 * sticking_velocity("micro")), Agreement(0, 1e-14, 1e-14, 1e-13)),
+    "attach on touch": (lambda: CONFIGS / "attach_on_touch.yaml", Agreement(2, 1e-10, 1e-12, 1e-9)),
+    "no adhesion": (lambda: CONFIGS / "hard" / "01_no_adhesion.yaml", Agreement(2, 1e-10, 1e-12, 1e-9)),
+}
+
+
+@pytest.mark.parametrize("case", NEVER_TIMED)
+def test_a_scene_that_never_loads_in_time_runs_as_the_general_program_does(case):
+    """Where loading is never integrated in time (`Options.timed_loading` false: a body
+    ĝ = Â·aⁿ with n ≥ 1 that jumps in, attaches on touch or has no adhesion), every phase
+    integrated in time is a hold, and the program leaves out the branch tables and the
+    radius solve; the general program, which keeps them, runs the same impact with the same
+    events, to the integration's rounding."""
+    source, agree = NEVER_TIMED[case]
+    scene = load_scene(source())
     options = options_for(scene)
     assert not options.timed_loading
     general = solve_scene(scene, integrator_for(scene), dataclasses.replace(options, timed_loading=True))
     specialised = simulate(scene)
-    assert general.stats["steps"] == specialised.stats["steps"]
+    assert abs(general.stats["steps"] - specialised.stats["steps"]) <= agree.steps
     assert [kind for _, kind in general.events] == [kind for _, kind in specialised.events]
-    np.testing.assert_allclose([t for t, _ in general.events], [t for t, _ in specialised.events], rtol=1e-14)
-    assert general.restitution == pytest.approx(specialised.restitution, rel=1e-14, abs=0.0)
-    for name in ("t", "indentation", "velocity", "force", "contact_radius"):
-        mine, theirs = getattr(general, name), getattr(specialised, name)
-        assert mine.shape == theirs.shape and len(theirs) > 100
-        assert np.max(np.abs(mine - theirs)) <= 1e-13 * np.max(np.abs(theirs)), name
+    np.testing.assert_allclose([t for t, _ in general.events], [t for t, _ in specialised.events], rtol=agree.events)
+    assert general.restitution == pytest.approx(specialised.restitution, rel=agree.restitution, abs=0.0)
+    for name in ("contact_time", "max_indentation", "max_force"):
+        assert getattr(general, name) == pytest.approx(getattr(specialised, name), rel=agree.events, abs=0.0), name
+    if agree.steps == 0:  # the same steps: the same samples
+        for name in ("t", "indentation", "velocity", "force", "contact_radius"):
+            mine, theirs = getattr(general, name), getattr(specialised, name)
+            assert mine.shape == theirs.shape and len(theirs) > 100
+            assert np.max(np.abs(mine - theirs)) <= agree.trajectory * np.max(np.abs(theirs)), name
 
 
 def test_pull_off_force_is_reached_during_unloading():

@@ -176,11 +176,14 @@ def test_new_values_do_not_recompile(grid):
 
 def test_static_fields_form_groups_and_points_are_ordered_by_cost():
     spec = make_spec(
-        THORNTON_NING, {"initial.velocity": [2.0, 0.4, 1.0], "effects.adhesion.approach_work_of_adhesion": [0.0, 0.05]}
+        THORNTON_NING, {"initial.velocity": [2.0, 0.4, 1.0], "effects.adhesion.approach_work_of_adhesion": [0.02, 0.05]}
     )
     plan = plan_sweep(spec)
-    assert len(plan.choices) == 2  # attach on touch integrates loading in time: its own compile
-    assert {choices.options.timed_loading for choices in plan.choices} == {True, False}
+    assert len(plan.choices) == 2  # a partial approach work searches its edge's turn below the grid
+    assert {choices.options.tabulation.tip_search for choices in plan.choices} == {True, False}
+    # attach on touch and Δγa = Δγ: the paraboloid's radius rides from the tip or the jump-in alike
+    on_touch = make_spec(THORNTON_NING, {"effects.adhesion.approach_work_of_adhesion": [0.0, 0.05]})
+    assert len(plan_sweep(on_touch).choices) == 1
     for group in range(2):
         velocities = plan.params["initial.velocity"][plan.order[plan.group[plan.order] == group]]
         assert np.array_equal(velocities, [0.4, 1.0, 2.0])
