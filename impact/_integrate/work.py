@@ -9,7 +9,7 @@ from .._core import derivatives
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.search import golden_section
 from .._law.branches import Branch
-from .._law.law import ContactLaw, power
+from .._law.law import ContactLaw, half_power_root, power
 from .codes import ADVANCE
 
 
@@ -120,10 +120,8 @@ def branch_force_range(law: ContactLaw, branch: Branch, start_radius, end_radius
         return extremes(lambda a: branch_force(law, branch, a), start_radius, end_radius)
     scale, exponent = form
     coefficient = branch.coefficient if law.adhesive else jnp.zeros(())
-    power = exponent - 0.5
-    usable = (coefficient > 0.0) & (power != 0.0) & (scale > 0.0)
-    ratio = 1.5 * coefficient / (exponent * jnp.where(usable, scale, 1.0))
-    stationary = jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, power, 1.0))
+    usable = (coefficient > 0.0) & (exponent != 0.5) & (scale > 0.0)
+    stationary = half_power_root(1.5 * coefficient / (exponent * jnp.where(usable, scale, 1.0)), exponent, usable)
     low, high = jnp.minimum(start_radius, end_radius), jnp.maximum(start_radius, end_radius)
     between = usable & (stationary > low) & (stationary < high)
     forces = branch_force(law, branch, jnp.stack([low, high, jnp.where(between, stationary, low)]))

@@ -22,7 +22,7 @@ import jax.numpy as jnp
 from .._core.derivatives import implicit_root
 from .._core.search import bisect
 from ..profiles import Profile, Tabulated, WavyParaboloid
-from .law import ContactLaw
+from .law import ContactLaw, half_power_root
 
 # The search grid starts at the smaller of 1e-8 (scaled: the adhesion scale is 1) and
 # 1e-12·x_top. Below it the turning point nearest the tip (where the Heß term's slope,
@@ -237,10 +237,8 @@ def _power_law_turns(law: ContactLaw, coefficient, top, max_turns: int):
     x̂^(n−½) = λ/(2nÂ) (one turn for λ > 0 and n ≠ ½; none without adhesion); as
     `sign_changes` returns it: (points [max_turns], valid [max_turns], count)."""
     scale, exponent = law.power_form()
-    ratio = coefficient / (2.0 * exponent * scale)
-    power = exponent - 0.5
-    usable = law.adhesive & (coefficient > 0.0) & (power != 0.0) & (scale > 0.0)
-    turn = jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, power, 1.0))
+    usable = law.adhesive & (coefficient > 0.0) & (exponent != 0.5) & (scale > 0.0)
+    turn = half_power_root(coefficient / (2.0 * exponent * scale), exponent, usable)
     valid = usable & (turn > 0.0) & (turn < top)
     turns = jnp.zeros(max_turns).at[0].set(jnp.where(valid, turn, top))
     flags = jnp.zeros(max_turns, bool).at[0].set(valid)

@@ -94,6 +94,13 @@ def _scaled_power_form(profile: Profile, scales: Scales):
     return coefficient * scales.radial**exponent / scales.normal, exponent
 
 
+def half_power_root(ratio, exponent, usable):
+    """The radius a where a^(n−½) = `ratio` for ĝ = Â·aⁿ: where the edge h = Â·aⁿ − λ·√a and
+    what is built on it (force, stored work) turn, with `ratio` a multiple of λ/(nÂ); 1 where
+    not `usable` (no adhesion, n = ½)."""
+    return jnp.where(usable, ratio, 1.0) ** (1.0 / jnp.where(usable, exponent - 0.5, 1.0))
+
+
 def power(x, exponent):
     """x̂ⁿ for x̂ ≥ 0 as exp(n·ln x̂) (0 at x̂ = 0, with slope 0 there: as `PowerLaw.f`). In the
     scaled units ln x̂ = O(1), so it is within a few ulps of the power, at a fraction of the

@@ -6,7 +6,7 @@ import numpy as np
 from .._core.derivatives import implicit_root
 from .._core.quadrature import ordered_sum
 from .._core.search import bisect
-from .law import ContactLaw
+from .law import ContactLaw, half_power_root
 
 _BOUND_STEPS_PER_OCTAVE = 4
 _BOUND_OCTAVES = (-12, 120)  # the grid 2^(k/4) reaches from 2^-12 to 2^120 (scaled)
@@ -86,19 +86,12 @@ def power_law_bound(law: ContactLaw, coefficient, speed):
     energy = 0.5 * speed**2 + 1.0
     boundary, squared_area = _stored_work(law, coefficient)
     scale, exponent = law.power_form()
-    power = exponent - 0.5
-    usable = (coefficient > 0.0) & (power != 0.0)
+    usable = (coefficient > 0.0) & (exponent != 0.5)
     largest = 2.0 ** _BOUND_OCTAVES[1]
-
-    def radius(u):  # a = u^(1/(n−½))
-        return jnp.where(usable, jnp.exp(jnp.log(u) / jnp.where(usable, power, 1.0)), 1.0)
-
     # u grows with a for n > ½: W peaks at the near root and bottoms at the far one; else the reverse.
-    near, far = (
-        radius(coefficient / (2.0 * exponent * scale)),
-        radius(coefficient * (exponent + 1.0) / (exponent * scale)),
-    )
-    peak, trough = jnp.where(power > 0.0, near, far), jnp.where(power > 0.0, far, near)
+    near = half_power_root(coefficient / (2.0 * exponent * scale), exponent, usable)
+    far = half_power_root(coefficient * (exponent + 1.0) / (exponent * scale), exponent, usable)
+    peak, trough = jnp.where(exponent > 0.5, near, far), jnp.where(exponent > 0.5, far, near)
 
     def excess(a):  # W(a) − W(1) − (½v² + 1)
         return boundary(a) - boundary(1.0) + squared_area(1.0, a) - energy

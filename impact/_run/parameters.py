@@ -21,6 +21,7 @@ from .._integrate.verlet import Verlet
 from .._law.branches import Tabulation
 from .._scene.profiles import PowerLawSpec
 from .._scene.scene import Scene
+from ..profiles import Profile
 
 _SAMPLES_PER_PHASE = 64
 
@@ -66,17 +67,15 @@ def options_for(scene: Scene, trajectory: bool = True) -> Options:
     adhesion = scene.active_adhesion
     jkr = adhesion is not None and adhesion.model == "jkr"  # the edge tables below are the JKR law's
     partial_approach = adhesion is not None and jkr and adhesion.approach > 0.0 and adhesion.hysteretic
+    profile = scene.contact_profile.build()
     return Options(
         adhesive=adhesion is not None,
         gravity=scene.effects.gravity is not None,
         max_bounces=scene.limits.max_bounces,
         # Only a partial approach work of adhesion puts the attach edge's turn decades below the
         # branch grid (Δγa = Δγ turns at the jump-in scale, Δγa = 0 does not turn).
-        tabulation=Tabulation.for_profile(
-            scene.contact_profile.build(),
-            tip_search=partial_approach,
-        ),
-        timed_loading=_loads_in_time(scene),
+        tabulation=Tabulation.for_profile(profile, tip_search=partial_approach),
+        timed_loading=_loads_in_time(scene, profile),
         samples_per_phase=_SAMPLES_PER_PHASE if trajectory else 0,
         damped=scene.effects.damping is not None,
         curve_pieces=_spring_curve_pieces(scene),
@@ -97,18 +96,19 @@ def _spring_curve_pieces(scene: Scene) -> int:
     return spring_capacity(springs) + 1
 
 
-def _loads_in_time(scene: Scene) -> bool:
+def _loads_in_time(scene: Scene, profile: Profile) -> bool:
     """Whether a loading phase may have to be integrated in time (`Options.timed_loading`):
-    where it starts from a = 0 on a tip its radius cannot ride. Without adhesion or without an
-    approach work (Δγa = 0) loading starts from the tip on ĝ itself; a body ĝ = Â·aⁿ with n ≥ 1
-    rises from there with a finite slope, so the radius rides and no radius table is built per
-    point: the attach-on-touch paraboloid runs in 0.13× the time, with the same steps and error.
+    where it starts from a = 0 on a tip its radius cannot ride (`profile`: the scene's contact
+    profile, built). Without adhesion or without an approach work (Δγa = 0) loading starts from
+    the tip on ĝ itself; a body ĝ = Â·aⁿ with n ≥ 1 rises from there with a finite slope, so the
+    radius rides and no radius table is built per point: the attach-on-touch paraboloid runs in
+    0.13× the time, with the same steps and error.
     Other JKR bodies: see `_rises_from_the_tip`; the other laws never load in time."""
     adhesion = scene.active_adhesion
     if adhesion is not None and adhesion.model != "jkr":
         return False
     if adhesion is None or adhesion.approach == 0.0:
-        form = scene.contact_profile.build().power_form()
+        form = profile.power_form()
         return form is None or float(form[1]) < 1.0
     return _rises_from_the_tip(scene)
 
