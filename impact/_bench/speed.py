@@ -64,6 +64,8 @@ COLUMNS = (
     "post_us",
     "steps_mean",
     "springs",
+    "chunk",
+    "device",
     "peak_rss_mb",
 )
 
@@ -79,7 +81,7 @@ def run(folder: str | Path, plan: SpeedPlan, log: Callable[[str], None] = print)
     rows = []
     for workload, counts in plan.runs():
         for points in counts:
-            row = measure(workload, points, plan.repeats)
+            row = measure(workload, points, plan.repeats, plan.chunk)
             rows.append(row)
             log(
                 f"[{time.perf_counter() - start:4.0f} s] {workload.key} × {points}: "
@@ -91,13 +93,17 @@ def run(folder: str | Path, plan: SpeedPlan, log: Callable[[str], None] = print)
     return rows
 
 
-def measure(workload: Workload, points: int, repeats: int) -> dict:
-    """One row: time, accuracy, compile time and split of `points` impacts of `workload`."""
+def measure(workload: Workload, points: int, repeats: int, chunk: int | None = None) -> dict:
+    """One row: time, accuracy, compile time and split of `points` impacts of `workload`, in
+    calls of `chunk` points (None: the sweep's default for the devices)."""
     plan = plan_sweep(make_spec(workload.scene, workload.axis(points)))
     reduce = Reduction(points, workload.reference)
-    first = execute(plan, on_chunk=reduce.add)
-    per_impact = np.asarray([execute(plan)["solve_time"] / points for _ in range(repeats)]) * 1e6
-    error = reduce.error() if workload.reference == CLOSED_FORM else tighter_error(workload, points, reduce)
+    first = execute(plan, chunk=chunk, on_chunk=reduce.add)
+    per_impact = np.asarray([execute(plan, chunk=chunk)["solve_time"] / points for _ in range(repeats)]) * 1e6
+    if workload.reference == CLOSED_FORM:
+        error = reduce.error()
+    else:
+        error = tighter_error(workload, points, reduce, chunk)
     build, integrate, post = split(plan, max(first["call_sizes"]), repeats)
     return {
         "workload": workload.key,
@@ -113,6 +119,8 @@ def measure(workload: Workload, points: int, repeats: int) -> dict:
         "post_us": post,
         "steps_mean": reduce.steps / points,
         "springs": workload.springs,
+        "chunk": first["chunk"],
+        "device": device_name(),
         "peak_rss_mb": peak_rss_mb(),
     }
 
@@ -148,7 +156,7 @@ class Reduction:
         return math.inf if self.failed else self.worst
 
 
-def tighter_error(workload: Workload, points: int, reduce: Reduction) -> float:
+def tighter_error(workload: Workload, points: int, reduce: Reduction, chunk: int | None = None) -> float:
     """Max |e − e_tight| at the strided points, e_tight at rtol and atol / TIGHTER_FACTOR."""
     scene = deepcopy(workload.scene)
     solver = scene.setdefault("solver", {})
@@ -161,7 +169,7 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction) -> float:
     def keep(indices: np.ndarray, values: dict) -> None:
         tight.update(zip(chosen[indices].tolist(), values["restitution"].tolist(), strict=True))
 
-    execute(plan_sweep(make_spec(scene, {"initial.velocity": velocities})), on_chunk=keep)
+    execute(plan_sweep(make_spec(scene, {"initial.velocity": velocities})), chunk=chunk, on_chunk=keep)
     return reduce.error(tight)
 
 
@@ -212,6 +220,13 @@ def checksum(tree) -> jax.Array:
     unused) but only one number per point is written back, like the point function's scalars
     (returning the tables or the outcome itself costs more than the full point function)."""
     return sum((jnp.sum(jnp.asarray(leaf, float)) for leaf in jax.tree.leaves(tree)), jnp.zeros(()))
+
+
+def device_name() -> str:
+    """The local devices a sweep runs on, e.g. "cpu" or "2 × NVIDIA H100 80GB HBM3"."""
+    devices = local_devices()
+    kind = "cpu" if devices[0].platform == "cpu" else devices[0].device_kind
+    return kind if len(devices) == 1 else f"{len(devices)} × {kind}"
 
 
 def peak_rss_mb() -> float:

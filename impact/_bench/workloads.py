@@ -119,13 +119,18 @@ class SpeedPlan:
 
     plan: tuple[tuple[Workload, tuple[int, ...]], ...]
     repeats: int = SPEED_REPEATS
+    chunk: int | None = None  # points per compiled call (None: the sweep's default)
 
     def runs(self) -> tuple[tuple[Workload, tuple[int, ...]], ...]:
         return self.plan
 
 
 def speed_plan(
-    quick: bool = False, points: tuple[int, ...] = (), only: tuple[str, ...] = (), repeats: int = SPEED_REPEATS
+    quick: bool = False,
+    points: tuple[int, ...] = (),
+    only: tuple[str, ...] = (),
+    repeats: int = SPEED_REPEATS,
+    chunk: int | None = None,
 ) -> SpeedPlan:
     """The full plan (every workload at 10², 10³, 10⁴ points, but the spring arrays at 10², 10³
     and the scan over N at 10²), or the quick one (the light workloads at 10², the scan at N = 64,
@@ -141,4 +146,4 @@ def speed_plan(
         else:
             counts = (100, 1000, 10000)
         runs.append((workload, tuple(points) or counts))
-    return SpeedPlan(tuple(runs), repeats)
+    return SpeedPlan(tuple(runs), repeats, chunk)

@@ -57,6 +57,8 @@ def compiler_options(batch: bool = False) -> dict[str, int | bool]:
     """XLA options of a compiled impact program: scalar lanes where this process fuses
     multiply–adds (see `NO_FMA_FLAG`); for a sweep's batch (every program that computes a sweep's
     points: `batch=True`), XLA's fusion emitters (see `ELEMENTAL_EMITTERS_FLAG`)."""
+    if jax.default_backend() != "cpu":
+        return {}  # XLA:CPU's options: a GPU's compiler refuses them ("No such compile option")
     lanes = SCALAR_LANES if contracts_multiply_adds() else {}
     return {**lanes, **BATCH_EMITTERS} if batch else dict(lanes)
 

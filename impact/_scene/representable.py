@@ -7,6 +7,7 @@ units are those the integrators use (`_law.scales`), computed once per scene. Ea
 names one field, its value and the range it may take with the other fields as they are.
 """
 
+import itertools
 import math
 from collections.abc import Sequence
 from typing import NamedTuple
@@ -108,25 +109,82 @@ def _units(inputs: UnitInputs, adhesive: bool) -> tuple[dict[str, jax.Array], di
 
 
 @float64
-def units_of(inputs: Sequence[UnitInputs], adhesive: bool) -> list[Units]:
-    """The units of many scenes of one structure, computed together in batches of `_BATCH` (one
-    compiled program serves every sweep: numbers are traced, the batch shape fixed; kept across
+def unit_columns(inputs: Sequence[UnitInputs], adhesive: bool) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """The units of many scenes of one structure, as columns: ({name: unit of each scene},
+    energetic depth of each scene). Computed together in batches of `_BATCH` (one compiled
+    program serves every sweep: numbers are traced, the batch shape fixed; kept across
     processes, `call_stored`)."""
-    leaves = [jax.tree.leaves(point) for point in inputs]
+    columns = _input_columns(inputs)
     treedef = jax.tree.structure(inputs[0])
-    units: list[Units] = []
+    size = _BATCH if len(inputs) > 1 else 1
+    values: dict[str, list[np.ndarray]] = {name: [] for name in _UNIT_NAMES}
+    depths = []
     for first in range(0, len(inputs), _BATCH):
-        rows = leaves[first : first + _BATCH]
-        size = _BATCH if len(inputs) > 1 else 1
-        rows = rows + [rows[-1]] * (size - len(rows))
-        columns = [np.stack([np.asarray(row[k], np.float64) for row in rows]) for k in range(len(rows[0]))]
-        run_fields, energetic = call_stored(_units, jax.tree.unflatten(treedef, columns), adhesive)
+        rows = np.minimum(np.arange(first, first + size), len(inputs) - 1)  # the last one repeated
+        run_fields, energetic = call_stored(_units, jax.tree.unflatten(treedef, [c[rows] for c in columns]), adhesive)
         run = jax.tree.map(np.asarray, Scales(**run_fields))  # its velocity and energy in NumPy: no dispatch
-        values = {name: np.asarray(getattr(run, name)) for name in _UNIT_NAMES}
-        depth = np.asarray(energetic["normal"])
-        for row in range(min(_BATCH, len(inputs) - first)):
-            units.append(Units({name: float(column[row]) for name, column in values.items()}, float(depth[row])))
-    return units
+        kept = min(_BATCH, len(inputs) - first)
+        for name in _UNIT_NAMES:
+            values[name].append(np.asarray(getattr(run, name))[:kept])
+        depths.append(np.asarray(energetic["normal"])[:kept])
+    return {name: np.concatenate(parts) for name, parts in values.items()}, np.concatenate(depths)
+
+
+def _input_columns(inputs: Sequence[UnitInputs]) -> list[np.ndarray]:
+    """The leaves of the inputs as float64 columns, one row per scene. A profile that all the
+    scenes share (a sweep that leaves the profile alone) is flattened once."""
+    profile = inputs[0].profile
+    if all(point.profile is profile for point in inputs):
+        shared = [
+            np.broadcast_to(np.asarray(leaf, np.float64), (len(inputs), *np.shape(leaf)))
+            for leaf in jax.tree.leaves(profile)
+        ]
+        numbers = np.array([point[1:] for point in inputs], np.float64).reshape(len(inputs), -1)
+        return shared + list(numbers.T)
+    leaves = [jax.tree.leaves(point) for point in inputs]
+    return [np.array([row[k] for row in leaves], np.float64) for k in range(len(leaves[0]))]
+
+
+def units_at(values: dict[str, np.ndarray], depth: np.ndarray, row: int) -> Units:
+    """The units of one scene of `unit_columns`."""
+    return Units({name: float(column[row]) for name, column in values.items()}, float(depth[row]))
+
+
+class Limits(NamedTuple):
+    """What `check_units` compares the units of a scene with, as numbers: the work of adhesion of
+    a JKR adhesion (J/m²; nan: none), E* (Pa), and the size the energetic depth must stay below
+    (m; inf: no size; nan: a yielding body, checked alone)."""
+
+    work_of_adhesion: float
+    E_star: float
+    size: float
+
+
+def limits_of(scene) -> Limits:
+    """The numbers `passes` checks the scene's units against."""
+    adhesion = scene.active_adhesion
+    work = adhesion.work_of_adhesion if adhesion is not None and adhesion.model == "jkr" else math.nan
+    profile = scene.contact_profile
+    if scene.effects.plasticity is not None:
+        size = math.nan
+    else:
+        size = getattr(profile, SIZE_FIELD[profile.shape]) if profile.shape in SIZE_FIELD else math.inf
+    return Limits(work, scene.material.effective_modulus, size)
+
+
+def passes(values: dict[str, np.ndarray], depth: np.ndarray, limits: Sequence[Limits]) -> np.ndarray:
+    """Which scenes `check_units` would pass, all at once (the same float operations as its
+    checks); a scene marked False is one to check alone (`check_units` names the problem)."""
+    flat = np.fromiter(itertools.chain.from_iterable(limits), np.float64, count=len(limits) * len(Limits._fields))
+    work, E_star, size = flat.reshape(len(limits), len(Limits._fields)).T
+    low, high = UNIT_RANGE
+    fine = np.ones(len(depth), bool)
+    for column in values.values():
+        fine &= np.isfinite(column) & (low <= column) & (column <= high)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.sqrt(2.0 * math.pi * values["radial"] * work / E_star) / values["normal"]
+    fine &= np.isnan(work) | (ratio >= RESOLVABLE)
+    return fine & (depth <= size)  # nan (a yielding body) compares False
 
 
 @float64
@@ -146,11 +204,11 @@ def _root_of_height(profile, height):
 @float64
 def check_representable(scene) -> None:
     """Raise FieldProblem (dotted path from the scene) where the impact cannot be represented."""
-    check_units(scene, units_of([unit_inputs(scene)], scene.active_adhesion is not None)[0])
+    check_units(scene, units_at(*unit_columns([unit_inputs(scene)], scene.active_adhesion is not None), 0))
 
 
 def check_units(scene, units: Units) -> None:
-    """Raise FieldProblem where the scene's units (`units_of`) cannot represent its impact."""
+    """Raise FieldProblem where the scene's units (`unit_columns`, `units_at`) cannot represent its impact."""
     _check_units(units.values)
     adhesion = scene.active_adhesion
     if adhesion is not None and adhesion.model == "jkr":

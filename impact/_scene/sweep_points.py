@@ -11,12 +11,13 @@ validators fall back to a full validation per point.
 import copy
 
 import jax
+import numpy as np
 from pydantic import BaseModel, ValidationError
 
 from .._core.runtime import float64
 from .errors import FieldProblem, SweepError, problems_of
 from .paths import assign, resolve_field, section_at
-from .representable import UnitInputs, check_units, unit_inputs, units_of
+from .representable import Limits, UnitInputs, check_units, limits_of, passes, unit_columns, unit_inputs, units_at
 from .scene import Scene
 from .sweep_spec import MAX_LISTED, SweepSpec
 
@@ -52,28 +53,34 @@ def check_points(spec: SweepSpec) -> None:
 def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
     """{point: complaint} from the after-validators, run on one private copy of the base scene
     whose swept fields are set in place point by point; the representability check of the
-    impacts (the costly one: units from the profile) runs for all points at once."""
+    impacts (the costly one: units from the profile) runs for many points at once, and only a
+    point whose units it does not pass is checked alone (for its message)."""
     point = spec.scene.model_copy(deep=True)
     owners = [resolve_field(point, path) for path in spec.paths]
     models = [(prefix, section_at(point, prefix)) for prefix, _ in chains]
     profile_swept = any(path.startswith(("body.profile.", "counterpart.profile.")) for path in spec.paths)
     base_profile = None if profile_swept else spec.scene.contact_profile.build()
+    # the inputs' tree structure: that of the base scene's, unless the profile is swept
+    base_structure = None
+    if base_profile is not None and spec.scene.kind == "impact":
+        base_structure = jax.tree.structure(unit_inputs(spec.scene, base_profile))
 
     def set_point(index: int) -> None:
         for (owner, name), column in zip(owners, columns, strict=True):
             owner.__dict__[name] = column[index]
 
     problems: dict[int, str] = {}
-    pending: dict[tuple, list[tuple[int, UnitInputs]]] = {}
+    pending: dict[tuple, list[tuple[int, UnitInputs, Limits]]] = {}
 
     def check_pending(key: tuple) -> None:
-        group = pending.pop(key)
-        for (index, _), units in zip(group, units_of([inputs for _, inputs in group], key[0]), strict=True):
-            set_point(index)
+        indices, inputs, limits = zip(*pending.pop(key), strict=True)
+        values, depth = unit_columns(inputs, key[0])
+        for row in np.flatnonzero(~passes(values, depth, limits)).tolist():
+            set_point(indices[row])
             try:
-                check_units(point, units)
+                check_units(point, units_at(values, depth, row))
             except FieldProblem as error:
-                problems[index] = f"{error.field}: {error}"
+                problems[indices[row]] = f"{error.field}: {error}"
 
     for index in range(spec.size):
         set_point(index)
@@ -82,8 +89,9 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
             problems[index] = message
         elif point.kind == "impact":
             inputs = unit_inputs(point, base_profile)
-            key = (point.active_adhesion is not None, jax.tree.structure(inputs))
-            pending.setdefault(key, []).append((index, inputs))
+            structure = jax.tree.structure(inputs) if base_structure is None else base_structure
+            key = (point.active_adhesion is not None, structure)
+            pending.setdefault(key, []).append((index, inputs, limits_of(point)))
             if len(pending[key]) == _PENDING:
                 check_pending(key)
     for key in list(pending):

@@ -31,7 +31,13 @@ def run_bench(quick: bool, output: Path | None, overwrite: bool) -> None:
 
 
 def run_bench_speed(
-    quick: bool, points: list[int], only: list[str], repeats: int, output: Path | None, overwrite: bool
+    quick: bool,
+    points: list[int],
+    only: list[str],
+    repeats: int,
+    chunk: int | None,
+    output: Path | None,
+    overwrite: bool,
 ) -> None:
     """`impact bench speed`: µs per impact after compile, accuracy, compile time and the split
     build / integrate / post-process of every workload; writes speed.csv and speed.png."""
@@ -40,13 +46,15 @@ def run_bench_speed(
             refuse_value("--points", value, "be >= 1")
     if repeats < 1:
         refuse_value("--repeats", repeats, "be >= 1")
+    if chunk is not None and chunk < 1:
+        refuse_value("--chunk", chunk, "be >= 1")
     keys = [workload.key for workload in workloads(quick=False)]
     for key in only:
         if key not in keys:
             refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
-    plan = speed_plan(quick=quick, points=tuple(points), only=tuple(only), repeats=repeats)
+    plan = speed_plan(quick=quick, points=tuple(points), only=tuple(only), repeats=repeats, chunk=chunk)
     rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
-    # Eleven columns: printed 160 wide whatever the terminal (rich cannot widen `out` per print,
+    # Twelve columns: printed 160 wide whatever the terminal (rich cannot widen `out` per print,
     # and a narrower table truncates every number); the CSV holds the same rows.
     Console(width=max(out.width, 160), highlight=False).print(speed_table(rows))
 
@@ -72,10 +80,12 @@ def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path],
 
 def speed_table(rows: list[dict]) -> Table:
     """The rows of `impact bench speed` as a rich table."""
-    table = Table(title="What a point costs (µs per impact after compile, median)")
+    device = f" on {rows[0]['device']}" if rows else ""
+    table = Table(title=f"What a point costs{device} (µs per impact after compile, median)")
     for heading in (
         "workload",
         "points",
+        "chunk",
         "µs/impact",
         "min–max",
         "max error",
@@ -91,14 +101,20 @@ def speed_table(rows: list[dict]) -> Table:
         table.add_row(
             row["workload"],
             str(row["points"]),
-            f"{row['us_per_impact_median']:.1f}",
-            f"{row['us_min']:.0f}–{row['us_max']:.0f}",
+            str(row["chunk"]),
+            _microseconds(row["us_per_impact_median"]),
+            f"{_microseconds(row['us_min'])}–{_microseconds(row['us_max'])}",
             f"{row['max_error']:.1e}",
             row["error_reference"],
             f"{row['compile_s']:.1f}",
-            f"{row['build_us']:.1f}",
-            f"{row['integrate_us']:.1f}",
-            f"{row['post_us']:.1f}",
+            _microseconds(row["build_us"]),
+            _microseconds(row["integrate_us"]),
+            _microseconds(row["post_us"]),
             f"{row['steps_mean']:.0f}",
         )
     return table
+
+
+def _microseconds(value: float) -> str:
+    """A time in µs to a tenth above 10 µs, else to three digits (a GPU's fraction of a µs)."""
+    return f"{value:.1f}" if value >= 10 else f"{value:.3g}"

@@ -10,7 +10,7 @@ from typing import Annotated
 
 import typer
 
-from .._core.defaults import DEFAULT_CHUNK, SPEED_REPEATS
+from .._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK, SPEED_REPEATS
 from .console import FlagHelpCommand, FlagHelpGroup
 from .settings import configured
 
@@ -93,7 +93,11 @@ SweepFolder = Annotated[
 ]
 Chunk = Annotated[
     int | None,
-    typer.Option("--chunk", help=f"points per compiled call (default: {DEFAULT_CHUNK})", show_default=False),
+    typer.Option(
+        "--chunk",
+        help=f"points per compiled call (default: {DEFAULT_CHUNK} on CPU, {ACCELERATOR_CHUNK} per GPU)",
+        show_default=False,
+    ),
 ]
 Devices = Annotated[
     int | None,
@@ -221,6 +225,14 @@ Only = Annotated[
     list[str] | None, typer.Option("--only", help="run only this workload (its key), repeatable", show_default=False)
 ]
 Repeats = Annotated[int, typer.Option("--repeats", help="timed runs per row (the median is shown)")]
+SpeedChunk = Annotated[
+    int | None,
+    typer.Option(
+        "--chunk",
+        help=f"points per compiled call (default: the sweep's, {DEFAULT_CHUNK} on CPU, {ACCELERATOR_CHUNK} per GPU)",
+        show_default=False,
+    ),
+]
 
 
 def bench_command(
@@ -243,6 +255,7 @@ def bench_speed_command(
     points: Points = None,
     only: Only = None,
     repeats: Repeats = SPEED_REPEATS,
+    chunk: SpeedChunk = None,
     output: BenchFolder = None,
     overwrite: BenchOverwrite = False,
 ) -> None:
@@ -250,4 +263,4 @@ def bench_speed_command(
     configured(ctx)
     from .bench import run_bench_speed
 
-    run_bench_speed(quick, points or [], only or [], repeats, output, overwrite)
+    run_bench_speed(quick, points or [], only or [], repeats, chunk, output, overwrite)

@@ -34,13 +34,12 @@ from rich.progress import (
 )
 from rich.text import Text
 
-from .._core.defaults import DEFAULT_CHUNK
 from .._io import sweep as sweep_store
 from .._io.sweep_journal import SweepWriter, journal_state
 from .._plots.figures import import_ahead
 from .._plots.sweep import save_restitution_figure
 from .._plots.sweep_losses import save_losses_figure
-from .._run.sweep import Plan, SweepResult, execute, local_devices, plan_sweep, sticking_estimates
+from .._run.sweep import Plan, SweepResult, default_chunk, execute, local_devices, plan_sweep, sticking_estimates
 from .._run.sweep import Progress as SweepProgress
 from .._scene.errors import SceneError, SweepError
 from .._scene.sweep import load_sweep
@@ -115,7 +114,7 @@ def run_sweep(
         refuse("devices", error.problems)
     if stored_chunk is not None and chunk is not None and chunk != stored_chunk:
         say(f"note: resuming with the stored chunk size {stored_chunk}, not --chunk {chunk}")
-    chunk = stored_chunk or chunk or DEFAULT_CHUNK
+    chunk = stored_chunk or chunk or default_chunk(device_list)
     plan = plan_sweep(spec)
     expected = sum(len(points) for points in plan.share(*share))
     writer = _writer(path, plan, resume, overwrite, expected=expected, chunk=chunk, share=share)

@@ -25,7 +25,7 @@ def invoke(*args: str):
 def tiny(tmp_path_factory):
     folder = tmp_path_factory.mktemp("speed") / "tiny"
     options = [f"--points={n}" for n in POINTS] + [f"--only={key}" for key in ONLY]
-    result = invoke(*options, "--repeats", "3", "-o", str(folder))
+    result = invoke(*options, "--repeats", "3", "--chunk", "64", "-o", str(folder))
     rows = list(csv.DictReader((folder / "speed.csv").open())) if result.exit_code == 0 else []
     return folder, result, rows
 
@@ -40,6 +40,7 @@ def test_one_row_per_workload_and_points_count(tiny):
         assert 0 < float(row["us_min"]) <= float(row["us_per_impact_median"]) <= float(row["us_max"]), row
         assert row["error_reference"] == CLOSED_FORM
         assert float(row["steps_mean"]) > 0 and float(row["peak_rss_mb"]) > 0
+        assert (row["chunk"], row["device"]) == ("64", "cpu"), row
     assert (folder / "speed.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "What a point costs" in result.output and "springs256" in result.output
 
@@ -76,6 +77,7 @@ def test_split_parts_add_up_to_timed_calls(tiny):
     [
         (["--points", "0"], "--points"),
         (["--repeats", "0"], "--repeats"),
+        (["--chunk", "0"], "--chunk"),
         (["--only", "nothing"], "--only"),
     ],
 )

@@ -11,6 +11,7 @@ from typer.testing import CliRunner
 
 import impact
 from impact._scene import sweep_points
+from impact._scene.paths import assign
 from impact._scene.sweep import load_sweep
 from impact.cli import app
 
@@ -109,27 +110,41 @@ def test_a_run_without_compressive_force_says_so(tmp_path):
     assert "unbounded_contact" in result.output
 
 
+SWEPT_REFUSALS = {
+    # the body pressed in deeper than its size (the energetic depth against R)
+    "depth": ("thornton_ning.yaml", "initial.velocity", [1.0, 1e4, 2.0, 5e3, 3e3, 2e3, 1.5e3, 3.0]),
+    # the adhesion below what float64 resolves against the impact (the units' ratio)
+    "adhesion": ("thornton_ning.yaml", "effects.adhesion.work_of_adhesion", [0.05, 1e-28, 1e-20, 1e-30, 1e-27]),
+    # a yielding body pressed in deeper than its radius (Thornton's closed form, checked alone)
+    "plastic": ("plastic_steel.yaml", "initial.velocity", [10.0, 1e3, 100.0, 2e3]),
+    # a combination: the depth of a heavy body, at each of its velocities
+    "mass": ("thornton_ning.yaml", "body.mass", [1e-14, 1e6, 1e-13, 10.0]),
+}
+
+
 @pytest.mark.parametrize("pending", [None, 3])
-def test_sweep_points_are_refused_as_their_scenes_are(pending, monkeypatch):
+@pytest.mark.parametrize("case", sorted(SWEPT_REFUSALS))
+def test_sweep_points_are_refused_as_their_scenes_are(case, pending, monkeypatch):
     """The sweep checks representability in batches (all the points at once, or 3 at a time as
-    a long sweep does): each invalid point gets the message its scene alone gets, the points
-    listed in order and the rest counted."""
+    a long sweep does), passing the points whose units pass every check together: each invalid
+    point gets the message its scene alone gets, the points listed in order and the rest counted."""
     if pending is not None:
         monkeypatch.setattr(sweep_points, "_PENDING", pending)
-    velocities = [1.0, 1e4, 2.0, 5e3, 3e3, 2e3, 1.5e3, 3.0]
-    spec = {"scene": str(THORNTON_NING), "axes": {"initial.velocity": velocities}, "order": "given"}
-    with pytest.raises(impact.SceneError) as error:
-        load_sweep(spec)
-    (path, message), *_ = error.value.problems
-    assert path == "axes.initial.velocity"
+    config, path, values = SWEPT_REFUSALS[case]
+    spec = {"scene": str(CONFIGS / config), "axes": {path: values}, "order": "given"}
     expected = []
-    for velocity in velocities:
-        data = yaml.safe_load(THORNTON_NING.read_text())
-        data["initial"]["velocity"] = velocity
+    for value in values:
+        data = yaml.safe_load((CONFIGS / config).read_text())
+        assign(data, path.split("."), value)
         try:
             impact.load_scene(data)
         except impact.SceneError as refusal:
             (field, why), *_ = refusal.problems
-            expected.append(f"value {velocity!r} makes the scene invalid: {field}: {why}")
-    assert len(expected) == 5
-    assert message == "; ".join(expected[:4]) + "; and 1 more invalid points"
+            expected.append(f"value {value!r} makes the scene invalid: {field}: {why}")
+    assert 0 < len(expected) < len(values)
+    with pytest.raises(impact.SceneError) as error:
+        load_sweep(spec)
+    (where, message), *_ = error.value.problems
+    assert where == f"axes.{path}"
+    more = f"; and {len(expected) - 4} more invalid points" if len(expected) > 4 else ""
+    assert message == "; ".join(expected[:4]) + more

@@ -35,6 +35,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import jax
 import numpy as np
 import pytest
 
@@ -176,6 +177,13 @@ def test_a_configured_process_compiles_one_scene_for_latency_and_a_sweeps_batche
     assert ELEMENTAL_EMITTERS_FLAG in os.environ["XLA_FLAGS"].split()
     assert compiler_options(batch=True) == {**compiler_options(), **BATCH_EMITTERS}
     assert BATCH_EMITTERS == {"xla_cpu_use_fusion_emitters": True}
+
+
+def test_a_gpu_compiles_without_the_cpu_options(monkeypatch):
+    """The options are XLA:CPU's; a GPU's compiler refuses a name it does not know ("No such
+    compile option: 'xla_cpu_use_fusion_emitters'", seen on an H100 on 2026-11-27)."""
+    monkeypatch.setattr(jax, "default_backend", lambda: "gpu")
+    assert compiler_options() == {} and compiler_options(batch=True) == {}
 
 
 @pytest.mark.skipif(not HAS_FMA, reason="needs an x86-64 CPU with FMA")

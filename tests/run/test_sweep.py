@@ -14,6 +14,7 @@ import subprocess
 import sys
 import threading
 import time
+import types
 from pathlib import Path
 
 import h5py
@@ -24,12 +25,13 @@ import yaml
 from typer.testing import CliRunner
 
 from impact import simulate, theory
+from impact._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK
 from impact._io.sweep import create_sweep_file
 from impact._io.sweep_journal import SweepWriter, journal_folder, journal_rows, npz_bytes
 from impact._plots.sweep import restitution_figure
 from impact._run.sweep import empty_results, plan_sweep, result_names, sticking_estimates, sweep
 from impact._run.sweep.closed_forms import sticking_velocity
-from impact._run.sweep.execute import chunks_of
+from impact._run.sweep.execute import chunks_of, default_chunk
 from impact._scene.errors import SweepError
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
@@ -192,6 +194,15 @@ def test_static_fields_form_groups_and_points_are_ordered_by_cost():
     # chunks: 9 points at chunk 4 → 3 calls of 3 (not 4, 4, 1); a resumed run skips whole chunks
     assert [len(p) for _, p in chunks_of([np.arange(9)], 4)] == [3, 3, 3]
     assert [list(p) for _, p in chunks_of([np.arange(9)], 4, skip=3)] == [[3, 4, 5], [6, 7, 8]]
+
+
+def test_the_default_chunk_fills_a_gpu():
+    """On CPU devices calls of about 1000 points run fastest; a GPU's loop iterations cost
+    their launches whatever the batch, so each GPU takes ACCELERATOR_CHUNK points a call (on an
+    H100 a Thornton–Ning point cost 4.8 µs in calls of 10⁴ and 0.86 µs in calls of 131 072)."""
+    assert default_chunk(jax.local_devices()) == DEFAULT_CHUNK == 1000
+    gpus = [types.SimpleNamespace(platform="gpu", id=i) for i in range(2)]
+    assert default_chunk(gpus[:1]) == ACCELERATOR_CHUNK and default_chunk(gpus) == 2 * ACCELERATOR_CHUNK
 
 
 def test_numpy_sticking_velocities_match_the_theory_module():

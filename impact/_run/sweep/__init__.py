@@ -28,13 +28,14 @@ How it runs:
 
 from .batch import local_devices
 from .closed_forms import closed_form_name, closed_form_restitution, sticking_velocity
-from .execute import DEFAULT_CHUNK, Progress, execute, run_spec, sweep
+from .execute import DEFAULT_CHUNK, Progress, default_chunk, execute, run_spec, sweep
 from .plan import Plan, batch_physics, plan_sweep
 from .result import RESULTS, SweepResult, empty_results, result_names
 from .theory_curves import VELOCITY, closed_form_names, sticking_estimates, theory_curve
 
 __all__ = [
     "DEFAULT_CHUNK",
+    "default_chunk",
     "RESULTS",
     "VELOCITY",
     "Plan",
