@@ -20,7 +20,8 @@ For each workload × points count:
   impact: build, integrate = the second − the first, post-process = the third − the second (the
   SI results and the closed form). Noise can make a difference slightly negative: it is
   reported as measured.
-- the mean solver steps, and the peak RSS of the process so far (`resource.getrusage`).
+- the mean solver steps, the peak RSS of the process so far (`resource.getrusage`) and, on
+  GPUs, the most memory a device has held so far.
 
 Results are reduced chunk by chunk (nothing of size N is kept besides the plan's inputs), so a
 10⁶-point sweep runs in the memory of its plan.
@@ -67,6 +68,7 @@ COLUMNS = (
     "chunk",
     "device",
     "peak_rss_mb",
+    "device_peak_mb",
 )
 
 
@@ -83,10 +85,12 @@ def run(folder: str | Path, plan: SpeedPlan, log: Callable[[str], None] = print)
         for points in counts:
             row = measure(workload, points, plan.repeats, plan.chunk)
             rows.append(row)
+            device = row["device_peak_mb"]
             log(
                 f"[{time.perf_counter() - start:4.0f} s] {workload.key} × {points}: "
-                f"{row['us_per_impact_median']:.1f} µs per impact, error {row['max_error']:.1e} "
+                f"{row['us_per_impact_median']:.3g} µs per impact, error {row['max_error']:.1e} "
                 f"({row['error_reference']}), compile {row['compile_s']:.1f} s, peak RSS {row['peak_rss_mb']:.0f} MB"
+                + (f", device peak {device:.0f} MB" if math.isfinite(device) else "")
             )
     write_text(folder / "speed.csv", speed_csv(rows))
     save_speed_figure(folder / "speed.png", rows)
@@ -122,6 +126,7 @@ def measure(workload: Workload, points: int, repeats: int, chunk: int | None = N
         "chunk": first["chunk"],
         "device": device_name(),
         "peak_rss_mb": peak_rss_mb(),
+        "device_peak_mb": device_peak_mb(),
     }
 
 
@@ -233,6 +238,14 @@ def peak_rss_mb() -> float:
     """Peak resident memory of this process so far, MB (ru_maxrss: kB on Linux, bytes on macOS)."""
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     return peak / (2**20 if sys.platform == "darwin" else 2**10)
+
+
+def device_peak_mb() -> float:
+    """The most memory any local accelerator has held so far, MB (its allocator's
+    peak_bytes_in_use); nan on CPU devices, which keep no such count (memory_stats() is None)."""
+    stats = [device.memory_stats() or {} for device in local_devices()]
+    peaks = np.array([stat.get("peak_bytes_in_use", np.nan) for stat in stats], np.float64)
+    return float(peaks.max()) / 2**20  # nan where a device keeps no count
 
 
 def speed_csv(rows: list[dict]) -> str:

@@ -40,7 +40,7 @@ def test_one_row_per_workload_and_points_count(tiny):
         assert 0 < float(row["us_min"]) <= float(row["us_per_impact_median"]) <= float(row["us_max"]), row
         assert row["error_reference"] == CLOSED_FORM
         assert float(row["steps_mean"]) > 0 and float(row["peak_rss_mb"]) > 0
-        assert (row["chunk"], row["device"]) == ("64", "cpu"), row
+        assert (row["chunk"], row["device"], row["device_peak_mb"]) == ("64", "cpu", "nan"), row
     assert (folder / "speed.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "What a point costs" in result.output and "springs256" in result.output
 
@@ -115,6 +115,24 @@ def test_plans():
     assert "md" not in quick and "gravity" not in quick and "tn" in quick
     assert {counts for _, counts in speed_plan(points=(10**6,), only=("tn",)).runs()} == {(10**6,)}
     assert {w.reference for w in workloads() if w.key in ("md", "gravity", "gj")} == {TIGHTER}
+
+
+def test_the_device_peak_is_the_most_any_gpu_held(monkeypatch):
+    """On GPUs the row reports the most memory a device's allocator has held (MB); a device
+    that keeps no count (a CPU: memory_stats() is None) leaves it nan."""
+
+    class Device:
+        def __init__(self, stats):
+            self.stats = stats
+
+        def memory_stats(self):
+            return self.stats
+
+    gpus = [Device({"peak_bytes_in_use": 3 * 2**20}), Device({"peak_bytes_in_use": 5 * 2**20})]
+    monkeypatch.setattr(speed, "local_devices", lambda: gpus)
+    assert speed.device_peak_mb() == 5.0
+    monkeypatch.setattr(speed, "local_devices", lambda: [*gpus, Device(None)])
+    assert np.isnan(speed.device_peak_mb())
 
 
 def test_reduction_counts_a_failed_point_as_infinite_error():
