@@ -202,10 +202,14 @@ def _rows(file: h5py.File) -> tuple[np.ndarray, dict, dict]:
     return index, params, results
 
 
-def read_sweep(path: Path) -> SweepResult:
+def read_sweep(path: Path, spec: SweepSpec | None = None) -> SweepResult:
     """A stored sweep (or shard) as a SweepResult in the sweep's shape; points not in the file
-    have status -1 and NaN results. `stats` holds the file's attributes (rows, complete, ...)."""
-    spec = read_spec(path)
+    have status -1 and NaN results. `stats` holds the file's attributes (rows, complete, ...).
+
+    `spec`: the sweep the caller has just written the file from (`impact sweep`): its points
+    are then not validated again, which took about 20 s for 10⁶ points."""
+    if spec is None:
+        spec = read_spec(path)
     with _open_sweep(path) as file:
         index, _, stored = _rows(file)
         attributes = {key: _plain(value) for key, value in file["sweep"].attrs.items()}

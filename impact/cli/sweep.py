@@ -130,7 +130,7 @@ def run_sweep(
     if share[1] > 1:
         say(f"shard {share[0]} of {share[1]} written to {path}; join the shards with `impact merge`")
         return
-    result = sweep_store.read_sweep(path)
+    result = sweep_store.read_sweep(path, spec)
     _save_figures(result, folder)
     _print_summary(result, stats, f"sweep written to {folder}")
 

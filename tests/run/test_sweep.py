@@ -26,12 +26,13 @@ from typer.testing import CliRunner
 
 from impact import simulate, theory
 from impact._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK
-from impact._io.sweep import create_sweep_file
+from impact._io.sweep import create_sweep_file, read_sweep
 from impact._io.sweep_journal import SweepWriter, journal_folder, journal_rows, npz_bytes
 from impact._plots.sweep import restitution_figure
 from impact._run.sweep import empty_results, plan_sweep, result_names, sticking_estimates, sweep
 from impact._run.sweep.closed_forms import sticking_velocity
 from impact._run.sweep.execute import chunks_of, default_chunk
+from impact._scene import sweep as scene_sweep
 from impact._scene.errors import SweepError
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
@@ -462,6 +463,23 @@ def test_two_processes_write_shards_that_merge_into_the_single_process_file(grid
     columns = h5_columns(tmp_path / "merged.h5")
     flat = {name: columns[f"results/{name}"][np.argsort(columns["index"])] for name in grid.results}
     assert_same(flat, {name: column.reshape(-1) for name, column in grid.results.items()}, names=tuple(flat))
+
+
+def test_the_command_checks_its_points_once(grid, tmp_path, monkeypatch):
+    """`impact sweep` validates its points once: reading back the file it has just written
+    takes the spec it holds (checking 10⁶ points as scenes takes about 20 s). Read without
+    it, the file is validated again and gives the same results."""
+    checked = []
+    check_points = scene_sweep.check_points
+    monkeypatch.setattr(scene_sweep, "check_points", lambda spec: (checked.append(spec.size), check_points(spec))[1])
+    sweep_file = tmp_path / "grid.yaml"
+    sweep_file.write_text(yaml.safe_dump({"scene": str(THORNTON_NING), "axes": GRID}, sort_keys=False))
+    result = invoke("sweep", sweep_file, "-o", tmp_path / "out", "--chunk", CHUNK)
+    assert result.exit_code == 0, result.output
+    assert checked == [8]
+    stored = read_sweep(tmp_path / "out" / "sweep.h5")
+    assert checked == [8, 8]
+    assert_same(stored.results, grid.results)
 
 
 def test_the_journal_recovers_what_a_kill_inside_a_write_breaks(tmp_path):
