@@ -120,6 +120,8 @@ SWEPT_REFUSALS = {
     "plastic": ("plastic_steel.yaml", "initial.velocity", [10.0, 1e3, 100.0, 2e3]),
     # a combination: the depth of a heavy body, at each of its velocities
     "mass": ("thornton_ning.yaml", "body.mass", [1e-14, 1e6, 1e-13, 10.0]),
+    # a swept profile: built point by point, its size the swept radius
+    "radius": ("thornton_ning.yaml", "body.profile.R", [1e-6, 1e-9, 2e-6, 1e-8, 1e-5]),
 }
 
 
