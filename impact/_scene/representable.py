@@ -177,12 +177,11 @@ def passes(values: dict[str, np.ndarray], depth: np.ndarray, limits: Sequence[Li
     checks); a scene marked False is one to check alone (`check_units` names the problem)."""
     flat = np.fromiter(itertools.chain.from_iterable(limits), np.float64, count=len(limits) * len(Limits._fields))
     work, E_star, size = flat.reshape(len(limits), len(Limits._fields)).T
-    low, high = UNIT_RANGE
     fine = np.ones(len(depth), bool)
     for column in values.values():
-        fine &= np.isfinite(column) & (low <= column) & (column <= high)
+        fine &= _within_unit_range(column)
     with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.sqrt(2.0 * math.pi * values["radial"] * work / E_star) / values["normal"]
+        ratio = _detachment_ratio(values, work, E_star)
     fine &= np.isnan(work) | (ratio >= RESOLVABLE)
     return fine & (depth <= size)  # nan (a yielding body) compares False
 
@@ -219,10 +218,21 @@ def check_units(scene, units: Units) -> None:
         _check_depth(scene, units.energetic_depth, _fall(scene))
 
 
-def _check_units(values: dict[str, float]) -> None:
+def _within_unit_range(unit):
+    """Whether a unit (SI; a number or an array of them) is finite and within UNIT_RANGE."""
     low, high = UNIT_RANGE
+    return np.isfinite(unit) & (low <= unit) & (unit <= high)
+
+
+def _detachment_ratio(values, work_of_adhesion, E_star):
+    """The detachment length at the contact radius unit over the indentation unit,
+    √(2π·ℓx·Δγ/E*)/ℓz (units `values` by name; numbers or arrays of them)."""
+    return np.sqrt(2.0 * math.pi * values["radial"] * work_of_adhesion / E_star) / values["normal"]
+
+
+def _check_units(values: dict[str, float]) -> None:
     for name, value in values.items():
-        if not (math.isfinite(value) and low <= value <= high):
+        if not _within_unit_range(value):
             raise FieldProblem(
                 "body",
                 f"the scene's {name} unit {value:g} (SI) is outside the allowed range [1e-150, 1e150]: the "
@@ -233,7 +243,7 @@ def _check_units(values: dict[str, float]) -> None:
 def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) -> None:
     """The detachment length at the contact radius unit must reach RESOLVABLE of the indentation
     unit; it grows as √Δγ, so the least Δγ follows from the ratio."""
-    ratio = math.sqrt(2.0 * math.pi * values["radial"] * adhesion.work_of_adhesion / E_star) / values["normal"]
+    ratio = float(_detachment_ratio(values, adhesion.work_of_adhesion, E_star))
     if ratio >= RESOLVABLE:
         return
     least = adhesion.work_of_adhesion * (RESOLVABLE / ratio) ** 2

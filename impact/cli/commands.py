@@ -225,14 +225,6 @@ Only = Annotated[
     list[str] | None, typer.Option("--only", help="run only this workload (its key), repeatable", show_default=False)
 ]
 Repeats = Annotated[int, typer.Option("--repeats", help="timed runs per row (the median is shown)")]
-SpeedChunk = Annotated[
-    int | None,
-    typer.Option(
-        "--chunk",
-        help=f"points per compiled call (default: the sweep's, {DEFAULT_CHUNK} on CPU, {ACCELERATOR_CHUNK} per GPU)",
-        show_default=False,
-    ),
-]
 
 
 def bench_command(
@@ -255,7 +247,7 @@ def bench_speed_command(
     points: Points = None,
     only: Only = None,
     repeats: Repeats = SPEED_REPEATS,
-    chunk: SpeedChunk = None,
+    chunk: Chunk = None,
     output: BenchFolder = None,
     overwrite: BenchOverwrite = False,
 ) -> None:
