@@ -248,7 +248,9 @@ def sweep(
     Returns every scalar result as an array in the sweep's shape, with the chapter's closed-form
     restitution where it has one, each named loss of the scene's effects (plastic work, viscous
     work, adhesion hysteresis, unrecovered elastic energy) and, with a counterpart, both bodies'
-    lab velocities. Raises SweepError (a SceneError: `.problems` names each bad field) before
-    running anything. Enable float64 first (`jax.config.update("jax_enable_x64",
+    lab velocities. `chunk`: points per compiled call (None: 1000 on CPU devices, 131 072 per
+    GPU); `devices`: how many of the local devices (or which) each chunk is sharded over (None:
+    all). Raises SweepError (a SceneError: `.problems` names each bad field) before running
+    anything. Enable float64 first (`jax.config.update("jax_enable_x64",
     True)`)."""
     return run_spec(make_spec(scene, axes, mode, order), chunk=chunk, devices=devices, progress=progress)
