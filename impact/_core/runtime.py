@@ -46,18 +46,22 @@ BATCH_EMITTERS = {"xla_cpu_use_fusion_emitters": True}
 
 @functools.cache
 def contracts_multiply_adds() -> bool:
-    """Whether this process's XLA fuses a·b + c into one rounding (FMA): with a = 1 + 2⁻³⁰ and
-    b = 1 − 2⁻³⁰, a·b = 1 − 2⁻⁶⁰ rounds to 1, so a·b − 1 is 0 unfused and −2⁻⁶⁰ fused."""
+    """Whether this process's XLA:CPU fuses a·b + c into one rounding (FMA): with a = 1 + 2⁻³⁰
+    and b = 1 − 2⁻³⁰, a·b = 1 − 2⁻⁶⁰ rounds to 1, so a·b − 1 is 0 unfused and −2⁻⁶⁰ fused.
+    Probed on the CPU, also where the default device is a GPU."""
     with jax.enable_x64(True):
-        a, b, c = jnp.float64(1 + 2**-30), jnp.float64(1 - 2**-30), jnp.float64(-1.0)
+        values = (jnp.float64(1 + 2**-30), jnp.float64(1 - 2**-30), jnp.float64(-1.0))
+        a, b, c = jax.device_put(values, jax.devices("cpu")[0])
         return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
 
 
-def compiler_options(batch: bool = False) -> dict[str, int | bool]:
+def compiler_options(batch: bool = False, platform: str | None = None) -> dict[str, int | bool]:
     """XLA options of a compiled impact program: scalar lanes where this process fuses
     multiply–adds (see `NO_FMA_FLAG`); for a sweep's batch (every program that computes a sweep's
-    points: `batch=True`), XLA's fusion emitters (see `ELEMENTAL_EMITTERS_FLAG`)."""
-    if jax.default_backend() != "cpu":
+    points: `batch=True`), XLA's fusion emitters (see `ELEMENTAL_EMITTERS_FLAG`). `platform`:
+    that of the devices the program runs on ("cpu", "gpu", ...; default: JAX's default backend),
+    e.g. a sweep's batch given CPU devices on a machine whose default device is a GPU."""
+    if (platform or jax.default_backend()) != "cpu":
         return {}  # XLA:CPU's options: a GPU's compiler refuses them ("No such compile option")
     lanes = SCALAR_LANES if contracts_multiply_adds() else {}
     return {**lanes, **BATCH_EMITTERS} if batch else dict(lanes)

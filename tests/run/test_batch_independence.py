@@ -49,6 +49,7 @@ from impact._core.runtime import (
     compiler_options,
     contracts_multiply_adds,
 )
+from impact._run.sweep import batch as batch_module
 from impact._run.sweep import sweep
 from impact._run.sweep.execute import _call_sizes
 from impact._run.sweep.plan import plan_sweep
@@ -184,6 +185,22 @@ def test_a_gpu_compiles_without_the_cpu_options(monkeypatch):
     compile option: 'xla_cpu_use_fusion_emitters'", seen on an H100 on 2026-11-27)."""
     monkeypatch.setattr(jax, "default_backend", lambda: "gpu")
     assert compiler_options() == {} and compiler_options(batch=True) == {}
+
+
+def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
+    """A batch given CPU devices on a machine whose default device is a GPU still compiles with
+    XLA:CPU's options, and one on GPUs without them."""
+    on_cpu = compiler_options(batch=True)  # this process's default device is its CPU
+    assert BATCH_EMITTERS.items() <= on_cpu.items()
+    monkeypatch.setattr(jax, "default_backend", lambda: "gpu")
+    assert compiler_options(batch=True, platform="cpu") == on_cpu
+    assert compiler_options(batch=True, platform="gpu") == {}
+    compiled_with = []
+    monkeypatch.setattr(batch_module, "_COMPILED", {})  # nothing kept for later tests
+    monkeypatch.setattr(batch_module, "compile_stored", lambda *arguments: compiled_with.append(arguments[-1]))
+    plan = plan_sweep(make_spec(load_scene(CONFIGS / "thornton_ning.yaml"), {"initial.velocity": [0.5, 1.0]}))
+    batch_module.compiled_batch(plan.choices[0], plan.physics, 2, jax.devices("cpu")[:1])
+    assert compiled_with == [on_cpu]
 
 
 @pytest.mark.skipif(not HAS_FMA, reason="needs an x86-64 CPU with FMA")

@@ -124,7 +124,8 @@ def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices:
     abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
     label = f"{__name__}.compiled_batch {choices!r}"
     batch = jax.tree.unflatten(treedef, abstract)
-    compiled = compile_stored(jax.vmap(point_function(choices)), label, batch, compiler_options(batch=True))
+    options = compiler_options(batch=True, platform=devices[0].platform)
+    compiled = compile_stored(jax.vmap(point_function(choices)), label, batch, options)
     _COMPILED[key] = compiled
     return compiled, time.perf_counter() - start
 
