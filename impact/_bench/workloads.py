@@ -25,6 +25,7 @@ DUGDALE_STRESS = 3.7411019e7
 BEAD = dict(R=1.0e-3, density=2500.0, E_star=1.0e10, work_of_adhesion=0.1, gap=1.5e-7, g=9.81)
 POWER3_C = RADIUS**-2 / 2.0  # f = c·r³ through the paraboloid's f at r = R
 BEAD_VELOCITIES = (1e-4, 2e-3)  # m/s at the start, 0.15 µm up: touch speeds 1.7–2.6 mm/s
+ENERGY_RTOL = 1e-6  # rtol of the Thornton–Ning workload whose phase ends come from the energy
 
 
 @dataclass(frozen=True)
@@ -79,7 +80,7 @@ def workloads(quick: bool = False) -> list[Workload]:
     )
     if quick:
         return [*light, attach, *(spring_array(n) for n in (64, 1024))]
-    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s)]
+    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s), _energy_ends(v_s)]
     return [*light, *heavy, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
 
 
@@ -96,6 +97,15 @@ def _double_hertz(v_s: float) -> Workload:
     scene = case_scene("greenwood_johnson", dict(shape="paraboloid", R=RADIUS), v_s)
     scene["effects"]["adhesion"] = dict(model="greenwood_johnson", work_of_adhesion=WORK_OF_ADHESION, k=10.0)
     return Workload("gj", "Greenwood–Johnson k=10", scene, _range(v_s), TIGHTER)
+
+
+def _energy_ends(v_s: float) -> Workload:
+    """Thornton–Ning with each phase's end from its energy balance (`solver.phase_ends: energy`):
+    the restitution exact at any rtol, so a restitution sweep can take rtol ENERGY_RTOL (its contact
+    time then good to about 1e-6)."""
+    scene = case_scene("tn_energy", dict(shape="paraboloid", R=RADIUS), v_s)
+    scene["solver"] = dict(rtol=ENERGY_RTOL, atol=ENERGY_RTOL / 100.0, phase_ends="energy")
+    return Workload("tn_energy", f"Thornton–Ning, energy ends, rtol {ENERGY_RTOL:g}", scene, _range(v_s), CLOSED_FORM)
 
 
 def _bead() -> Workload:

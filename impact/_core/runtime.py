@@ -51,7 +51,7 @@ def contracts_multiply_adds() -> bool:
     Probed on the CPU, also where the default device is a GPU."""
     with jax.enable_x64(True):
         values = (jnp.float64(1 + 2**-30), jnp.float64(1 - 2**-30), jnp.float64(-1.0))
-        a, b, c = jax.device_put(values, jax.devices("cpu")[0])
+        a, b, c = jax.device_put(values, jax.local_devices(backend="cpu")[0])
         return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
 
 

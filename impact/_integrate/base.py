@@ -34,6 +34,10 @@ SOLVERS = {
     "kvaerno5": "Kvaerno5",
 }
 
+# Where a contact phase's end state comes from (`impact._integrate.continuum`): the solver's
+# dense output at the located event, or the phase's energy balance.
+PHASE_ENDS = ("integrated", "energy")
+
 # How a ride is differentiated: diffrax's default (reverse mode through checkpoints), or
 # forward mode (`jax.jvp`, `jax.jacfwd`); each fails under the other kind of derivative.
 ADJOINTS = {"checkpoint": "RecursiveCheckpointAdjoint", "forward": "ForwardMode"}

@@ -20,6 +20,13 @@ in contact adds to F, and a fourth state integrates its work, w' = F_v·v·t'. W
 contact then ends where the total force returns to zero while unloading (the body leaves faster
 than the surface recovers; Schwager & Pöschel, Phys. Rev. E 78, 051304 (2008)); with adhesion
 the rule of Heß still decides detachment from the elastic state.
+
+With `phase_ends="energy"` (undamped only) the end of a phase ridden on a branch or held comes
+from the energy balance of the phase, ½v² = ½v₀² − ∫F dd + g·(d − d₀) (the work in closed form or
+by quadrature: `work.branch_work`, `work.hold_work`), instead of from the solver's dense output
+at the located event: at a segment end or the end of a hold the speed, at a turnaround the
+radius (Newton on v² = 0). The restitution and the deepest indentation are then exact to
+round-off at any tolerance; the times still come from the solver.
 """
 
 import equinox as eqx
@@ -31,13 +38,13 @@ from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import Next
-from .work import ContactSummary, active_branch, extremes, phase_summary
+from .work import ContactSummary, active_branch, branch_work, extremes, hold_work, phase_summary
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
@@ -48,10 +55,18 @@ _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # solver failure. Such a creep is stiff: tsit5 uses up max_steps near 1e-4 of the touch speed,
 # an implicit method (kvaerno5) gets to rest.
 _CREEP = 1e-3
+# Newton steps from the located turnaround radius (within ~rtol of the root) to round-off.
+_TURNAROUND_NEWTON = 3
 
 
 class Continuum(AbstractAdaptiveIntegrator):
     """The continuum MDR law (N → ∞ springs), phase by phase with an adaptive diffrax solver."""
+
+    phase_ends: str = eqx.field(default="integrated", static=True)  # a key of PHASE_ENDS
+
+    def __check_init__(self):
+        if self.phase_ends not in PHASE_ENDS:
+            raise ValueError(f"unknown phase_ends {self.phase_ends!r}; known: {', '.join(PHASE_ENDS)}")
 
     def build(self, physics: Physics, options: Options) -> Problem:
         return build_problem(physics, options)
@@ -228,6 +243,9 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     x_end, v_end, t_end = y_end[0], y_end[1], y_end[2]
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
+    if integrator.phase_ends == "energy":
+        held = (c.mode == HOLD) & ~riding
+        x_end, v_end = _energy_end(problem, args, c, (x_end, v_end), event_found & ~out_of_time, held, turned)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
@@ -272,3 +290,39 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
         leaves, transitions.next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True), transitions.capture()
     )
     return summary, where(released, release, nxt)
+
+
+def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, held, turned):
+    """(x, v) at the end of an undamped phase from its energy balance, v² = v₀² − 2∫F dd + 2g·Δd
+    (unit mass in the scaled units); `located` = (x, v) from the solver's dense output, kept
+    where the phase did not end at a located event (`ended`) or neither rides a branch nor holds.
+
+    Riding: at a segment end (x, the radius, is the node) v takes the sign of the located one; at
+    a turnaround v = 0 and the radius is the root of v² = 0, by Newton from the located one (within
+    the solver's tolerance of it), with d(v²)/da = 2(g − F)·h'(a), kept inside the segment. A hold
+    ends at its detach depth (x, the depth, is `args.level`); a turnaround there is a capture,
+    left as located.
+    """
+    x_located, v_located = located
+    law, branch, gravity = problem.law, args.branch, problem.gravity
+
+    def squared_speed(radius):
+        ridden = branch_work(law, branch, c.radius, radius)
+        return c.v**2 - 2.0 * ridden + 2.0 * gravity * (branch.level(law, radius) - c.d)
+
+    def newton(radius, _):
+        force = law.force(radius, branch.level(law, radius))
+        slope = 2.0 * (gravity - force) * law.edge_slope(radius, branch.coefficient)
+        step = squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
+        return jnp.clip(radius - step, branch.nodes[c.segment], branch.nodes[c.segment + 1]), None
+
+    turned_radius, _ = jax.lax.scan(newton, x_located, None, length=_TURNAROUND_NEWTON)
+    riding_speed = jnp.sign(v_located) * jnp.sqrt(jnp.maximum(squared_speed(x_located), 0.0))
+    depth = args.level
+    held_squared = c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d)
+    held_speed = jnp.sign(v_located) * jnp.sqrt(jnp.maximum(held_squared, 0.0))
+    riding = ended & args.riding
+    holding = ended & held & ~turned
+    x_end = jnp.where(riding & turned, turned_radius, jnp.where(holding, depth, x_located))
+    v_end = jnp.where(riding, jnp.where(turned, 0.0, riding_speed), jnp.where(holding, held_speed, v_located))
+    return x_end, v_end

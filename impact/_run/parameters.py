@@ -55,7 +55,13 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
     if scene.contact.springs == "continuum":
-        return Continuum(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return Continuum(
+            method=solver.method,
+            rtol=solver.rtol,
+            atol=solver.atol,
+            max_steps=solver.max_steps,
+            phase_ends=solver.phase_ends,
+        )
     if solver.method == "verlet":
         assert solver.dt is not None, "validated: method 'verlet' takes dt"
         return Verlet(dt=solver.dt)

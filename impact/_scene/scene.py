@@ -249,6 +249,24 @@ class Scene(Section):
         return self
 
     @model_validator(mode="after")
+    def _energy_ends_supported(self):
+        if self.solver.phase_ends != "energy":
+            return self
+        adhesion = self.active_adhesion
+        why = None
+        if self.contact.springs != "continuum":
+            why = "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
+        elif adhesion is not None and adhesion.model != "jkr":
+            why = f"not with adhesion model {adhesion.model!r}: its phases end where the solver locates them"
+        elif self.effects.plasticity is not None:
+            why = "not with effects.plasticity: its phases end where the solver locates them"
+        elif self.effects.damping is not None:
+            why = "not with effects.damping: a damped phase does not keep its energy"
+        if why is not None:
+            raise FieldProblem("solver.phase_ends", why)
+        return self
+
+    @model_validator(mode="after")
     def _representable(self):
         if self.kind == "impact":
             check_representable(self)

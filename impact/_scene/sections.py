@@ -9,7 +9,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from .._integrate.base import SOLVERS
+from .._integrate.base import PHASE_ENDS, SOLVERS
 from . import domains as d
 from .domains import within
 from .errors import FieldProblem
@@ -206,6 +206,14 @@ class Solver(Section):
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")
     atol: Annotated[Number, within(d.ATOL)] = Field(1e-12, description="absolute tolerance in scaled units")
     max_steps: Annotated[int, within(d.MAX_STEPS)] = Field(4096, description="solver steps allowed per phase")
+    phase_ends: str = Field(
+        "integrated",
+        description=(
+            "where a contact phase's end comes from: 'integrated' (the solver's dense output at the located event) "
+            "or 'energy' (the phase's energy balance: the restitution exact to round-off at any rtol, the times "
+            "still the solver's; continuum law without damping or plasticity)"
+        ),
+    )
     dt: Annotated[Number, within(d.TIME_STEP)] | None = Field(
         None, description="time step (s) of method 'verlet'; only for it"
     )
@@ -216,6 +224,13 @@ class Solver(Section):
         if method not in METHODS:
             raise ValueError(f"unknown method {method!r}; expected one of: {', '.join(METHODS)}")
         return method
+
+    @field_validator("phase_ends")
+    @classmethod
+    def _known_phase_ends(cls, phase_ends: str) -> str:
+        if phase_ends not in PHASE_ENDS:
+            raise ValueError(f"unknown phase_ends {phase_ends!r}; expected one of: {', '.join(PHASE_ENDS)}")
+        return phase_ends
 
     @model_validator(mode="after")
     def _step_with_verlet_only(self):

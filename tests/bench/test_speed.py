@@ -108,7 +108,9 @@ def test_plans():
     one leaves out the heavy ones; --points replaces every count."""
     full = speed_plan()
     keys = [workload.key for workload, _ in full.runs()]
-    assert keys[:9] == ["tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity"]
+    assert keys[:11] == [
+        "tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity", "gj", "tn_energy"
+    ]  # fmt: skip
     assert sorted(w.springs for w, _ in full.runs() if w.springs) == [64, 128, 256, 512, 1024, 2048, 4096]
     assert all(100 in counts for _, counts in full.runs())
     quick = [workload.key for workload, _ in speed_plan(quick=True).runs()]

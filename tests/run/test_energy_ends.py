@@ -1,0 +1,161 @@
+"""`solver.phase_ends: energy`: each contact phase of the continuum law ends where its energy
+balance puts it, so the restitution and the deepest indentation are exact to round-off at any
+tolerance, while the times still come from the solver (to about its rtol)."""
+
+from pathlib import Path
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+import impact
+from impact import theory
+from impact.cli import app
+
+CONFIGS = Path(__file__).parents[2] / "configs"
+LOOSE = {"rtol": 1e-6, "atol": 1e-8}
+
+
+def scene(config: str, velocity: float | None = None, phase_ends: str = "energy", **solver) -> impact.Scene:
+    data = yaml.safe_load((CONFIGS / config).read_text())
+    data["solver"] = {**LOOSE, **solver, "phase_ends": phase_ends}
+    if velocity is not None:
+        data["initial"]["velocity"] = velocity
+    return impact.load_scene(data)
+
+
+def parameters(s: impact.Scene) -> tuple:
+    adhesion = s.effects.adhesion
+    return s.body.mass, s.body.profile.R, s.material.E_star, 0.0 if adhesion is None else adhesion.work_of_adhesion
+
+
+@pytest.mark.parametrize("factor", [1.01, 2.0, 30.0])
+def test_thornton_ning_is_exact_at_a_loose_tolerance(factor):
+    """At rtol 1e-6 the energy ends give Thornton–Ning (3.50–51) to 1e-13 where the solver's
+    own ends miss it by more than 1e-9; the maximum force (at the deepest indentation) too."""
+    base = scene("thornton_ning.yaml")
+    mass, radius, modulus, work = parameters(base)
+    velocity = factor * float(theory.thornton_ning_sticking_velocity(mass, radius, modulus, work))
+    energy = impact.simulate(scene("thornton_ning.yaml", velocity))
+    integrated = impact.simulate(scene("thornton_ning.yaml", velocity, phase_ends="integrated"))
+    expected = float(theory.thornton_ning_restitution(velocity, mass, radius, modulus, work))
+    assert energy.status == integrated.status == "separated"
+    assert abs(energy.restitution - expected) <= 1e-13
+    assert abs(integrated.restitution - expected) > 1e-9
+    peak = float(theory.thornton_ning_max_force(velocity, mass, radius, modulus, work))
+    assert abs(energy.max_force / peak - 1.0) <= 1e-12
+
+
+def test_attach_on_touch_holds_and_is_exact():
+    """Δγa = 0: Hertzian loading, a hold at the largest radius, JKR unloading; the hold ends at
+    its detach depth with the speed of its closed-form work (our reference,
+    `theory.attach_on_touch_restitution`)."""
+    base = scene("attach_on_touch.yaml")
+    mass, radius, modulus, work = parameters(base)
+    for velocity in (0.4, 0.6, 5.0):
+        result = impact.simulate(scene("attach_on_touch.yaml", velocity))
+        expected = float(theory.attach_on_touch_restitution(velocity, mass, radius, modulus, work))
+        assert result.status == "separated"
+        assert abs(result.restitution - expected) <= 1e-13, velocity
+
+
+def test_hertz_keeps_its_energy_and_takes_its_time_from_the_solver():
+    """Without adhesion e = 1 to round-off and the deepest indentation is Hertz's; the contact
+    time, from the solver at rtol 1e-6, is Hertz's within 1e-5."""
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data["effects"] = {}
+    data["solver"] = {**LOOSE, "phase_ends": "energy"}
+    hertz = impact.load_scene(data)
+    result = impact.simulate(hertz)
+    mass, radius, modulus, _ = parameters(hertz)
+    velocity = hertz.initial.velocity
+    assert abs(result.restitution - 1.0) <= 1e-14
+    deepest = float(theory.hertz_max_indentation(velocity, mass, radius, modulus))
+    assert abs(result.max_indentation / deepest - 1.0) <= 1e-13
+    contact = float(theory.hertz_contact_time(velocity, mass, radius, modulus))
+    assert 1e-9 < abs(result.contact_time / contact - 1.0) <= 1e-5
+
+
+def test_gravity_bounces_as_the_tight_integration_does():
+    """Under gravity the bead bounces the same number of times, is captured alike, and every
+    contact's restitution is the one of the solver's own ends at rtol 1e-12 to 1e-11."""
+    loose = impact.simulate(scene("gravity_bounces.yaml"))
+    tight = impact.simulate(scene("gravity_bounces.yaml", phase_ends="integrated", rtol=1e-12, atol=1e-14))
+    assert loose.status == tight.status == "captured"
+    assert loose.bounces == tight.bounces > 2
+    assert abs(loose.restitution - tight.restitution) <= 1e-11
+
+
+@pytest.mark.parametrize(
+    ("change", "why"),
+    [
+        (
+            {"contact": {"springs": 64}},
+            "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly",
+        ),
+        (
+            {"effects": {"adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 3.7e7}}},
+            "not with adhesion model 'maugis_dugdale': its phases end where the solver locates them",
+        ),
+        (
+            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "plasticity": {"yield_pressure": 3e8}}},
+            "not with effects.plasticity: its phases end where the solver locates them",
+        ),
+        (
+            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
+            "not with effects.damping: a damped phase does not keep its energy",
+        ),
+    ],
+)
+def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data.update(change)
+    data["solver"] = {"phase_ends": "energy"}
+    with pytest.raises(impact.SceneError) as error:
+        impact.load_scene(data)
+    assert dict(error.value.problems)["solver.phase_ends"] == why
+
+
+def test_an_unknown_phase_end_is_refused():
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data["solver"] = {"phase_ends": "exact"}
+    with pytest.raises(impact.SceneError) as error:
+        impact.load_scene(data)
+    assert dict(error.value.problems)["solver.phase_ends"] == (
+        "unknown phase_ends 'exact'; expected one of: integrated, energy"
+    )
+
+
+def test_derivatives_are_thornton_nings():
+    """`impact.as_function` differentiates through the energy ends (forward mode, the value and
+    its Jacobian): de/dΔγ and de/dv0 at rtol 1e-6 are those of (3.50–51) to 1e-10."""
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data["solver"] = {**LOOSE, "phase_ends": "energy"}
+    restitution = impact.as_function(data, ["effects.adhesion.work_of_adhesion", "initial.velocity"], "restitution")
+    mass, radius, modulus, work = parameters(impact.load_scene(data))
+    point = jnp.array([work, 0.6])
+    derivatives = jax.jacfwd(restitution)(point)
+    expected = jax.grad(lambda x: theory.thornton_ning_restitution(x[1], mass, radius, modulus, x[0]))(point)
+    np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
+
+
+def test_validate_shows_the_phase_ends(tmp_path):
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data["solver"] = {"rtol": 1e-6, "phase_ends": "energy"}
+    path = tmp_path / "energy.yaml"
+    path.write_text(yaml.safe_dump(data))
+    result = CliRunner().invoke(app, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "tsit5, rtol 1e-06, atol 1e-12, phase ends from the energy" in result.output
+
+
+def test_a_sweep_point_is_the_simulated_one():
+    """The sweep's batch and `impact.simulate` end the phases alike: the same restitution."""
+    base = scene("thornton_ning.yaml")
+    velocities = [0.5, 3.0]
+    swept = impact.sweep(base, {"initial.velocity": velocities}).results["restitution"]
+    simulated = [impact.simulate(scene("thornton_ning.yaml", v)).restitution for v in velocities]
+    np.testing.assert_array_equal(np.asarray(swept), np.asarray(simulated))
