@@ -316,11 +316,13 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, hel
         step = squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
         return jnp.clip(radius - step, branch.nodes[c.segment], branch.nodes[c.segment + 1]), None
 
+    def speed(squared):  # with the located speed's sign
+        return jnp.sign(v_located) * jnp.sqrt(jnp.maximum(squared, 0.0))
+
     turned_radius, _ = jax.lax.scan(newton, x_located, None, length=_TURNAROUND_NEWTON)
-    riding_speed = jnp.sign(v_located) * jnp.sqrt(jnp.maximum(squared_speed(x_located), 0.0))
+    riding_speed = speed(squared_speed(x_located))
     depth = args.level
-    held_squared = c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d)
-    held_speed = jnp.sign(v_located) * jnp.sqrt(jnp.maximum(held_squared, 0.0))
+    held_speed = speed(c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d))
     riding = ended & args.riding
     holding = ended & held & ~turned
     x_end = jnp.where(riding & turned, turned_radius, jnp.where(holding, depth, x_located))

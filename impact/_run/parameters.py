@@ -1,6 +1,8 @@
 """A scene's numbers as the integrators take them: its integrator, its static options and its
 traced SI parameters."""
 
+from typing import Any
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -31,37 +33,26 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
     (exact, or stepped with Verlet), a finite-range law (Maugis–Dugdale, Greenwood–Johnson), or
     Thornton's plastic law (with adhesion, Thornton & Ning's)."""
     solver = scene.solver
+    # The settings every adaptive (diffrax) integrator takes.
+    adaptive: dict[str, Any] = {
+        "method": solver.method,
+        "rtol": solver.rtol,
+        "atol": solver.atol,
+        "max_steps": solver.max_steps,
+    }
     adhesion = scene.active_adhesion
     if scene.effects.plasticity is not None and adhesion is not None:
-        return AdhesivePlastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return AdhesivePlastic(**adaptive)
     if scene.effects.plasticity is not None:
-        return Plastic(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return Plastic(**adaptive)
     if adhesion is not None and adhesion.model == "maugis_dugdale" and scene.contact.springs != "continuum":
-        return MaugisDugdaleSprings(
-            method=solver.method,
-            rtol=solver.rtol,
-            atol=solver.atol,
-            max_steps=solver.max_steps,
-            capacity=spring_capacity(scene.contact.springs),
-        )
+        return MaugisDugdaleSprings(**adaptive, capacity=spring_capacity(scene.contact.springs))
     if adhesion is not None and adhesion.model == "maugis_dugdale":
-        return MaugisDugdale(
-            method=solver.method,
-            rtol=solver.rtol,
-            atol=solver.atol,
-            max_steps=solver.max_steps,
-            hysteresis=adhesion.hysteretic,
-        )
+        return MaugisDugdale(**adaptive, hysteresis=adhesion.hysteretic)
     if adhesion is not None and adhesion.model == "greenwood_johnson":
-        return GreenwoodJohnson(method=solver.method, rtol=solver.rtol, atol=solver.atol, max_steps=solver.max_steps)
+        return GreenwoodJohnson(**adaptive)
     if scene.contact.springs == "continuum":
-        return Continuum(
-            method=solver.method,
-            rtol=solver.rtol,
-            atol=solver.atol,
-            max_steps=solver.max_steps,
-            phase_ends=solver.phase_ends,
-        )
+        return Continuum(**adaptive, phase_ends=solver.phase_ends)
     if solver.method == "verlet":
         assert solver.dt is not None, "validated: method 'verlet' takes dt"
         return Verlet(dt=solver.dt)

@@ -7,7 +7,7 @@ Cross-field checks raise `FieldProblem` to name the field at fault.
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from .._integrate.base import PHASE_ENDS, SOLVERS
 from . import domains as d
@@ -218,19 +218,14 @@ class Solver(Section):
         None, description="time step (s) of method 'verlet'; only for it"
     )
 
-    @field_validator("method")
+    @field_validator("method", "phase_ends")
     @classmethod
-    def _known_method(cls, method: str) -> str:
-        if method not in METHODS:
-            raise ValueError(f"unknown method {method!r}; expected one of: {', '.join(METHODS)}")
-        return method
-
-    @field_validator("phase_ends")
-    @classmethod
-    def _known_phase_ends(cls, phase_ends: str) -> str:
-        if phase_ends not in PHASE_ENDS:
-            raise ValueError(f"unknown phase_ends {phase_ends!r}; expected one of: {', '.join(PHASE_ENDS)}")
-        return phase_ends
+    def _known_choice(cls, choice: str, info: ValidationInfo) -> str:
+        assert info.field_name is not None, "a field validator knows its field"
+        allowed = {"method": METHODS, "phase_ends": PHASE_ENDS}[info.field_name]
+        if choice not in allowed:
+            raise ValueError(f"unknown {info.field_name} {choice!r}; expected one of: {', '.join(allowed)}")
+        return choice
 
     @model_validator(mode="after")
     def _step_with_verlet_only(self):

@@ -119,14 +119,23 @@ def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
     assert dict(error.value.problems)["solver.phase_ends"] == why
 
 
-def test_an_unknown_phase_end_is_refused():
+@pytest.mark.parametrize(
+    ("field", "value", "why"),
+    [
+        ("phase_ends", "exact", "unknown phase_ends 'exact'; expected one of: integrated, energy"),
+        (
+            "method",
+            "rk4",
+            "unknown method 'rk4'; expected one of: tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet",
+        ),
+    ],
+)
+def test_an_unknown_solver_choice_is_refused(field, value, why):
     data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data["solver"] = {"phase_ends": "exact"}
+    data["solver"] = {field: value}
     with pytest.raises(impact.SceneError) as error:
         impact.load_scene(data)
-    assert dict(error.value.problems)["solver.phase_ends"] == (
-        "unknown phase_ends 'exact'; expected one of: integrated, energy"
-    )
+    assert dict(error.value.problems)[f"solver.{field}"] == why
 
 
 def test_derivatives_are_thornton_nings():
