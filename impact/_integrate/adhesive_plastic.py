@@ -2,8 +2,9 @@
 (`_law.adhesive_plastic`), on the reversible JKR law (jump-in at the touch).
 
 An impact that never yields is the elastic adhesive impact: the `Continuum` integrator runs it
-in the same units, and its outcome is taken as it is (to the bit) unless its deepest indentation
-passes the yield depth. Otherwise the impact is integrated again with the plastic law, riding
+in the same units, with its phases ended from their energy (the elastic scene's default), and
+its outcome is taken as it is (to the bit) unless its deepest indentation passes the yield
+depth. Otherwise the impact is integrated again with the plastic law, riding
 the contact radius â in a pseudo-time s as `continuum` does:
 
     â' = v·q,   v' = (g − F̂(â))·h'(â)·q,   t' = h'(â)·q,   q = 1/√(1 + h'²),
@@ -90,7 +91,12 @@ class AdhesivePlastic(AbstractAdaptiveIntegrator):
 
     def integrate(self, problem: AdhesivePlasticProblem, options: Options) -> Outcome:
         continuum = Continuum(
-            method=self.method, rtol=self.rtol, atol=self.atol, max_steps=self.max_steps, adjoint=self.adjoint
+            method=self.method,
+            rtol=self.rtol,
+            atol=self.atol,
+            max_steps=self.max_steps,
+            adjoint=self.adjoint,
+            phase_ends="energy",
         )
         elastic = continuum.integrate(problem.elastic, options)
         law = problem.law

@@ -21,18 +21,20 @@ contact then ends where the total force returns to zero while unloading (the bod
 than the surface recovers; Schwager & Pöschel, Phys. Rev. E 78, 051304 (2008)); with adhesion
 the rule of Heß still decides detachment from the elastic state.
 
-With `phase_ends="energy"` (undamped only) the end of a phase ridden on a branch or held comes
-from the energy balance of the phase, ½v² = ½v₀² − ∫F dd + g·(d − d₀) (the work in closed form or
-by quadrature: `work.branch_work`, `work.hold_work`), instead of from the solver's dense output
-at the located event: at a segment end or the end of a hold the speed, at a turnaround the
-radius (Newton on v² = 0). The restitution and the deepest indentation are then exact to
-round-off at any tolerance; the times still come from the solver.
+With `phase_ends="energy"` (undamped only) the end of a phase along a branch (ridden in a, or
+timed in d from a steep tip) or held comes from the energy balance of the phase,
+½v² = ½v₀² − ∫F dd + g·(d − d₀) (the work in closed form or by quadrature: `work.branch_work`,
+`work.hold_work`), instead of from the solver's dense output at the located event: at a segment
+end or the end of a hold the speed, at a turnaround the radius (Newton on v² = 0). The
+restitution and the deepest indentation are then exact to round-off at any tolerance; the times
+still come from the solver.
 """
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .._core import derivatives
 from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.branches import Branch
@@ -199,7 +201,7 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
     # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
     # detach edge of the held radius.
-    segment_end = jnp.where(c.mode == ADVANCE, branch.nodes[c.segment + 1], branch.nodes[c.segment])
+    segment_end = _segment_end(branch, c.mode, c.segment)
     level = jnp.where(
         riding,
         segment_end,
@@ -222,6 +224,12 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
         releases=(c.mode != ADVANCE) & ~law.adhesive,
         timed_loading=options.timed_loading,
     )
+
+
+def _segment_end(branch: Branch, mode, segment):
+    """The radius where the phase's segment of the branch ends: its upper node while advancing,
+    else its lower one."""
+    return jnp.where(mode == ADVANCE, branch.nodes[segment + 1], branch.nodes[segment])
 
 
 def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry) -> Carry:
@@ -295,13 +303,14 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
 def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, held, turned):
     """(x, v) at the end of an undamped phase from its energy balance, v² = v₀² − 2∫F dd + 2g·Δd
     (unit mass in the scaled units); `located` = (x, v) from the solver's dense output, kept
-    where the phase did not end at a located event (`ended`) or neither rides a branch nor holds.
+    where the phase did not end at a located event (`ended`).
 
-    Riding: at a segment end (x, the radius, is the node) v takes the sign of the located one; at
-    a turnaround v = 0 and the radius is the root of v² = 0, by Newton from the located one (within
-    the solver's tolerance of it), with d(v²)/da = 2(g − F)·h'(a), kept inside the segment. A hold
-    ends at its detach depth (x, the depth, is `args.level`); a turnaround there is a capture,
-    left as located.
+    Along a branch (ridden in a, or timed in d from a steep tip): at a segment end (the radius is
+    the node) v takes the sign of the located one; at a turnaround v = 0 and the radius is the
+    root of v² = 0, by Newton from the located one (within the solver's tolerance of it), with
+    d(v²)/da = 2(g − F)·h'(a), kept inside the segment; a timed phase's x is then the depth h(a).
+    A hold ends at its detach depth (x, the depth, is `args.level`); a turnaround there is a
+    capture, left as located.
     """
     x_located, v_located = located
     law, branch, gravity = problem.law, args.branch, problem.gravity
@@ -316,15 +325,26 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, hel
         step = squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
         return jnp.clip(radius - step, branch.nodes[c.segment], branch.nodes[c.segment + 1]), None
 
-    def speed(squared):  # with the located speed's sign
-        return jnp.sign(v_located) * jnp.sqrt(jnp.maximum(squared, 0.0))
+    def speed(squared):  # with the located speed's sign; no nan derivative where it is unused at 0
+        return jnp.sign(v_located) * derivatives.sqrt(jnp.maximum(squared, 0.0))
 
-    turned_radius, _ = jax.lax.scan(newton, x_located, None, length=_TURNAROUND_NEWTON)
-    riding_speed = speed(squared_speed(x_located))
+    # The radius where the phase ended: riding, the state itself; timed along a branch, the
+    # segment's end, or at a turnaround the branch root at the located depth.
+    if args.timed_loading:
+        timed = ((args.mode == ADVANCE) | (args.mode == RECEDE)) & ~args.riding
+        timed_end = jnp.where(turned, timed_radius(x_located, args), _segment_end(branch, args.mode, args.segment))
+        radius_located = jnp.where(args.riding, x_located, timed_end)
+    else:  # every timed phase is a hold
+        timed = jnp.asarray(False)
+        radius_located = x_located
+    turned_radius, _ = jax.lax.scan(newton, radius_located, None, length=_TURNAROUND_NEWTON)
+    end_radius = jnp.where(turned, turned_radius, radius_located)
+    riding_speed = speed(squared_speed(radius_located))
     depth = args.level
     held_speed = speed(c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d))
-    riding = ended & args.riding
+    riding = ended & (args.riding | timed)
     holding = ended & held & ~turned
-    x_end = jnp.where(riding & turned, turned_radius, jnp.where(holding, depth, x_located))
+    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)
+    x_end = jnp.where(riding & (turned | timed), x_along, jnp.where(holding, depth, x_located))
     v_end = jnp.where(riding, jnp.where(turned, 0.0, riding_speed), jnp.where(holding, held_speed, v_located))
     return x_end, v_end

@@ -52,7 +52,7 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(**adaptive)
     if scene.contact.springs == "continuum":
-        return Continuum(**adaptive, phase_ends=solver.phase_ends)
+        return Continuum(**adaptive, phase_ends=scene.phase_ends)
     if solver.method == "verlet":
         assert solver.dt is not None, "validated: method 'verlet' takes dt"
         return Verlet(dt=solver.dt)

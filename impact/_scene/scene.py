@@ -250,21 +250,23 @@ class Scene(Section):
 
     @model_validator(mode="after")
     def _energy_ends_supported(self):
-        if self.solver.phase_ends != "energy":
-            return self
-        adhesion = self.active_adhesion
-        why = None
-        if self.contact.springs != "continuum":
-            why = "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
-        elif adhesion is not None and adhesion.model != "jkr":
-            why = f"not with adhesion model {adhesion.model!r}: its phases end where the solver locates them"
-        elif self.effects.plasticity is not None:
-            why = "not with effects.plasticity: its phases end where the solver locates them"
-        elif self.effects.damping is not None:
-            why = "not with effects.damping: a damped phase does not keep its energy"
-        if why is not None:
+        why = self._energy_ends_refusal()
+        if self.solver.phase_ends == "energy" and why is not None:
             raise FieldProblem("solver.phase_ends", why)
         return self
+
+    def _energy_ends_refusal(self) -> str | None:
+        """Why this scene's phases cannot end from their energy balance, or None where they can."""
+        adhesion = self.active_adhesion
+        if self.contact.springs != "continuum":
+            return "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
+        if adhesion is not None and adhesion.model != "jkr":
+            return f"not with adhesion model {adhesion.model!r}: its phases end where the solver locates them"
+        if self.effects.plasticity is not None:
+            return "not with effects.plasticity: its phases end where the solver locates them"
+        if self.effects.damping is not None:
+            return "not with effects.damping: a damped phase does not keep its energy"
+        return None
 
     @model_validator(mode="after")
     def _representable(self):
@@ -304,6 +306,14 @@ class Scene(Section):
         counterpart's towards it."""
         speed = self.start.velocity
         return speed if self.counterpart is None else speed + self.counterpart.velocity
+
+    @property
+    def phase_ends(self) -> str:
+        """Where the contact phases end (`solver.phase_ends`): as given, else 'energy' where the
+        scene allows it and 'integrated' where not."""
+        if self.solver.phase_ends is not None:
+            return self.solver.phase_ends
+        return "integrated" if self._energy_ends_refusal() is not None else "energy"
 
     @property
     def active_adhesion(self) -> Adhesion | None:

@@ -206,12 +206,13 @@ class Solver(Section):
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")
     atol: Annotated[Number, within(d.ATOL)] = Field(1e-12, description="absolute tolerance in scaled units")
     max_steps: Annotated[int, within(d.MAX_STEPS)] = Field(4096, description="solver steps allowed per phase")
-    phase_ends: str = Field(
-        "integrated",
+    phase_ends: str | None = Field(
+        None,
         description=(
             "where a contact phase's end comes from: 'integrated' (the solver's dense output at the located event) "
             "or 'energy' (the phase's energy balance: the restitution exact to round-off at any rtol, the times "
-            "still the solver's; continuum law without damping or plasticity)"
+            "still the solver's; continuum JKR law without damping or plasticity); default: 'energy' where it "
+            "applies, else 'integrated'"
         ),
     )
     dt: Annotated[Number, within(d.TIME_STEP)] | None = Field(
@@ -220,10 +221,10 @@ class Solver(Section):
 
     @field_validator("method", "phase_ends")
     @classmethod
-    def _known_choice(cls, choice: str, info: ValidationInfo) -> str:
+    def _known_choice(cls, choice: str | None, info: ValidationInfo) -> str | None:
         assert info.field_name is not None, "a field validator knows its field"
         allowed = {"method": METHODS, "phase_ends": PHASE_ENDS}[info.field_name]
-        if choice not in allowed:
+        if choice is not None and choice not in allowed:
             raise ValueError(f"unknown {info.field_name} {choice!r}; expected one of: {', '.join(allowed)}")
         return choice
 

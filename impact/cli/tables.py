@@ -189,7 +189,7 @@ def facts_table(scene: Scene) -> Table:
     density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     solver = scene.solver
     steps = f"dt {solver.dt:g} s" if solver.method == "verlet" else f"rtol {solver.rtol:g}, atol {solver.atol:g}"
-    if solver.phase_ends == "energy":
+    if scene.phase_ends == "energy":
         steps += ", phase ends from the energy"
     rows = [
         shape,

@@ -13,15 +13,19 @@ from typer.testing import CliRunner
 
 import impact
 from impact import theory
+from impact._run.parameters import options_for
 from impact.cli import app
 
 CONFIGS = Path(__file__).parents[2] / "configs"
 LOOSE = {"rtol": 1e-6, "atol": 1e-8}
 
 
-def scene(config: str, velocity: float | None = None, phase_ends: str = "energy", **solver) -> impact.Scene:
+def scene(config: str, velocity: float | None = None, phase_ends: str | None = "energy", **solver) -> impact.Scene:
+    """The config at `velocity` with LOOSE tolerances (or `solver`'s) and `phase_ends` (None: the default)."""
     data = yaml.safe_load((CONFIGS / config).read_text())
-    data["solver"] = {**LOOSE, **solver, "phase_ends": phase_ends}
+    data["solver"] = {**LOOSE, **solver}
+    if phase_ends is not None:
+        data["solver"]["phase_ends"] = phase_ends
     if velocity is not None:
         data["initial"]["velocity"] = velocity
     return impact.load_scene(data)
@@ -87,6 +91,39 @@ def test_gravity_bounces_as_the_tight_integration_does():
     assert loose.status == tight.status == "captured"
     assert loose.bounces == tight.bounces > 2
     assert abs(loose.restitution - tight.restitution) <= 1e-11
+
+
+def test_a_steep_tip_loaded_in_time_is_exact():
+    """A power law n = 0.75 without adhesion loads from a = 0 in time (its radius cannot ride
+    h' → ∞): its turnaround comes from the energy too, so e = 1 to round-off at rtol 1e-6, where
+    the located ends miss it by more than 1e-6."""
+
+    def steep(velocity: float, phase_ends: str | None) -> impact.Scene:
+        data = yaml.safe_load((CONFIGS / "power_law.yaml").read_text())
+        data["body"]["profile"]["n"] = 0.75
+        del data["effects"]["adhesion"]
+        data["initial"]["velocity"] = velocity
+        data["solver"] = {**LOOSE, **({} if phase_ends is None else {"phase_ends": phase_ends})}
+        return impact.load_scene(data)
+
+    assert options_for(steep(0.5, None)).timed_loading
+    for velocity in (0.05, 0.5, 5.0):
+        assert abs(impact.simulate(steep(velocity, None)).restitution - 1.0) <= 1e-14
+        assert abs(impact.simulate(steep(velocity, "integrated")).restitution - 1.0) > 1e-6
+
+
+def test_a_tiny_approach_work_loaded_in_time_is_exact():
+    """Δγa/Δγ = 4e-142 on a cone puts the jump-in below the smallest float: loading runs in time
+    from a = 0. At rtol 1e-6 its restitution is that of rtol 1e-12 to 1e-13; the located ends
+    miss it by more than 1e-8."""
+    for velocity in (0.5, 3.0):
+        loose = impact.simulate(scene("hard/16_tiny_approach_adhesion.yaml", velocity, phase_ends=None))
+        tight = scene("hard/16_tiny_approach_adhesion.yaml", velocity, phase_ends=None, rtol=1e-12, atol=1e-14)
+        located = scene("hard/16_tiny_approach_adhesion.yaml", velocity, phase_ends="integrated")
+        assert options_for(tight).timed_loading
+        expected = impact.simulate(tight).restitution
+        assert abs(loose.restitution - expected) <= 1e-13
+        assert abs(impact.simulate(located).restitution - expected) > 1e-8
 
 
 @pytest.mark.parametrize(
@@ -159,6 +196,50 @@ def test_validate_shows_the_phase_ends(tmp_path):
     result = CliRunner().invoke(app, ["validate", str(path)])
     assert result.exit_code == 0, result.output
     assert "tsit5, rtol 1e-06, atol 1e-12, phase ends from the energy" in result.output
+    data["solver"]["phase_ends"] = "integrated"
+    path.write_text(yaml.safe_dump(data))
+    result = CliRunner().invoke(app, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "phase ends" not in result.output
+
+
+@pytest.mark.parametrize(
+    ("config", "phase_ends"),
+    [
+        ("thornton_ning.yaml", "energy"),
+        ("gravity_bounces.yaml", "energy"),
+        ("two_spheres.yaml", "energy"),
+        ("rubber_ball.yaml", "energy"),
+        ("spring_array.yaml", "integrated"),
+        ("maugis_dugdale.yaml", "integrated"),
+        ("plastic_steel.yaml", "integrated"),
+        ("rubber_ball_viscoelastic.yaml", "integrated"),
+    ],
+)
+def test_phases_end_from_the_energy_by_default_where_it_applies(config, phase_ends):
+    """Without `solver.phase_ends` a scene takes the energy ends where it allows them, else the
+    located ones; `impact validate` says which."""
+    loaded = impact.load_scene(CONFIGS / config)
+    assert loaded.solver.phase_ends is None and loaded.phase_ends == phase_ends
+    result = CliRunner().invoke(app, ["validate", str(CONFIGS / config)])
+    assert result.exit_code == 0, result.output
+    assert ("phase ends from the energy" in result.output) == (phase_ends == "energy")
+
+
+def test_the_default_restitution_is_thornton_nings_to_round_off():
+    """The default scene (rtol 1e-10) ends its phases from the energy: (3.50–51) to 1e-13 at
+    velocities where the located ends miss it by more than that."""
+    base = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    assert base.solver.phase_ends is None
+    mass, radius, modulus, work = parameters(base)
+    located = 0.0
+    for velocity in (0.31, 0.6, 9.0):
+        expected = float(theory.thornton_ning_restitution(velocity, mass, radius, modulus, work))
+        default = scene("thornton_ning.yaml", velocity, phase_ends=None, rtol=1e-10, atol=1e-12)
+        assert abs(impact.simulate(default).restitution - expected) <= 1e-13
+        integrated = scene("thornton_ning.yaml", velocity, phase_ends="integrated", rtol=1e-10, atol=1e-12)
+        located = max(located, abs(impact.simulate(integrated).restitution - expected))
+    assert located > 1e-13
 
 
 def test_a_sweep_point_is_the_simulated_one():
