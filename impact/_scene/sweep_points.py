@@ -3,7 +3,9 @@
 The points go through the model validators (`mode="after"`) of the sections on the swept
 paths, on one copy of the base scene whose swept fields are set in place point by point (a few
 µs a point instead of a full `Scene.model_validate`): this is what a full validation would
-check, as the rest of the scene is the already valid base. The representability check (units
+check, as the rest of the scene is the already valid base. Only the validators that read a
+swept field run per point: one that reads none (tracked once, on the base) takes the same path
+at every point, and so passes at every point as it passes at the base. The representability check (units
 from the profile, in JAX) runs in batched calls of up to `_PENDING` points. Models with other kinds of
 validators fall back to a full validation per point.
 """
@@ -11,6 +13,7 @@ validators fall back to a full validation per point.
 import contextlib
 import copy
 import gc
+from collections.abc import Callable, Iterator
 
 import jax
 import numpy as np
@@ -68,6 +71,10 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
     if base_profile is not None and spec.scene.kind == "impact":
         base_structure = jax.tree.structure(unit_inputs(spec.scene, base_profile))
 
+    checks = _reading_checks(models, owners)
+    # what the units are checked against: the base's, unless it reads a swept field
+    base_limits = None if _reads_swept(limits_of, point, owners) else limits_of(point)
+
     def set_point(index: int) -> None:
         for (owner, name), column in zip(owners, columns, strict=True):
             owner.__dict__[name] = column[index]
@@ -87,14 +94,15 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
 
     for index in range(spec.size):
         set_point(index)
-        message = _validators_problem(models, skip=_REPRESENTABLE)
+        message = _validators_problem(checks)
         if message is not None:
             problems[index] = message
         elif point.kind == "impact":
             inputs = unit_inputs(point, base_profile)
             structure = jax.tree.structure(inputs) if base_structure is None else base_structure
             key = (point.active_adhesion is not None, structure)
-            pending.setdefault(key, []).append((index, inputs, limits_of(point)))
+            limits = limits_of(point) if base_limits is None else base_limits
+            pending.setdefault(key, []).append((index, inputs, limits))
             if len(pending[key]) == _PENDING:
                 check_pending(key)
     for key in list(pending):
@@ -161,17 +169,68 @@ def _chains(scene: Scene, paths) -> list[tuple[str, BaseModel]]:
     return sorted(seen.items(), key=lambda item: -len(item[0].split(".")) if item[0] else 1)
 
 
-def _validators_problem(models, skip: str) -> str | None:
-    """The first complaint of the after-validators (but `skip`) of the given (prefix, model) sections."""
-    for prefix, model in models:
-        for name, decorator in type(model).__pydantic_decorators__.model_validators.items():
-            if name == skip:
-                continue
-            try:
-                decorator.func(model)
-            except (ValueError, AssertionError) as error:
-                where = ".".join(part for part in (prefix, getattr(error, "field", "")) if part)
-                return f"{where}: {error}" if where else str(error)
+class _SweptRead(BaseException):
+    """A validator read a swept field (a BaseException, so that no `except Exception` hides it)."""
+
+
+def _reading_checks(models, owners) -> list[tuple[str, BaseModel, Callable]]:
+    """(prefix, model, validator) of the after-validators (but the batched representability) of
+    the given (prefix, model) sections that read a swept field ((owner, name) in `owners`) when
+    they run on the base point, in their order; any outcome but a clean pass counts as a read."""
+    return [
+        (prefix, model, decorator.func)
+        for prefix, model in models
+        for name, decorator in type(model).__pydantic_decorators__.model_validators.items()
+        if name != _REPRESENTABLE and _reads_swept(decorator.func, model, owners)
+    ]
+
+
+def _reads_swept(function: Callable, argument, owners) -> bool:
+    """Whether `function(argument)` on the base point reads a swept field ((owner, name) in
+    `owners`); any outcome but a clean return counts as a read."""
+    try:
+        with _tracking_reads(owners):
+            function(argument)
+    except (_SweptRead, Exception):  # a read, or (unexpected at the base) no clean return
+        return True
+    return False
+
+
+@contextlib.contextmanager
+def _tracking_reads(owners: list[tuple[BaseModel, str]]) -> Iterator[None]:
+    """Within: reading a swept field of its owner (or the owner's `__dict__`, as a dump does)
+    raises `_SweptRead`; the owners' classes get a tracking `__getattribute__`, then theirs back."""
+    swept: dict[int, set[str]] = {}
+    for owner, name in owners:
+        swept.setdefault(id(owner), {"__dict__"}).add(name)
+
+    def tracking(self, name):
+        if name in swept.get(id(self), ()):
+            raise _SweptRead(name)
+        return object.__getattribute__(self, name)
+
+    classes = {type(owner) for owner, _ in owners}
+    saved = {cls: cls.__dict__.get("__getattribute__") for cls in classes}
+    for cls in classes:
+        cls.__getattribute__ = tracking  # type: ignore[method-assign]
+    try:
+        yield
+    finally:
+        for cls, own in saved.items():
+            if own is None:
+                delattr(cls, "__getattribute__")
+            else:
+                cls.__getattribute__ = own  # type: ignore[method-assign]
+
+
+def _validators_problem(checks: list[tuple[str, BaseModel, Callable]]) -> str | None:
+    """The first complaint of the given (prefix, model, validator) checks."""
+    for prefix, model, validator in checks:
+        try:
+            validator(model)
+        except (ValueError, AssertionError) as error:
+            where = ".".join(part for part in (prefix, getattr(error, "field", "")) if part)
+            return f"{where}: {error}" if where else str(error)
     return None
 
 

@@ -8,11 +8,13 @@ from pathlib import Path
 
 import pytest
 import yaml
+from pydantic import BaseModel, model_validator
 from typer.testing import CliRunner
 
 import impact
 from impact._scene import sweep_points
 from impact._scene.paths import assign
+from impact._scene.representable import limits_of
 from impact._scene.sweep import load_sweep
 from impact.cli import app
 
@@ -151,6 +153,58 @@ def test_sweep_points_are_refused_as_their_scenes_are(case, pending, monkeypatch
     assert where == f"axes.{path}"
     more = f"; and {len(expected) - 4} more invalid points" if len(expected) > 4 else ""
     assert message == "; ".join(expected[:4]) + more
+
+
+class Probed(BaseModel):
+    """A section whose validators read its fields in the ways a validator may."""
+
+    swept: float = 1.0
+    other: float = 2.0
+
+    @model_validator(mode="after")
+    def _by_attribute(self):
+        if self.swept <= 0:
+            raise ValueError("swept must be > 0")
+        return self
+
+    @model_validator(mode="after")
+    def _by_getattr_with_a_default(self):
+        getattr(self, "swept", None)
+        return self
+
+    @model_validator(mode="after")
+    def _by_a_dump(self):
+        self.model_dump()
+        return self
+
+    @model_validator(mode="after")
+    def _other_only(self):
+        if self.other <= 0:
+            raise ValueError("other must be > 0")
+        return self
+
+
+def test_only_the_validators_that_read_a_swept_field_run_per_point():
+    """A validator runs per point when running it on the base reads a swept field: directly,
+    through getattr with a default, or through a dump; one that reads none is left out, and the
+    tracking leaves the class as it found it."""
+    probed = Probed()
+    checks = sweep_points._reading_checks([("section", probed)], [(probed, "swept")])
+    assert [validator.__name__ for _, _, validator in checks] == [
+        "_by_attribute",
+        "_by_getattr_with_a_default",
+        "_by_a_dump",
+    ]
+    assert "__getattribute__" not in Probed.__dict__
+    probed.__dict__["swept"] = -1.0
+    assert sweep_points._validators_problem(checks) == "section: swept must be > 0"
+    scene = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    initial = scene.initial
+    names = [v.__name__ for _, _, v in sweep_points._reading_checks([("", scene)], [(initial, "velocity")])]
+    assert "_reaches_the_surface" in names and "_energy_ends_supported" not in names
+    # what the units are checked against: the base's for a velocity, per point for a radius
+    assert not sweep_points._reads_swept(limits_of, scene, [(initial, "velocity")])
+    assert sweep_points._reads_swept(limits_of, scene, [(scene.body.profile, "R")])
 
 
 @pytest.mark.parametrize("enabled", [True, False])
