@@ -252,8 +252,7 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     if integrator.phase_ends == "energy":
-        held = (c.mode == HOLD) & ~riding
-        x_end, v_end = _energy_end(problem, args, c, (x_end, v_end), event_found & ~out_of_time, held, turned)
+        x_end, v_end = _energy_end(problem, args, c, (x_end, v_end), event_found & ~out_of_time, turned)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
@@ -300,7 +299,7 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
     return summary, where(released, release, nxt)
 
 
-def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, held, turned):
+def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, turned):
     """(x, v) at the end of an undamped phase from its energy balance, v² = v₀² − 2∫F dd + 2g·Δd
     (unit mass in the scaled units); `located` = (x, v) from the solver's dense output, kept
     where the phase did not end at a located event (`ended`).
@@ -343,8 +342,8 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, hel
     depth = args.level
     held_speed = speed(c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d))
     riding = ended & (args.riding | timed)
-    holding = ended & held & ~turned
-    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)
-    x_end = jnp.where(riding & (turned | timed), x_along, jnp.where(holding, depth, x_located))
+    holding = ended & (args.mode == HOLD) & ~turned  # a hold never rides
+    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)  # ridden: x_located unless turned
+    x_end = jnp.where(riding, x_along, jnp.where(holding, depth, x_located))
     v_end = jnp.where(riding, jnp.where(turned, 0.0, riding_speed), jnp.where(holding, held_speed, v_located))
     return x_end, v_end
