@@ -9,8 +9,8 @@ names one field, its value and the range it may take with the other fields as th
 
 import itertools
 import math
-from collections.abc import Sequence
-from typing import NamedTuple
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, NamedTuple
 
 import equinox as eqx
 import jax
@@ -69,19 +69,15 @@ class Units(NamedTuple):
     energetic_depth: float
 
 
-def unit_inputs(scene, profile: Profile | None = None) -> UnitInputs:
-    """The numbers the units of an impact scene depend on (`profile`: the scene's, if built)."""
+def _approach(scene) -> float:
+    """The work of adhesion (J/m²) that sets the adhesive units: JKR's approach work, Maugis–Dugdale's
+    and Greenwood–Johnson's work of adhesion, 0 without adhesion."""
     adhesion = scene.active_adhesion
-    approach = adhesion.approach if adhesion is not None and adhesion.model == "jkr" else 0.0
-    if adhesion is not None and adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
-        approach = adhesion.work_of_adhesion
-    return UnitInputs(
-        profile=scene.contact_profile.build() if profile is None else profile,
-        E_star=scene.material.effective_modulus,
-        approach=approach,
-        mass=scene.reduced_mass,
-        speed=_speed(scene),
-    )
+    if adhesion is None:
+        return 0.0
+    if adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
+        return adhesion.work_of_adhesion
+    return adhesion.approach if adhesion.model == "jkr" else 0.0
 
 
 def _speed(scene) -> float:
@@ -93,6 +89,21 @@ def _fall(scene) -> float:
     """2·g·gap (m²/s²): what the fall to the touch adds to v0²."""
     gravity = scene.effects.gravity
     return 2.0 * gravity.g * scene.start.gap if gravity is not None else 0.0
+
+
+# The numbers of `UnitInputs` after the profile, each read from a scene.
+UNIT_NUMBERS: dict[str, Callable[[Any], float]] = {
+    "E_star": lambda scene: scene.material.effective_modulus,
+    "approach": _approach,
+    "mass": lambda scene: scene.reduced_mass,
+    "speed": _speed,
+}
+
+
+def unit_inputs(scene, profile: Profile | None = None) -> UnitInputs:
+    """The numbers the units of an impact scene depend on (`profile`: the scene's, if built)."""
+    built = scene.contact_profile.build() if profile is None else profile
+    return UnitInputs(built, **{name: read(scene) for name, read in UNIT_NUMBERS.items()})
 
 
 def _units(inputs: UnitInputs, adhesive: bool) -> tuple[dict[str, jax.Array], dict[str, jax.Array]]:
@@ -111,38 +122,45 @@ def _units(inputs: UnitInputs, adhesive: bool) -> tuple[dict[str, jax.Array], di
 @float64
 def unit_columns(inputs: Sequence[UnitInputs], adhesive: bool) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """The units of many scenes of one structure, as columns: ({name: unit of each scene},
-    energetic depth of each scene). Computed together in batches of `_BATCH` (one compiled
-    program serves every sweep: numbers are traced, the batch shape fixed; kept across
-    processes, `call_stored`)."""
-    columns = _input_columns(inputs)
-    treedef = jax.tree.structure(inputs[0])
-    size = _BATCH if len(inputs) > 1 else 1
+    energetic depth of each scene)."""
+    profile = inputs[0].profile
+    if all(point.profile is profile for point in inputs):  # flattened once
+        numbers = np.array([point[1:] for point in inputs], np.float64).reshape(len(inputs), len(UNIT_NUMBERS))
+        return profile_unit_columns(profile, dict(zip(UNIT_NUMBERS, numbers.T, strict=True)), len(inputs), adhesive)
+    leaves = [jax.tree.leaves(point) for point in inputs]
+    columns = [np.array([row[k] for row in leaves], np.float64) for k in range(len(leaves[0]))]
+    return _batched_units(jax.tree.structure(inputs[0]), columns, len(inputs), adhesive)
+
+
+@float64
+def profile_unit_columns(
+    profile: Profile, numbers: Mapping[str, "np.ndarray | float"], count: int, adhesive: bool
+) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """`unit_columns` of `count` scenes of one profile, from their `UNIT_NUMBERS` by name: a
+    column of `count` values each, or one value that they share."""
+    leaves = jax.tree.leaves(profile)
+    shared = [np.broadcast_to(np.asarray(leaf, np.float64), (count, *np.shape(leaf))) for leaf in leaves]
+    rest = [np.broadcast_to(np.asarray(numbers[name], np.float64), (count,)) for name in UNIT_NUMBERS]
+    structure = jax.tree.structure(UnitInputs(profile, **dict.fromkeys(UNIT_NUMBERS, 0.0)))
+    return _batched_units(structure, shared + rest, count, adhesive)
+
+
+def _batched_units(structure, columns: list[np.ndarray], count: int, adhesive: bool):
+    """`unit_columns` from the inputs' leaves as columns (`count` rows each), computed in batches
+    of `_BATCH` (one compiled program serves every sweep: numbers are traced, the batch shape
+    fixed; kept across processes, `call_stored`)."""
+    size = _BATCH if count > 1 else 1
     values: dict[str, list[np.ndarray]] = {name: [] for name in _UNIT_NAMES}
     depths = []
-    for first in range(0, len(inputs), _BATCH):
-        rows = np.minimum(np.arange(first, first + size), len(inputs) - 1)  # the last one repeated
-        run_fields, energetic = call_stored(_units, jax.tree.unflatten(treedef, [c[rows] for c in columns]), adhesive)
+    for first in range(0, count, _BATCH):
+        rows = np.minimum(np.arange(first, first + size), count - 1)  # the last one repeated
+        run_fields, energetic = call_stored(_units, jax.tree.unflatten(structure, [c[rows] for c in columns]), adhesive)
         run = jax.tree.map(np.asarray, Scales(**run_fields))  # its velocity and energy in NumPy: no dispatch
-        kept = min(_BATCH, len(inputs) - first)
+        kept = min(_BATCH, count - first)
         for name in _UNIT_NAMES:
             values[name].append(np.asarray(getattr(run, name))[:kept])
         depths.append(np.asarray(energetic["normal"])[:kept])
     return {name: np.concatenate(parts) for name, parts in values.items()}, np.concatenate(depths)
-
-
-def _input_columns(inputs: Sequence[UnitInputs]) -> list[np.ndarray]:
-    """The leaves of the inputs as float64 columns, one row per scene. A profile that all the
-    scenes share (a sweep that leaves the profile alone) is flattened once."""
-    profile = inputs[0].profile
-    if all(point.profile is profile for point in inputs):
-        shared = [
-            np.broadcast_to(np.asarray(leaf, np.float64), (len(inputs), *np.shape(leaf)))
-            for leaf in jax.tree.leaves(profile)
-        ]
-        numbers = np.array([point[1:] for point in inputs], np.float64).reshape(len(inputs), -1)
-        return shared + list(numbers.T)
-    leaves = [jax.tree.leaves(point) for point in inputs]
-    return [np.array([row[k] for row in leaves], np.float64) for k in range(len(leaves[0]))]
 
 
 def units_at(values: dict[str, np.ndarray], depth: np.ndarray, row: int) -> Units:

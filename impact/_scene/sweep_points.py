@@ -22,7 +22,18 @@ from pydantic import BaseModel, ValidationError
 from .._core.runtime import float64
 from .errors import FieldProblem, SweepError, problems_of
 from .paths import assign, resolve_field, section_at
-from .representable import Limits, UnitInputs, check_units, limits_of, passes, unit_columns, unit_inputs, units_at
+from .representable import (
+    UNIT_NUMBERS,
+    Limits,
+    UnitInputs,
+    check_units,
+    limits_of,
+    passes,
+    profile_unit_columns,
+    unit_columns,
+    unit_inputs,
+    units_at,
+)
 from .scene import Scene
 from .sweep_spec import MAX_LISTED, SweepSpec
 
@@ -66,25 +77,37 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
     models = [(prefix, section_at(point, prefix)) for prefix, _ in chains]
     profile_swept = any(path.startswith(("body.profile.", "counterpart.profile.")) for path in spec.paths)
     base_profile = None if profile_swept else spec.scene.contact_profile.build()
-    # the inputs' tree structure: that of the base scene's, unless the profile is swept
-    base_structure = None
-    if base_profile is not None and spec.scene.kind == "impact":
-        base_structure = jax.tree.structure(unit_inputs(spec.scene, base_profile))
-
     checks = _reading_checks(models, owners)
     # what the units are checked against: the base's, unless it reads a swept field
     base_limits = None if _reads_swept(limits_of, point, owners) else limits_of(point)
+    # the units' inputs of a point: with the base's profile, the base's numbers but those read
+    # from a swept field (those alone are read per point); else every input per point
+    varying: dict[str, Callable] = {}
+    base_numbers: dict[str, float] = {}
+    if base_profile is not None and spec.scene.kind == "impact":
+        varying = _reading_numbers(point, owners)
+        base_numbers = {name: read(spec.scene) for name, read in UNIT_NUMBERS.items()}
 
     def set_point(index: int) -> None:
         for (owner, name), column in zip(owners, columns, strict=True):
             owner.__dict__[name] = column[index]
 
+    def point_inputs() -> "UnitInputs | tuple[float, ...]":
+        if base_profile is None:
+            return unit_inputs(point)
+        return tuple(read(point) for read in varying.values())
+
     problems: dict[int, str] = {}
-    pending: dict[tuple, list[tuple[int, UnitInputs, Limits]]] = {}
+    pending: dict[tuple, list[tuple[int, UnitInputs | tuple[float, ...], Limits]]] = {}
 
     def check_pending(key: tuple) -> None:
         indices, inputs, limits = zip(*pending.pop(key), strict=True)
-        values, depth = unit_columns(inputs, key[0])
+        if base_profile is None:
+            values, depth = unit_columns(inputs, key[0])
+        else:
+            read = np.array(inputs, np.float64).reshape(len(inputs), len(varying))
+            numbers: dict[str, np.ndarray | float] = {**base_numbers, **dict(zip(varying, read.T, strict=True))}
+            values, depth = profile_unit_columns(base_profile, numbers, len(inputs), key[0])
         for row in np.flatnonzero(~passes(values, depth, limits)).tolist():
             set_point(indices[row])
             try:
@@ -98,8 +121,8 @@ def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:
         if message is not None:
             problems[index] = message
         elif point.kind == "impact":
-            inputs = unit_inputs(point, base_profile)
-            structure = jax.tree.structure(inputs) if base_structure is None else base_structure
+            inputs = point_inputs()
+            structure = jax.tree.structure(inputs) if base_profile is None else None
             key = (point.active_adhesion is not None, structure)
             limits = limits_of(point) if base_limits is None else base_limits
             pending.setdefault(key, []).append((index, inputs, limits))
@@ -183,6 +206,11 @@ def _reading_checks(models, owners) -> list[tuple[str, BaseModel, Callable]]:
         for name, decorator in type(model).__pydantic_decorators__.model_validators.items()
         if name != _REPRESENTABLE and _reads_swept(decorator.func, model, owners)
     ]
+
+
+def _reading_numbers(point: Scene, owners) -> dict[str, Callable]:
+    """The `UNIT_NUMBERS` of the units' inputs that read a swept field on the base point."""
+    return {name: read for name, read in UNIT_NUMBERS.items() if _reads_swept(read, point, owners)}
 
 
 def _reads_swept(function: Callable, argument, owners) -> bool:

@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 import impact
 from impact._scene import sweep_points
-from impact._scene.paths import assign
+from impact._scene.paths import assign, resolve_field
 from impact._scene.representable import limits_of
 from impact._scene.sweep import load_sweep
 from impact.cli import app
@@ -120,6 +120,8 @@ SWEPT_REFUSALS = {
     "adhesion": ("thornton_ning.yaml", "effects.adhesion.work_of_adhesion", [0.05, 1e-28, 1e-20, 1e-30, 1e-27]),
     # a yielding body pressed in deeper than its radius (Thornton's closed form, checked alone)
     "plastic": ("plastic_steel.yaml", "initial.velocity", [10.0, 1e3, 100.0, 2e3]),
+    # the modulus: a soft body pressed in deeper than its size (E* among the units' inputs)
+    "modulus": ("thornton_ning.yaml", "material.E_star", [1e9, 1e3, 2e9, 1e2, 5e8]),
     # a combination: the depth of a heavy body, at each of its velocities
     "mass": ("thornton_ning.yaml", "body.mass", [1e-14, 1e6, 1e-13, 10.0]),
     # a swept profile: built point by point, its size the swept radius
@@ -205,6 +207,15 @@ def test_only_the_validators_that_read_a_swept_field_run_per_point():
     # what the units are checked against: the base's for a velocity, per point for a radius
     assert not sweep_points._reads_swept(limits_of, scene, [(initial, "velocity")])
     assert sweep_points._reads_swept(limits_of, scene, [(scene.body.profile, "R")])
+    # the units' inputs read per point: those of the swept field, the rest are the base's
+    swept_numbers = {
+        "initial.velocity": ["speed"],
+        "material.E_star": ["E_star"],
+        "body.mass": ["mass"],
+        "effects.adhesion.work_of_adhesion": ["approach"],
+    }
+    for path, names in swept_numbers.items():
+        assert list(sweep_points._reading_numbers(scene, [resolve_field(scene, path)])) == names, path
 
 
 @pytest.mark.parametrize("enabled", [True, False])
