@@ -68,20 +68,19 @@ def workloads(quick: bool = False) -> list[Workload]:
     quick plan: the light ones, the scan at N = 64, 256, 1024)."""
     v_s = sticking_velocity()
     paraboloid = dict(shape="paraboloid", R=RADIUS)
-    light = [
-        Workload("tn", "Thornton–Ning", case_scene("tn", paraboloid, v_s), _range(v_s), CLOSED_FORM),
-        _power_law("power1.5", "power law n=1.5", 1.5, POWER_C, dict(shape="power_law", n=1.5, c=POWER_C)),
-        _power_law("power3", "power law n=3", 3.0, POWER3_C, dict(shape="power_law", n=3.0, c=POWER3_C)),
-        _power_law("cone", "cone", 1.0, float(np.tan(CONE_ANGLE)), dict(shape="cone", theta=CONE_ANGLE)),
-        spring_array(256),
-    ]
+    tn = Workload("tn", "Thornton–Ning", case_scene("tn", paraboloid, v_s), _range(v_s), CLOSED_FORM)
+    power15 = _power_law("power1.5", "power law n=1.5", 1.5, POWER_C, dict(shape="power_law", n=1.5, c=POWER_C))
+    power3 = _power_law("power3", "power law n=3", 3.0, POWER3_C, dict(shape="power_law", n=3.0, c=POWER3_C))
+    cone = _power_law("cone", "cone", 1.0, float(np.tan(CONE_ANGLE)), dict(shape="cone", theta=CONE_ANGLE))
+    light = [tn, power15, power3, cone, spring_array(256)]
     attach = Workload(
         "attach", "attach on touch", case_scene("attach", paraboloid, v_s, approach=0.0), _range(v_s), CLOSED_FORM
     )
     if quick:
         return [*light, attach, *(spring_array(n) for n in (64, 1024))]
-    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s), _energy_ends(v_s)]
-    return [*light, *heavy, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
+    heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s)]
+    loose = [_energy_ends(workload) for workload in (tn, power15, power3, cone)]
+    return [*light, *heavy, *loose, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
 
 
 def _dugdale(v_s: float) -> Workload:
@@ -99,13 +98,14 @@ def _double_hertz(v_s: float) -> Workload:
     return Workload("gj", "Greenwood–Johnson k=10", scene, _range(v_s), TIGHTER)
 
 
-def _energy_ends(v_s: float) -> Workload:
-    """Thornton–Ning as a restitution table takes it (`configs/sweeps/thornton_ning_fast.yaml`):
+def _energy_ends(workload: Workload) -> Workload:
+    """A continuum workload as a restitution table takes it (`configs/sweeps/thornton_ning_fast.yaml`):
     each phase's end from its energy balance (the default) makes the restitution exact at any
     rtol, so rtol ENERGY_RTOL serves (the contact time then good to about 1e-6)."""
-    scene = case_scene("tn_energy", dict(shape="paraboloid", R=RADIUS), v_s)
+    scene = {**workload.scene, "name": f"{workload.scene['name']}_energy"}
     scene["solver"] = dict(rtol=ENERGY_RTOL, atol=ENERGY_RTOL / 100.0, phase_ends="energy")
-    return Workload("tn_energy", f"Thornton–Ning, rtol {ENERGY_RTOL:g}", scene, _range(v_s), CLOSED_FORM)
+    name = f"{workload.name}, rtol {ENERGY_RTOL:g}"
+    return Workload(f"{workload.key}_energy", name, scene, workload.velocities, workload.reference)
 
 
 def _bead() -> Workload:

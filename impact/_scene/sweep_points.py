@@ -5,9 +5,10 @@ paths, on one copy of the base scene whose swept fields are set in place point b
 µs a point instead of a full `Scene.model_validate`): this is what a full validation would
 check, as the rest of the scene is the already valid base. Only the validators that read a
 swept field run per point: one that reads none (tracked once, on the base) takes the same path
-at every point, and so passes at every point as it passes at the base. The representability check (units
-from the profile, in JAX) runs in batched calls of up to `_PENDING` points. Models with other kinds of
-validators fall back to a full validation per point.
+at every point, and so passes at every point as it passes at the base. The representability
+check (units from the profile, in JAX) runs in batched calls of up to `_PENDING` points, on
+columns of its inputs: each point's own value of an input that reads a swept field, the base's
+of the others. Models with other kinds of validators fall back to a full validation per point.
 """
 
 import contextlib
