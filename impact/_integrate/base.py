@@ -68,8 +68,9 @@ _STATE_TILE = 4
 class AbstractIntegrator(eqx.Module):
     """Integrates one impact (possibly several bounces) from SI parameters to scaled results."""
 
-    # Lanes a compiled batch of this integrator runs at most per device (None: any number): a
-    # sweep splits its chunks into calls of at most this many points.
+    # Lanes a compiled batch of this integrator runs at most per CPU device (None: any number):
+    # a sweep splits its chunks into calls of at most this many points. XLA:CPU only: a GPU
+    # runs each lane as a thread of the same code whatever the batch.
     most_lanes: ClassVar[int | None] = None
 
     @abc.abstractmethod

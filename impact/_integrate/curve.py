@@ -73,8 +73,8 @@ class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
     # XLA:CPU compiles a while loop into one kernel while the bytes it touches stay under a
     # threshold (64 kB, `impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two
     # round differently. A curve ride's step crosses it between 32 and 60 lanes (Maugis–Dugdale:
-    # restitutions up to 9e-7 apart, step counts up to 25), so its batches stay below: 16 lanes
-    # cost the same per impact as 512 (measured, 2 cores).
+    # restitutions up to 9e-7 apart, step counts up to 25), so its batches stay below on CPU
+    # devices: 16 lanes cost the same per impact as 512 (measured, 2 cores).
     most_lanes: ClassVar[int | None] = 16
 
     def integrate(self, problem: CurveProblem, options: Options) -> Outcome:

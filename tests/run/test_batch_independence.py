@@ -23,7 +23,7 @@ amplify an ulp most) check it with two points, each alone (beside its copy), tog
 swapped. Sums over an axis are added in node order (`impact._core.quadrature.ordered_sum`):
 XLA:CPU's reduce picked its order by the batch's shape from 100 points up; and it compiles a
 loop whole or op by op by the bytes it touches, which grow with the batch, so that a curve law's
-calls of 60 points rounded otherwise than calls of 16: curve laws run calls of at most 16 points
+calls of 60 points rounded otherwise than calls of 16: curve laws run calls of at most 16 points on CPU devices
 (both measured with more points than are affordable here: docs/src/sweeps.md; the call sizes are
 checked below). `impact.simulate` (unbatched) gives those two laws' results to a few ulps, not
 checked here.
@@ -33,6 +33,7 @@ import os
 import platform
 import subprocess
 import sys
+import types
 from pathlib import Path
 
 import jax
@@ -152,12 +153,22 @@ def test_a_power_law_point_does_not_depend_on_its_place_in_a_batch():
 @pytest.mark.parametrize(
     ("config", "call"), [("maugis_dugdale.yaml", 16), ("greenwood_johnson.yaml", 16), ("thornton_ning.yaml", 40)]
 )
-def test_curve_laws_run_calls_of_at_most_sixteen_points(config, call):
+def test_curve_laws_run_calls_of_at_most_sixteen_points_on_a_cpu(config, call):
     # Their rides' loops compile whole up to ~32 points a call and op by op from ~60, rounding
     # otherwise; the continuum law gives the same bits either way and runs a chunk in one call.
     plan = plan_sweep(make_spec(load_scene(CONFIGS / config), {"initial.velocity": np.linspace(0.1, 1.0, 40).tolist()}))
-    assert _call_sizes(plan, plan.share(0, 1), 64, devices=1) == {0: call}
-    assert _call_sizes(plan, plan.share(0, 1), 1, devices=1) == {0: 2}
+    cpu = jax.devices("cpu")[:1]
+    assert _call_sizes(plan, plan.share(0, 1), 64, cpu) == {0: call}
+    assert _call_sizes(plan, plan.share(0, 1), 1, cpu) == {0: 2}
+
+
+@pytest.mark.parametrize("config", ["maugis_dugdale.yaml", "greenwood_johnson.yaml"])
+def test_curve_laws_run_a_chunk_in_one_call_on_gpus(config):
+    """The guard is XLA:CPU's: two GPUs take a chunk of 40 points in one call of 20 each."""
+    plan = plan_sweep(make_spec(load_scene(CONFIGS / config), {"initial.velocity": np.linspace(0.1, 1.0, 40).tolist()}))
+    gpus = [types.SimpleNamespace(platform="gpu")] * 2
+    assert _call_sizes(plan, plan.share(0, 1), 64, gpus) == {0: 40}
+    assert _call_sizes(plan, plan.share(0, 1), 1, gpus) == {0: 4}  # two lanes a device
 
 
 X86 = platform.machine().lower() in ("x86_64", "amd64")

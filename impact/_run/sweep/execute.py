@@ -109,7 +109,7 @@ def _execute(plan: Plan, chunk: int | None, devices, share, skip, on_chunk, prog
     sharding = batch_sharding(devices)
     shares = plan.share(*share)
     work = chunks_of(shares, chunk, skip)
-    sizes = _call_sizes(plan, shares, chunk, len(devices))
+    sizes = _call_sizes(plan, shares, chunk, devices)
     compiled, compile_time = _compile_groups(plan, sorted({group for group, _ in work}), sizes, devices, progress)
     start = time.perf_counter()
     fallbacks, fallback_compile = 0, COMPILE_SECONDS["unbatched"]
@@ -174,18 +174,19 @@ def _execute(plan: Plan, chunk: int | None, devices, share, skip, on_chunk, prog
 _LEAST_LANES = 2
 
 
-def _call_sizes(plan: Plan, shares: list[np.ndarray], chunk: int, devices: int) -> dict[int, int]:
+def _call_sizes(plan: Plan, shares: list[np.ndarray], chunk: int, devices: Sequence) -> dict[int, int]:
     """Points per compiled call of each group: its (first) chunk length, padded to a multiple
-    of the device count and to `_LEAST_LANES` per device, and at most the integrator's
-    `most_lanes` per device (a longer chunk runs in several calls)."""
+    of the device count and to `_LEAST_LANES` per device, and on CPU devices at most the
+    integrator's `most_lanes` per device (a longer chunk runs in several calls)."""
+    count = len(devices)
     sizes = {}
     for group, points in enumerate(shares):
         if len(points):
-            size = chunk_size(len(chunks_of([points], chunk)[0][1]), devices)
+            size = chunk_size(len(chunks_of([points], chunk)[0][1]), count)
             most_lanes = plan.choices[group].integrator.most_lanes
-            if most_lanes is not None:
-                size = min(size, most_lanes * devices)
-            sizes[group] = max(size, _LEAST_LANES * devices)
+            if most_lanes is not None and devices[0].platform == "cpu":
+                size = min(size, most_lanes * count)
+            sizes[group] = max(size, _LEAST_LANES * count)
     return sizes
 
 
