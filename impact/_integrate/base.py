@@ -111,7 +111,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
         import diffrax as dfx
         import optimistix as optx
 
-        from .rootfind import BracketBisection
+        from .rootfind import BracketIllinois
 
         size = y0.shape[0]
         padding = jnp.zeros(-size % _STATE_TILE)
@@ -135,7 +135,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
             args=args,
             saveat=dfx.SaveAt(t1=True, dense=dense),
             stepsize_controller=dfx.PIDController(rtol=self.rtol, atol=self.atol, norm=norm),
-            event=dfx.Event(event, root_finder=BracketBisection(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True),
+            event=dfx.Event(event, root_finder=BracketIllinois(rtol=_ROOT_RTOL, atol=_ROOT_ATOL), direction=True),
             max_steps=self.max_steps,
             adjoint=getattr(dfx, ADJOINTS[self.adjoint])(),
             throw=False,
