@@ -37,8 +37,17 @@ RESULT_CODES = (
     "branch_overflow",  # the edge functions turn more often than the branch tables hold
     "overdamped",  # damping holds the body in contact: it creeps towards rest, never turning or let go
     "unresolved_zone",  # a Maugis–Dugdale spring array too coarse for the adhesive zone: its answer would be wrong
+    "energy_drift",  # the solver's speed disagrees with the energy balance: tighten rtol/atol or use phase_ends: energy
 )
 RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
+# What went wrong and what to do, for the result codes whose name does not say it (`impact run`
+# and `impact sweep` print it after their warning).
+REMEDIES = {
+    "energy_drift": (
+        "a contact phase ended with a speed that disagrees with its energy balance, so the restitution "
+        "would be wrong: tighten solver.rtol/atol, or use solver.phase_ends: energy"
+    ),
+}
 
 
 def is_success(code) -> bool:

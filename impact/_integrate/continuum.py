@@ -27,7 +27,9 @@ timed in d from a steep tip) or held comes from the energy balance of the phase,
 `work.hold_work`), instead of from the solver's dense output at the located event: at a segment
 end or the end of a hold the speed, at a turnaround the radius (Newton on v² = 0). The
 restitution and the deepest indentation are then exact to round-off at any tolerance; the times
-still come from the solver.
+still come from the solver. With the located ends (`phase_ends="integrated"`) an undamped phase's
+speed is checked against that balance: where they disagree by more than the phase's kinetic
+energies (`work.drifts`) the run ends with the status `energy_drift`, not a number.
 """
 
 import equinox as eqx
@@ -42,11 +44,11 @@ from .._law.law import ContactLaw
 from . import transitions
 from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import Next
-from .work import ContactSummary, active_branch, branch_work, extremes, hold_work, phase_summary
+from .work import ContactSummary, active_branch, branch_work, drifts, extremes, hold_work, phase_summary, squared_speed
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
@@ -270,7 +272,13 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
     if not options.damped:
-        return close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+        closed = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+        if integrator.phase_ends == "energy":
+            return closed
+        off_balance = drifts((c.d, c.v), (d_end, v_end), summary.work, problem.gravity, problem.touch_speed)
+        drifted = in_contact & event_found & ~out_of_time & off_balance
+        status = jnp.where(drifted, RESULT_CODE["energy_drift"], closed.status)
+        return replace(closed, status=status, mode=jnp.where(drifted, DONE, closed.mode))
     summary, nxt = _damped(problem, solution, args, summary, nxt, y_end, d_end)
     closed = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
     # A phase that found no event while the body all but stopped: overdamped creep towards rest.
@@ -322,14 +330,14 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
     x_located, v_located = located
     law, branch, gravity = problem.law, args.branch, problem.gravity
 
-    def squared_speed(radius):
+    def ridden_squared_speed(radius):
         ridden = branch_work(law, branch, c.radius, radius)
-        return c.v**2 - 2.0 * ridden + 2.0 * gravity * (branch.level(law, radius) - c.d)
+        return squared_speed((c.d, c.v), ridden, gravity, branch.level(law, radius))
 
     def newton(radius, _):
         force = law.force(radius, branch.level(law, radius))
         slope = 2.0 * (gravity - force) * law.edge_slope(radius, branch.coefficient)
-        step = squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
+        step = ridden_squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
         return jnp.clip(radius - step, branch.nodes[c.segment], branch.nodes[c.segment + 1]), None
 
     def speed(squared, sign):  # no nan derivative where it is unused at 0
@@ -347,16 +355,16 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
     root, _ = jax.lax.scan(newton, radius_located, None, length=_TURNAROUND_NEWTON)
     riding = ended & (args.riding | timed)
     # The energy's verdict where it and the solver's event disagree (see above).
-    at_node = squared_speed(node)
-    converged = jnp.abs(squared_speed(root)) <= _CONVERGED * (c.v**2 + jnp.abs(at_node) + 1.0)
+    at_node = ridden_squared_speed(node)
+    converged = jnp.abs(ridden_squared_speed(root)) <= _CONVERGED * (c.v**2 + jnp.abs(at_node) + 1.0)
     reaches = riding & turned & ~converged & (at_node > 0.0)
     falls_short = riding & ~turned & converged & (at_node < 0.0)
     turned = (turned & ~reaches) | falls_short
     end_radius = jnp.where(turned, root, jnp.where(reaches, node, radius_located))
-    riding_speed = speed(squared_speed(end_radius), -args.velocity_sign)  # while riding, sign·v < 0
+    riding_speed = speed(ridden_squared_speed(end_radius), -args.velocity_sign)  # while riding, sign·v < 0
     depth = args.level
     held_speed = speed(
-        c.v**2 - 2.0 * hold_work(law, c.radius, c.d, depth) + 2.0 * gravity * (depth - c.d), jnp.sign(v_located)
+        squared_speed((c.d, c.v), hold_work(law, c.radius, c.d, depth), gravity, depth), jnp.sign(v_located)
     )
     holding = ended & (args.mode == HOLD) & ~turned  # a hold never rides
     x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)  # ridden: x_located unless turned

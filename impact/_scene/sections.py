@@ -212,7 +212,8 @@ class Solver(Section):
             "where a contact phase's end comes from: 'integrated' (the solver's dense output at the located event) "
             "or 'energy' (the phase's energy balance: the restitution exact to round-off at any rtol, the times "
             "still the solver's; continuum JKR law without damping or plasticity); default: 'energy' where it "
-            "applies, else 'integrated'"
+            "applies, else 'integrated' (where 'energy' applies, an 'integrated' phase whose speed drifts from its "
+            "energy balance ends the run with status energy_drift)"
         ),
     )
     dt: Annotated[Number, within(d.TIME_STEP)] | None = Field(

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 import typer
 from rich.text import Text
 
+from .._integrate.codes import REMEDIES
 from .._io.files import write_text
 from .._plots.figures import import_ahead
 from .._plots.run import save_figures
@@ -48,7 +49,10 @@ def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | No
     out.print(result_table(result, wall_time))
     say(f"run written to {folder}")
     if not result.success:
+        remedy = REMEDIES.get(result.status)
         warn(f"warning: the run ended with status {result.status!r}, not a physical outcome")
+        if remedy is not None:
+            warn(f"  {result.status}: {remedy}")
         raise typer.Exit(1)
 
 

@@ -34,6 +34,7 @@ from rich.progress import (
 )
 from rich.text import Text
 
+from .._integrate.codes import REMEDIES
 from .._io import sweep as sweep_store
 from .._io.sweep_journal import SweepWriter, journal_state
 from .._plots.figures import import_ahead
@@ -281,7 +282,11 @@ def _print_summary(result: SweepResult, stats: dict, closing: str) -> None:
     estimates = sticking_estimates(result)
     if estimates:
         out.print(sticking_table(estimates))
-    failed = sum(count for name, count in outcome_counts(result).items() if name not in OUTCOMES)
+    counts = outcome_counts(result)
+    failed = sum(count for name, count in counts.items() if name not in OUTCOMES)
     if failed:
         warn(f"warning: {failed} point(s) ended without a physical outcome (see sweep/results/status)")
+    for name in counts:
+        if name in REMEDIES:
+            warn(f"  {name} ({counts[name]}): {REMEDIES[name]}")
     say(closing)

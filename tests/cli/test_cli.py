@@ -108,6 +108,17 @@ def test_unsuccessful_run_is_written_and_exits_1(tmp_path):
     assert read_run(tmp_path / "out" / "run.h5").status == "time_limit"
 
 
+def test_energy_drift_is_written_and_explained(tmp_path):
+    """hard/08 with the located ends at rtol 1e-6: the solver's speed drifts from the energy
+    balance; the run is written with that status, and the warning says what to do."""
+    overrides = ["--set", "solver.phase_ends=integrated", "--set", "solver.rtol=1e-6", "--set", "solver.atol=1e-8"]
+    result = invoke("run", CONFIGS / "hard" / "08_power_law_n06.yaml", "-o", tmp_path / "out", *overrides)
+    assert result.exit_code == 1
+    assert "warning: the run ended with status 'energy_drift'" in result.output
+    assert "tighten solver.rtol/atol, or use solver.phase_ends: energy" in result.output
+    assert read_run(tmp_path / "out" / "run.h5").status == "energy_drift"
+
+
 def test_validate_prints_the_resolved_key_facts():
     result = invoke(
         "validate",
