@@ -360,14 +360,14 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
     reaches = riding & turned & ~converged & (at_node > 0.0)
     falls_short = riding & ~turned & converged & (at_node < 0.0)
     turned = (turned & ~reaches) | falls_short
-    end_radius = jnp.where(turned, root, jnp.where(reaches, node, radius_located))
+    end_radius = jnp.where(turned, root, node)  # riding and not turned: the segment's end
     riding_speed = speed(ridden_squared_speed(end_radius), -args.velocity_sign)  # while riding, sign·v < 0
     depth = args.level
     held_speed = speed(
         squared_speed((c.d, c.v), hold_work(law, c.radius, c.d, depth), gravity, depth), jnp.sign(v_located)
     )
     holding = ended & (args.mode == HOLD) & ~turned  # a hold never rides
-    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)  # ridden: x_located unless turned
+    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)
     x_end = jnp.where(riding, x_along, jnp.where(holding, depth, x_located))
     v_end = jnp.where(riding, jnp.where(turned, 0.0, riding_speed), jnp.where(holding, held_speed, v_located))
     return x_end, v_end, turned
