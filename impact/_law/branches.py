@@ -123,6 +123,12 @@ class Branch(eqx.Module):
 
     def _log_newton(self, law: ContactLaw, base, base_level, x, indentation):
         """One Newton step on log(h − h(base)) = log(d − h(base)) in the variable log(x − base)."""
+        return self._log_newton_step(law, base, base_level, x, indentation)[0]
+
+    def _log_newton_step(self, law: ContactLaw, base, base_level, x, indentation):
+        """`_log_newton`'s step and whether it was one: (x', usable). Not usable (x' = x) where
+        h − h(base) has no positive rise or local exponent at x — below the round-off of h just
+        above a turning point, where the rise of a quadratic minimum underflows."""
         offset = jnp.maximum(x - base, _SMALLEST_RADIUS)
         rise, exponent = self._rise(law, base, base_level, base + offset)
         target = indentation - base_level
@@ -130,7 +136,7 @@ class Branch(eqx.Module):
         log_step = (jnp.log(jnp.where(usable, rise, 1.0)) - jnp.log(jnp.where(usable, target, 1.0))) / jnp.where(
             usable, exponent, 1.0
         )
-        return jnp.where(usable, base + offset * jnp.exp(-log_step), x)
+        return jnp.where(usable, base + offset * jnp.exp(-log_step), x), usable
 
     def _newton(self, law: ContactLaw, x, indentation):
         slope = law.edge_slope(x, self.coefficient)
@@ -159,15 +165,22 @@ class Branch(eqx.Module):
             count, lo, hi, offset, _ = state  # offsets from `lower`
             below = branch.level(frozen, low_end + offset) < target
             lo, hi = jnp.where(below, offset, lo), jnp.where(below, hi, offset)
-            guess = branch._log_newton(frozen, low_end, base_level, low_end + offset, target) - low_end
-            inside = (guess > lo) & (guess < hi)
+            guess, usable = branch._log_newton_step(frozen, low_end, base_level, low_end + offset, target)
+            guess = guess - low_end
+            inside = usable & (guess > lo) & (guess < hi)
             # Settled once Newton moves the iterate by round-off (its step may then leave the
-            # bracket by an ulp: the iterate is kept) or the bracket has closed on it.
-            settled = (jnp.abs(guess - offset) <= _SETTLED * offset) | (hi - lo <= _SETTLED * hi)
+            # bracket by an ulp: the iterate is kept) or the bracket has closed on it. A step
+            # that is no step (no usable rise at the iterate: h − h(lower) lost in round-off
+            # just above a turning point) settles nothing: it bisects.
+            settled = (usable & (jnp.abs(guess - offset) <= _SETTLED * offset)) | (hi - lo <= _SETTLED * hi)
             new = jnp.where(inside, guess, jnp.sqrt(lo) * jnp.sqrt(hi))
             return count + 1, lo, hi, jnp.where(settled, offset, new), settled
 
         first = branch._power_start(frozen, low_end, base_level, high_end, target) - low_end
+        # Where the segment ends at a turning point (h' = 0 there: no local exponent, and the
+        # power start is `lower` itself) the search starts from the segment's middle.
+        _, top_exponent = branch._rise(frozen, low_end, base_level, high_end)
+        first = jnp.where(top_exponent > 0.0, first, 0.5 * span)
         first = jnp.where(inside_range, first, jnp.where(target >= top_level, span, _SMALLEST_RADIUS))
         start = (0, jnp.asarray(_SMALLEST_RADIUS), span, jnp.clip(first, _SMALLEST_RADIUS, span), ~inside_range)
         _, _, _, offset, _ = jax.lax.while_loop(running, step, start)
