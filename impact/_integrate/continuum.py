@@ -267,6 +267,10 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
         radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
         d = jnp.where(riding, branch.level(law, x), x)
         rows = jnp.stack([t, d, v, law.force(radii, d) + viscous_force(radii, v, args), radii], axis=1)
+        # The last sample is the phase's end as the next phase starts from it (with the energy's
+        # ends its depth and speed come from the balance, not from the dense output).
+        end_force = law.force(a_end, d_end) + viscous_force(a_end, v_end, args)
+        rows = rows.at[-1].set(jnp.stack([t_end, d_end, v_end, end_force, a_end]))
         c = where(in_contact, store_samples(c, options, rows), c)
 
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))

@@ -7,6 +7,8 @@ import pytest
 
 import impact
 from impact import theory
+from impact._run.impacts import Result
+from tests.run.passive import assert_passive
 
 CONFIGS = Path(__file__).parents[2] / "configs"
 
@@ -215,4 +217,6 @@ def test_config_runs_and_meets_its_reference(name):
     result = impact.simulate(CONFIGS / f"{name}.yaml")
     assert result.success, result.status
     assert result.scene.name == name
+    if isinstance(result, Result):  # an impact, not an indentation test
+        assert_passive(result)
     CHECKS[name](result)

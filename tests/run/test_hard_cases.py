@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 from impact import load_scene, simulate, theory
 from impact._integrate.base import AbstractAdaptiveIntegrator
 from impact._run.parameters import integrator_for, options_for
+from tests.run.passive import assert_passive
 
 HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
 
@@ -27,6 +28,7 @@ def run_case(name: str):
     result = simulate(scene)
     for series in (result.t, result.indentation, result.velocity, result.force, result.contact_radius):
         assert np.all(np.isfinite(series))
+    assert_passive(result)
     integrator = integrator_for(scene)
     if isinstance(integrator, AbstractAdaptiveIntegrator):
         assert result.stats["steps"] < integrator.max_steps * options_for(scene).max_phases // 4
@@ -325,6 +327,7 @@ def run_with_approach_share(name, share, profile=None):
     result = simulate(data)
     for series in (result.t, result.indentation, result.velocity, result.force, result.contact_radius):
         assert np.all(np.isfinite(series))
+    assert_passive(result)
     assert result.status == "separated"
     assert result.stats["steps"] < TINY_SHARE_STEPS
     return result
