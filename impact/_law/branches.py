@@ -99,7 +99,7 @@ class Branch(eqx.Module):
         start = jnp.where(from_base, base_start, start)
 
         def newton(x):
-            log_step = self._log_newton(law, base, low_level, x, indentation)
+            log_step, _ = self._log_newton(law, base, low_level, x, indentation)
             return jnp.where(from_base, log_step, self._newton(law, x, indentation))
 
         refined = jax.lax.stop_gradient(
@@ -122,13 +122,10 @@ class Branch(eqx.Module):
         return base + (node - base) * jnp.where(usable, ratio ** (1.0 / jnp.where(usable, exponent, 1.0)), 0.0)
 
     def _log_newton(self, law: ContactLaw, base, base_level, x, indentation):
-        """One Newton step on log(h − h(base)) = log(d − h(base)) in the variable log(x − base)."""
-        return self._log_newton_step(law, base, base_level, x, indentation)[0]
-
-    def _log_newton_step(self, law: ContactLaw, base, base_level, x, indentation):
-        """`_log_newton`'s step and whether it was one: (x', usable). Not usable (x' = x) where
-        h − h(base) has no positive rise or local exponent at x — below the round-off of h just
-        above a turning point, where the rise of a quadratic minimum underflows."""
+        """One Newton step on log(h − h(base)) = log(d − h(base)) in the variable log(x − base),
+        and whether it was one: (x', usable). Not usable (x' = x) where h − h(base) has no
+        positive rise or local exponent at x — below the round-off of h just above a turning
+        point, where the rise of a quadratic minimum underflows."""
         offset = jnp.maximum(x - base, _SMALLEST_RADIUS)
         rise, exponent = self._rise(law, base, base_level, base + offset)
         target = indentation - base_level
@@ -165,7 +162,7 @@ class Branch(eqx.Module):
             count, lo, hi, offset, _ = state  # offsets from `lower`
             below = branch.level(frozen, low_end + offset) < target
             lo, hi = jnp.where(below, offset, lo), jnp.where(below, hi, offset)
-            guess, usable = branch._log_newton_step(frozen, low_end, base_level, low_end + offset, target)
+            guess, usable = branch._log_newton(frozen, low_end, base_level, low_end + offset, target)
             guess = guess - low_end
             inside = usable & (guess > lo) & (guess < hi)
             # Settled once Newton moves the iterate by round-off (its step may then leave the
