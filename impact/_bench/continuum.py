@@ -148,7 +148,7 @@ def _batch(plan: Plan, solver: str, single_times, log: Callable) -> dict:
     )
     scene = load_scene(case_scene("tn", dict(shape="paraboloid", R=RADIUS), float(velocities[0])))
     batched = jax.vmap(_impact_at_velocity(solver, scene), in_axes=(0, None))
-    compiled, seconds = compile_ahead(batched, velocities, jnp.asarray(plan.rtols[0]), batch=True)
+    compiled, seconds = compile_ahead(batched, velocities, jnp.asarray(plan.rtols[0]))
     per_impact = np.full(len(plan.rtols), np.nan)
     errors = np.full(len(plan.rtols), np.nan)
     for sweep in range(plan.passes):

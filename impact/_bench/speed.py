@@ -191,11 +191,11 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
         _STAGES[choices] = (
             jax.jit(
                 jax.vmap(lambda physics: checksum(integrator.build(physics, options))),
-                compiler_options=compiler_options(batch=True),
+                compiler_options=compiler_options(),
             ),
             jax.jit(
                 jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))),
-                compiler_options=compiler_options(batch=True),
+                compiler_options=compiler_options(),
             ),
         )
     devices = local_devices()

@@ -37,9 +37,9 @@ def best_python_time(function: Callable, args: tuple, budget: float, repeats: in
     return min(times), result
 
 
-def compile_ahead(function: Callable, *args, batch: bool = False):
+def compile_ahead(function: Callable, *args):
     """(compiled executable of `jax.jit(function)` for `args`, with the options of impact's own
-    programs, those of a sweep's batch where `batch`; seconds to trace, lower and compile)."""
+    programs; seconds to trace, lower and compile)."""
     start = time.perf_counter()
-    compiled = jax.jit(function, compiler_options=compiler_options(batch)).lower(*args).compile()
+    compiled = jax.jit(function, compiler_options=compiler_options()).lower(*args).compile()
     return compiled, time.perf_counter() - start

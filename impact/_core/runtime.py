@@ -34,14 +34,15 @@ SMALL_LOOP_OPTION = "xla_cpu_small_while_loop_byte_threshold=65536"
 NO_FMA_FLAG = "--xla_cpu_max_isa=AVX"
 SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
 
-# XLA:CPU's fusion emitters (its default) give a vmapped batch faster vector code, but compile a
-# program 25–45 % slower than its elemental emitters, and one scene's program runs about as fast
-# with either (measured 2026-11-26: Thornton–Ning's impact compiled in 3.9 s instead of 6.7 s and
-# ran in 12 ms both ways; a fit's programs in 4.9 s instead of 8.2 s; a sweep's batch of 10³
-# points ran 103 µs per impact instead of 84). `configure()` makes the elemental emitters the
-# process's default; a sweep's batches ask for the fusion emitters (`compiler_options`).
+# XLA:CPU's fusion emitters (its default) compile a program 30–45 % slower than its elemental
+# emitters, and the program runs about as fast with either: measured 2026-11-27 on this 2-core
+# machine, a sweep's batch of 10³ points (solve, closed form and results) compiled in 2.6–3.2 s
+# instead of 3.9–4.5 s and ran 14.1–16.3 µs per Thornton–Ning impact at rtol 1e-6 against
+# 14.0–16.9, 50.0 against 48.0 at rtol 1e-10, 20.7 against 18.7 for the power law n = 1.5, 16.3
+# against 15.5 for the cone; one scene's impact compiled in 3.9 s instead of 6.7 s (2026-11-26).
+# `configure()` makes the elemental emitters the process's default, for every program: a sweep's
+# batch and a scene's run compile the same way.
 ELEMENTAL_EMITTERS_FLAG = "--xla_cpu_use_fusion_emitters=false"
-BATCH_EMITTERS = {"xla_cpu_use_fusion_emitters": True}
 
 
 @functools.cache
@@ -55,16 +56,14 @@ def contracts_multiply_adds() -> bool:
         return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
 
 
-def compiler_options(batch: bool = False, platform: str | None = None) -> dict[str, int | bool]:
+def compiler_options(platform: str | None = None) -> dict[str, int | bool]:
     """XLA options of a compiled impact program: scalar lanes where this process fuses
-    multiply–adds (see `NO_FMA_FLAG`); for a sweep's batch (every program that computes a sweep's
-    points: `batch=True`), XLA's fusion emitters (see `ELEMENTAL_EMITTERS_FLAG`). `platform`:
-    that of the devices the program runs on ("cpu", "gpu", ...; default: JAX's default backend),
-    e.g. a sweep's batch given CPU devices on a machine whose default device is a GPU."""
+    multiply–adds (see `NO_FMA_FLAG`). `platform`: that of the devices the program runs on
+    ("cpu", "gpu", ...; default: JAX's default backend), e.g. a sweep's batch given CPU devices on
+    a machine whose default device is a GPU."""
     if (platform or jax.default_backend()) != "cpu":
         return {}  # XLA:CPU's options: a GPU's compiler refuses them ("No such compile option")
-    lanes = SCALAR_LANES if contracts_multiply_adds() else {}
-    return {**lanes, **BATCH_EMITTERS} if batch else dict(lanes)
+    return dict(SCALAR_LANES) if contracts_multiply_adds() else {}
 
 
 def _accelerator_plugins() -> bool:

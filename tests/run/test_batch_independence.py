@@ -41,9 +41,9 @@ import numpy as np
 import pytest
 
 from impact import simulate
+from impact._core import runtime
 from impact._core.defaults import DEFAULT_CHUNK
 from impact._core.runtime import (
-    BATCH_EMITTERS,
     ELEMENTAL_EMITTERS_FLAG,
     NO_FMA_FLAG,
     SCALAR_LANES,
@@ -182,30 +182,32 @@ def test_a_configured_process_runs_without_fused_multiply_adds_and_keeps_its_vec
     assert compiler_options() == {}
 
 
-def test_a_configured_process_compiles_one_scene_for_latency_and_a_sweeps_batches_for_speed():
-    """One scene's programs take XLA's elemental emitters (faster to compile), every program of
-    a sweep's points the fusion emitters (faster vector code), whatever the batch size: a point
-    is computed by the same code in a call of one, of six or of all."""
+def test_a_configured_process_compiles_every_program_with_the_elemental_emitters():
+    """A scene's programs and a sweep's batches alike take XLA's elemental emitters (faster to
+    compile, about as fast to run): a point is computed by the same code in a run and in a call
+    of one, of six or of all."""
     assert ELEMENTAL_EMITTERS_FLAG in os.environ["XLA_FLAGS"].split()
-    assert compiler_options(batch=True) == {**compiler_options(), **BATCH_EMITTERS}
-    assert BATCH_EMITTERS == {"xla_cpu_use_fusion_emitters": True}
+    assert "xla_cpu_use_fusion_emitters" not in compiler_options()
 
 
 def test_a_gpu_compiles_without_the_cpu_options(monkeypatch):
     """The options are XLA:CPU's; a GPU's compiler refuses a name it does not know ("No such
     compile option: 'xla_cpu_use_fusion_emitters'", seen on an H100 on 2026-11-27)."""
+    monkeypatch.setattr(runtime, "contracts_multiply_adds", lambda: True)  # a CPU would get scalar lanes
+    assert compiler_options() == SCALAR_LANES
     monkeypatch.setattr(jax, "default_backend", lambda: "gpu")
-    assert compiler_options() == {} and compiler_options(batch=True) == {}
+    assert compiler_options() == {}
 
 
 def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
     """A batch given CPU devices on a machine whose default device is a GPU still compiles with
     XLA:CPU's options, and one on GPUs without them."""
-    on_cpu = compiler_options(batch=True)  # this process's default device is its CPU
-    assert BATCH_EMITTERS.items() <= on_cpu.items()
+    monkeypatch.setattr(runtime, "contracts_multiply_adds", lambda: True)  # options to tell apart
+    on_cpu = compiler_options()  # this process's default device is its CPU
+    assert on_cpu == SCALAR_LANES
     monkeypatch.setattr(jax, "default_backend", lambda: "gpu")
-    assert compiler_options(batch=True, platform="cpu") == on_cpu
-    assert compiler_options(batch=True, platform="gpu") == {}
+    assert compiler_options(platform="cpu") == on_cpu
+    assert compiler_options(platform="gpu") == {}
     compiled_with = []
     monkeypatch.setattr(batch_module, "_COMPILED", {})  # nothing kept for later tests
     monkeypatch.setattr(batch_module, "compile_stored", lambda *arguments: compiled_with.append(arguments[-1]))

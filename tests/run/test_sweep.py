@@ -128,8 +128,7 @@ def test_sweep_equals_simulate_point_by_point(grid):
             ):
                 mine, theirs = float(getattr(grid, name)[i, j]), float(getattr(single, name))
                 assert math.isclose(mine, theirs, rel_tol=1e-12, abs_tol=0.0) or mine == theirs, (name, mine, theirs)
-            # The batch compiles the closed form with XLA's fusion emitters, an eager call with
-            # the elemental ones (`impact._core.runtime.BATCH_EMITTERS`): a few ulps apart.
+            # The batch compiles the closed form whole, an eager call op by op: a few ulps apart.
             expected = theory.thornton_ning_restitution(velocity, scene.body.resolved_mass, 1e-6, 1e9, work)
             assert math.isclose(grid.theory_restitution[i, j], float(expected), rel_tol=1e-14, abs_tol=1e-300)
     assert grid.status_names()[0, 1] == "captured" and grid.restitution[0, 1] == 0.0

@@ -124,7 +124,7 @@ def compiled_batch(choices: StaticChoices, physics: Physics, size: int, devices:
     abstract = [jax.ShapeDtypeStruct((size, *leaf.shape[1:]), dtype, sharding=sharding) for leaf in leaves]
     label = f"{__name__}.compiled_batch {choices!r}"
     batch = jax.tree.unflatten(treedef, abstract)
-    options = compiler_options(batch=True, platform=devices[0].platform)
+    options = compiler_options(platform=devices[0].platform)
     compiled = compile_stored(jax.vmap(point_function(choices)), label, batch, options)
     _COMPILED[key] = compiled
     return compiled, time.perf_counter() - start
@@ -147,7 +147,7 @@ def sequential(plan: Plan, group: int, points: np.ndarray, size: int) -> dict:
     if key not in _MAPPED:
         start = time.perf_counter()
         point = point_function(choices)
-        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=compiler_options(batch=True))
+        function = jax.jit(lambda physics: jax.lax.map(point, physics), compiler_options=compiler_options())
         _MAPPED[key] = function.lower(batch).compile()
         COMPILE_SECONDS["unbatched"] += time.perf_counter() - start
     try:
@@ -162,7 +162,7 @@ def one_by_one(plan: Plan, group: int, points: np.ndarray) -> dict:
     code solver_failure."""
     choices = plan.choices[group]
     if choices not in _SINGLE:
-        _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=compiler_options(batch=True))
+        _SINGLE[choices] = jax.jit(point_function(choices), compiler_options=compiler_options())
     function = _SINGLE[choices]
     results = empty_results(len(points), SOLVED)
     for row, point in enumerate(points):

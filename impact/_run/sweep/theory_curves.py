@@ -41,7 +41,7 @@ def theory_curve(spec: SweepSpec, fixed: Mapping[str, object], path: str, values
             jax.vmap(lambda p: closed_form_restitution(p, choices)),
             f"{__name__}.theory_curve {choices!r}",
             jax.tree.map(lambda leaf: jax.ShapeDtypeStruct(leaf.shape, leaf.dtype), physics),
-            compiler_options(batch=True),
+            compiler_options(),
         )
     return np.asarray(_CURVES[key](physics))[:count]
 
