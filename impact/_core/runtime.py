@@ -35,11 +35,12 @@ NO_FMA_FLAG = "--xla_cpu_max_isa=AVX"
 SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
 
 # XLA:CPU's fusion emitters (its default) compile a program 30–45 % slower than its elemental
-# emitters, and the program runs about as fast with either: measured 2026-11-27 on this 2-core
+# emitters, and the program runs only a little faster: measured 2026-11-27 on this 2-core
 # machine, a sweep's batch of 10³ points (solve, closed form and results) compiled in 2.6–3.2 s
-# instead of 3.9–4.5 s and ran 14.1–16.3 µs per Thornton–Ning impact at rtol 1e-6 against
-# 14.0–16.9, 50.0 against 48.0 at rtol 1e-10, 20.7 against 18.7 for the power law n = 1.5, 16.3
-# against 15.5 for the cone; one scene's impact compiled in 3.9 s instead of 6.7 s (2026-11-26).
+# instead of 3.9–4.5 s; `impact bench speed --points 10000` ran 3–4 % slower (Thornton–Ning with
+# the energy's ends 12.2–12.3 µs per impact against 11.8, the cone 14.3–14.5 against 13.8–14.1)
+# and compiled in 4.7–5.0 s instead of 6.0–6.8 s; one scene's impact compiled in 3.9 s instead of
+# 6.7 s (2026-11-26).
 # `configure()` makes the elemental emitters the process's default, for every program: a sweep's
 # batch and a scene's run compile the same way.
 ELEMENTAL_EMITTERS_FLAG = "--xla_cpu_use_fusion_emitters=false"

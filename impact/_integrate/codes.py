@@ -38,6 +38,7 @@ RESULT_CODES = (
     "overdamped",  # damping holds the body in contact: it creeps towards rest, never turning or let go
     "unresolved_zone",  # a Maugis–Dugdale spring array too coarse for the adhesive zone: its answer would be wrong
     "energy_drift",  # the solver's speed disagrees with the energy balance: tighten rtol/atol or use phase_ends: energy
+    "off_branch",  # a contact phase started off its edge function (d ≠ h(a)): a jump of the radius landed wrong
 )
 RESULT_CODE = {name: code for code, name in enumerate(RESULT_CODES)}
 # What went wrong and what to do, for the result codes whose name does not say it (`impact run`
@@ -46,6 +47,11 @@ REMEDIES = {
     "energy_drift": (
         "a contact phase ended with a speed that disagrees with its energy balance, so the restitution "
         "would be wrong: tighten solver.rtol/atol, or use solver.phase_ends: energy"
+    ),
+    "off_branch": (
+        "a jump of the contact radius (jump-in, snap-in or snap-out) landed where the contact law does not hold, "
+        "so the energy would be wrong: a defect of impact's edge-function tables for this profile; please report "
+        "the scene"
     ),
 }
 
