@@ -80,7 +80,8 @@ def workloads(quick: bool = False) -> list[Workload]:
         return [*light, attach, *(spring_array(n) for n in (64, 1024))]
     heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s)]
     loose = [_energy_ends(workload) for workload in (tn, power15, power3, cone)]
-    return [*light, *heavy, *loose, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
+    timed = [_quadrature(workload) for workload in (tn, power15, power3, cone)]
+    return [*light, *heavy, *loose, *timed, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
 
 
 def _dugdale(v_s: float) -> Workload:
@@ -99,13 +100,23 @@ def _double_hertz(v_s: float) -> Workload:
 
 
 def _energy_ends(workload: Workload) -> Workload:
-    """A continuum workload as a restitution table takes it (`configs/sweeps/thornton_ning_fast.yaml`):
-    each phase's end from its energy balance (the default) makes the restitution exact at any
-    rtol, so rtol ENERGY_RTOL serves (the contact time then good to about 1e-6)."""
+    """A continuum workload as a restitution table with an ODE solver takes it: each phase's end
+    from its energy balance (the default) makes the restitution exact at any rtol, so rtol
+    ENERGY_RTOL serves (the contact time then good to about 1e-6)."""
     scene = {**workload.scene, "name": f"{workload.scene['name']}_energy"}
     scene["solver"] = dict(rtol=ENERGY_RTOL, atol=ENERGY_RTOL / 100.0, phase_ends="energy")
     name = f"{workload.name}, rtol {ENERGY_RTOL:g}"
     return Workload(f"{workload.key}_energy", name, scene, workload.velocities, workload.reference)
+
+
+def _quadrature(workload: Workload) -> Workload:
+    """A continuum workload without an ODE solve (`solver.method: quadrature`): each phase ended
+    by its energy balance and timed by Gauss quadrature (the contact time good to about 1e-8)."""
+    scene = {**workload.scene, "name": f"{workload.scene['name']}_quadrature"}
+    scene["solver"] = dict(method="quadrature")
+    return Workload(
+        f"{workload.key}_quadrature", f"{workload.name}, quadrature", scene, workload.velocities, workload.reference
+    )
 
 
 def _bead() -> Workload:

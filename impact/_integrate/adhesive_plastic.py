@@ -24,7 +24,7 @@ from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .continuum import Continuum
@@ -228,6 +228,7 @@ def _contact(integrator: AdhesivePlastic, problem: AdhesivePlasticProblem, optio
         deepest=jnp.maximum(d_start, d_end),
     )
     nxt = replace(_after(advancing, turned), radius=a_end)
-    c = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    found, steps = ride_record(solution)
+    c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
     turned_over = in_contact & advancing & turned
     return replace(c, memory=where(turned_over, law.after_turn(a_end, state), state))

@@ -163,6 +163,16 @@ def located_end(solution: "dfx.Solution", conditions, args):
     return event_found, y_end, turned, out_of_time
 
 
+def ride_record(solution: "dfx.Solution"):
+    """(whether the ride ended at its event, its (steps, accepted, rejected)): what
+    `carry.close_phase` books of it."""
+    import diffrax as dfx
+
+    stats = solution.stats
+    found = solution.result == dfx.RESULTS.event_occurred
+    return found, (stats["num_steps"], stats["num_accepted_steps"], stats["num_rejected_steps"])
+
+
 def dense_states(solution: "dfx.Solution", samples: int):
     """The ride's state at `samples` evenly spaced pseudo-times ([samples, 3])."""
     assert solution.ts is not None, "a ride saves its end time (SaveAt(t1=True))"

@@ -2,7 +2,7 @@
 carry of the phase loop, its event log and trajectory buffer, and how a stretch of contact is
 booked."""
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import equinox as eqx
 import jax
@@ -13,9 +13,6 @@ from .codes import DONE, EVENT_CODE, FLIGHT, RESULT_CODE
 from .problem import Options
 from .transitions import Next
 from .work import ContactSummary
-
-if TYPE_CHECKING:
-    import diffrax as dfx  # imported where a phase is traced (see `base`)
 
 EVENTS_PER_PHASE = 2
 
@@ -151,22 +148,19 @@ def record_contact(c: Carry, end, summary: ContactSummary, separated, captured) 
     )
 
 
-def close_phase(
-    c: Carry, active, solution: "dfx.Solution", end, nxt: Next, out_of_time, summary: ContactSummary
-) -> Carry:
-    """Book a contact phase that diffrax ended (kept only where `active`).
+def close_phase(c: Carry, active, found, steps, end, nxt: Next, out_of_time, summary: ContactSummary) -> Carry:
+    """Book a contact phase (kept only where `active`).
 
-    `end` is (t, d, v) at its end, `nxt` the phase after its event, `out_of_time` whether the
-    time limit fired, `summary` what the phase did.
+    `found`: whether the phase ended at its event (else the solver failed); `steps` the solver's
+    (steps, accepted, rejected) in it (`base.ride_record`); `end` is (t, d, v) at its end, `nxt`
+    the phase after its event, `out_of_time` whether the time limit fired, `summary` what the
+    phase did.
     """
-    import diffrax as dfx
-
-    event_found = solution.result == dfx.RESULTS.event_occurred
-    failed = active & ~event_found
+    failed = active & ~found
     in_time = ~out_of_time
-    separated = event_found & in_time & nxt.separated
-    captured = event_found & in_time & nxt.captured
-    out_of_time = event_found & out_of_time
+    separated = found & in_time & nxt.separated
+    captured = found & in_time & nxt.captured
+    out_of_time = found & out_of_time
     stopped = (nxt.stop >= 0) & ~out_of_time
     status = jnp.where(
         failed,
@@ -177,6 +171,7 @@ def close_phase(
             jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
         ),
     )
+    taken, accepted, rejected = steps
     updated = replace(
         record_contact(c, end, summary, separated, captured),
         mode=jnp.where(failed | stopped | out_of_time, DONE, nxt.mode),
@@ -184,17 +179,24 @@ def close_phase(
         radius=nxt.radius,
         phases=c.phases + 1,
         status=status,
-        steps=c.steps + solution.stats["num_steps"],
-        accepted=c.accepted + solution.stats["num_accepted_steps"],
-        rejected=c.rejected + solution.stats["num_rejected_steps"],
+        steps=c.steps + taken,
+        accepted=c.accepted + accepted,
+        rejected=c.rejected + rejected,
     )
-    updated = log_event(updated, end[0], jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), event_found)
+    updated = log_event(updated, end[0], jnp.where(in_time, nxt.event, EVENT_CODE["limit"]), found)
     return where(active, updated, c)
 
 
-def run_phases(problem, options: Options, flight, contact, memory: Any = None) -> Outcome:
+def run_phases(
+    problem, options: Options, flight, contact, memory: Any = None, *, landed_contact: bool = False
+) -> Outcome:
     """Chain flights and contact phases (`flight(carry)`, `contact(carry)`, each returning the
-    next carry) until the run is done or holds no more phases; `memory` as `initial_carry`."""
+    next carry) until the run is done or holds no more phases; `memory` as `initial_carry`.
+
+    Each turn of the loop runs a flight or a contact phase; with `landed_contact`, a flight and
+    then at once the contact phase it lands in: one turn fewer a bounce. Under `jax.vmap` every
+    turn computes both for every lane, so a cheap flight costs nothing extra where a contact
+    phase costs no more than a turn (`quadrature`: its phases are of fixed cost)."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
@@ -202,7 +204,12 @@ def run_phases(problem, options: Options, flight, contact, memory: Any = None) -
     def advance(c: Carry):
         return jax.lax.cond(c.mode == FLIGHT, flight, contact, c)
 
-    return finish(jax.lax.while_loop(running, advance, initial_carry(problem, options, memory)))
+    def land_and_advance(c: Carry):
+        c = jax.lax.cond(c.mode == FLIGHT, flight, lambda c: c, c)
+        return jax.lax.cond((c.mode != FLIGHT) & (c.mode != DONE), contact, lambda c: c, c)
+
+    body = land_and_advance if landed_contact else advance
+    return finish(jax.lax.while_loop(running, body, initial_carry(problem, options, memory)))
 
 
 def log_event(c: Carry, time, kind, valid=True) -> Carry:

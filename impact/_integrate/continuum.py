@@ -44,10 +44,10 @@ from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
-from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end
+from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
-from .flight import land
+from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import Next
 from .work import ContactSummary, active_branch, branch_work, drifts, extremes, hold_work, phase_summary, squared_speed
@@ -87,11 +87,12 @@ class Continuum(AbstractAdaptiveIntegrator):
         return build_problem(physics, options)
 
     def integrate(self, problem: Problem, options: Options) -> Outcome:
-        def flight(c: Carry) -> Carry:
-            touch = transitions.touch(problem)
-            return land(problem, options, c, 0.0, touch, problem.law.force(touch.radius, 0.0), samples=True)
-
-        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
+        return run_phases(
+            problem,
+            options,
+            lambda c: land_on_touch(problem, options, c),
+            lambda c: _contact(self, problem, options, c),
+        )
 
 
 class PhaseArgs(eqx.Module):
@@ -288,15 +289,16 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
 
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
+    _, steps = ride_record(solution)
     if not options.damped:
-        closed = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         if integrator.phase_ends == "integrated":
             off_balance = drifts((c.d, c.v), (d_end, v_end), summary.work, problem.gravity, problem.touch_speed)
             drifted = in_contact & event_found & ~out_of_time & off_balance
             closed = replace_where(closed, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
     else:
         summary, nxt = _damped(problem, solution, args, summary, nxt, y_end, d_end)
-        closed = close_phase(c, in_contact, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         # A phase that found no event while the body all but stopped: overdamped creep towards rest.
         creeping = in_contact & ~event_found & (jnp.abs(v_end) <= _CREEP * args.speed_scale)
         closed = replace_where(closed, creeping, status=RESULT_CODE["overdamped"])

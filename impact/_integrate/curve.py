@@ -31,7 +31,7 @@ from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
 from .._law.curve import AbstractCurve, CurveLaw
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
@@ -231,5 +231,6 @@ def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options
     low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
     nxt, memory = _after(problem, curve, advancing, turned, c.segment, s_end, d_end, c.memory)
     summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    closed = close_phase(c, riding, solution, (t_end, d_end, v_end), nxt, out_of_time, summary)
+    found, steps = ride_record(solution)
+    closed = close_phase(c, riding, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
     return replace(closed, memory=jnp.where(riding, memory, c.memory)) if curve.remembers else closed

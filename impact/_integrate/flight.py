@@ -8,7 +8,7 @@ from .._effects.gravity import flight_to_touch
 from .carry import Carry, log_event, store_samples
 from .codes import DONE, EVENT_CODE, RESULT_CODE
 from .problem import Options
-from .transitions import Next
+from .transitions import Next, touch
 
 
 def land(problem, options: Options, c: Carry, surface, landing: Next, landing_force, samples: bool) -> Carry:
@@ -54,6 +54,13 @@ def land(problem, options: Options, c: Carry, surface, landing: Next, landing_fo
         max_force=jnp.where(lands, jnp.maximum(c.max_force, landing_force), c.max_force),
         min_force=jnp.where(lands, jnp.minimum(c.min_force, landing_force), c.min_force),
     )
+
+
+def land_on_touch(problem, options: Options, c: Carry) -> Carry:
+    """`land` on the undeformed surface (d = 0) with the continuum law's jump-in
+    (`transitions.touch`)."""
+    landing = touch(problem)
+    return land(problem, options, c, 0.0, landing, problem.law.force(landing.radius, 0.0), samples=True)
 
 
 def _flight_rows(problem, options: Options, c: Carry, lands, duration):

@@ -21,7 +21,7 @@ from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.plastic import PlasticLaw, PlasticState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .flight import land
@@ -185,6 +185,7 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
         highest_force=jnp.max(forces),
         deepest=jnp.maximum(c.d, d_end),
     )
-    c = close_phase(c, in_contact, solution, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
+    found, steps = ride_record(solution)
+    c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
     turned_over = in_contact & advancing
     return replace(c, memory=where(turned_over, law.after_turn(d_end, state), state))

@@ -18,11 +18,13 @@ from .._integrate.double_hertz import GreenwoodJohnson
 from .._integrate.dugdale import MaugisDugdale, MaugisDugdaleSprings
 from .._integrate.plastic import Plastic
 from .._integrate.problem import Options, Physics
+from .._integrate.quadrature import Quadrature
 from .._integrate.springs import SpringArray
 from .._integrate.verlet import Verlet
 from .._law.branches import Tabulation
 from .._scene.profiles import PowerLawSpec
 from .._scene.scene import Scene
+from .._scene.sections import QUADRATURE
 from ..profiles import Profile
 
 _SAMPLES_PER_PHASE = 64
@@ -51,6 +53,8 @@ def integrator_for(scene: Scene) -> AbstractIntegrator:
         return MaugisDugdale(**adaptive, hysteresis=adhesion.hysteretic)
     if adhesion is not None and adhesion.model == "greenwood_johnson":
         return GreenwoodJohnson(**adaptive)
+    if scene.contact.springs == "continuum" and solver.method == QUADRATURE:
+        return Quadrature()
     if scene.contact.springs == "continuum":
         return Continuum(**adaptive, phase_ends=scene.phase_ends)
     if solver.method == "verlet":

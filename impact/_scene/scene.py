@@ -14,10 +14,12 @@ from pydantic import Field, ValidationError, model_validator
 from .. import theory
 from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_MAX_SPRINGS, DUGDALE_SHAPES, Adhesion, Effects
 from .errors import FieldProblem, SceneError, problems_of
-from .profiles import ParaboloidSpec, ProfileSpec
+from .profiles import ParaboloidSpec, PowerLawSpec, ProfileSpec
 from .representable import check_representable
 from .sections import (
     MASS_OR_DENSITY,
+    QUADRATURE,
+    QUADRATURE_SHAPES,
     SOLVER_METHODS,
     Body,
     Contact,
@@ -266,6 +268,40 @@ class Scene(Section):
             return "not with effects.plasticity: its phases end where the solver locates them"
         if self.effects.damping is not None:
             return "not with effects.damping: a damped phase does not keep its energy"
+        return None
+
+    @model_validator(mode="after")
+    def _quadrature_supported(self):
+        if self.solver.method != QUADRATURE:
+            return self
+        why = self._quadrature_refusal()
+        if why is not None:
+            raise FieldProblem("solver.method", f"'quadrature' {why}")
+        return self
+
+    def _quadrature_refusal(self) -> str | None:
+        """Why this scene's contact phases cannot be timed by quadrature, or None where they can:
+        the phases must end from their energy balance, the work along a branch must have its
+        closed form (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
+        if self.kind != "impact":
+            return "times the contact phases of an impact (kind: impact)"
+        why = self._energy_ends_refusal()
+        if why is not None:
+            return why
+        if self.solver.phase_ends == "integrated":
+            return "ends every phase from its energy balance: leave solver.phase_ends out (or set it to 'energy')"
+        if self.limits.duration is not None:
+            return "does not stop a phase midway: leave limits.duration out"
+        profile = self.contact_profile
+        if profile.shape not in QUADRATURE_SHAPES:
+            return f"needs a profile of the form g = A·xⁿ ({', '.join(QUADRATURE_SHAPES)}), not {profile.shape!r}"
+        adhesion = self.active_adhesion
+        partial = adhesion is not None and 0.0 < adhesion.approach < adhesion.work_of_adhesion
+        if isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial):
+            return (
+                f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
+                "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
+            )
         return None
 
     @model_validator(mode="after")

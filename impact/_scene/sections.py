@@ -19,7 +19,10 @@ from .profiles import Number, ParaboloidSpec, ProfileSpec
 SOLVER_METHODS = tuple(SOLVERS)
 # Fixed-step integrators of the spring array (contact.springs: N).
 SPRING_METHODS = ("verlet",)
-METHODS = SOLVER_METHODS + SPRING_METHODS
+# The continuum law without an ODE solve: each phase ended by its energy and timed by quadrature.
+QUADRATURE = "quadrature"
+QUADRATURE_SHAPES = ("paraboloid", "cone", "power_law")  # g = A·xⁿ: the work along a branch in closed form
+METHODS = SOLVER_METHODS + SPRING_METHODS + (QUADRATURE,)
 MASS_OR_DENSITY = "give exactly one of mass (kg) and density (kg/m³)"
 
 
@@ -202,7 +205,16 @@ class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
     'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
 
-    method: str = Field("tsit5", description="integrator: " + ", ".join(METHODS))
+    method: str = Field(
+        "tsit5",
+        description=(
+            "integrator: "
+            + ", ".join(METHODS)
+            + " ('quadrature': no ODE solve, each contact phase ended by its energy "
+            "balance and timed by Gauss quadrature of dt = dd/v; undamped continuum JKR law on a paraboloid, cone or "
+            "power law; rtol and atol unused)"
+        ),
+    )
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")
     atol: Annotated[Number, within(d.ATOL)] = Field(1e-12, description="absolute tolerance in scaled units")
     max_steps: Annotated[int, within(d.MAX_STEPS)] = Field(4096, description="solver steps allowed per phase")
@@ -234,7 +246,7 @@ class Solver(Section):
         if self.method == "verlet" and self.dt is None:
             raise FieldProblem("dt", "missing: method 'verlet' needs its fixed time step (s)")
         if self.method != "verlet" and self.dt is not None:
-            raise FieldProblem("dt", f"only for method 'verlet'; method {self.method!r} is adaptive (rtol, atol)")
+            raise FieldProblem("dt", f"only for method 'verlet'; method {self.method!r} takes no time step")
         return self
 
 

@@ -108,9 +108,10 @@ def test_plans():
     one leaves out the heavy ones; --points replaces every count."""
     full = speed_plan()
     keys = [workload.key for workload, _ in full.runs()]
-    assert keys[:14] == [
+    assert keys[:18] == [
         "tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity", "gj",
         "tn_energy", "power1.5_energy", "power3_energy", "cone_energy",
+        "tn_quadrature", "power1.5_quadrature", "power3_quadrature", "cone_quadrature",
     ]  # fmt: skip
     assert sorted(w.springs for w, _ in full.runs() if w.springs) == [64, 128, 256, 512, 1024, 2048, 4096]
     assert all(100 in counts for _, counts in full.runs())

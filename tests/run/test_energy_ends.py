@@ -164,7 +164,8 @@ def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
         (
             "method",
             "rk4",
-            "unknown method 'rk4'; expected one of: tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet",
+            "unknown method 'rk4'; expected one of: "
+            "tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet, quadrature",
         ),
     ],
 )

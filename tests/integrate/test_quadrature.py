@@ -1,0 +1,146 @@
+"""`solver.method: quadrature`: each contact phase ended by its energy balance and timed by
+Gauss quadrature of dt = dd/v, against the same impacts integrated by dopri8 at rtol 1e-13."""
+
+from pathlib import Path
+
+import jax
+import numpy as np
+import pytest
+import yaml
+
+import impact
+from impact import simulate
+from impact._integrate import quadrature
+from impact._integrate.codes import RESULT_CODE
+from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.sweep import sweep
+from impact._scene.paths import with_values
+from impact._scene.scene import load_scene
+from tests.run.passive import assert_passive
+
+CONFIGS = Path(__file__).parents[2] / "configs"
+QUADRATURE = {"solver.method": "quadrature"}
+TIGHT = {"solver.method": "dopri8", "solver.rtol": 1e-13, "solver.atol": 1e-15}
+# Velocities (m/s) of each scene: about its sticking velocity (Thornton–Ning: v_s = 0.3032 m/s,
+# 0.30326 is 2e-4 above it: the contact only just lets go), its own and far above.
+CASES = {
+    "thornton_ning.yaml": [0.25, 0.3033, 0.30326, 0.31, 0.6, 2.0, 20.0],
+    "power_law.yaml": [0.1, 0.15, 0.3, 0.9, 5.0],
+    "cone.yaml": [0.02, 0.05, 0.1, 0.3, 3.0],
+    "attach_on_touch.yaml": [0.3, 0.45, 0.6, 1.8, 10.0],  # a hold after every turnaround
+    "two_spheres.yaml": [0.02, 0.05, 0.1, 0.3],
+}
+
+
+@pytest.mark.parametrize("config", sorted(CASES))
+def test_quadrature_is_the_tight_integration(config):
+    """Statuses equal; restitution, deepest indentation and force extremes to 1e-12; contact
+    times to 2e-8 (measured ≤ 7.4e-9 over 10⁴ Thornton–Ning velocities from 0.2 to 20 m/s)."""
+    scene = load_scene(CONFIGS / config)
+    axes = {"initial.velocity": CASES[config]}
+    fast = sweep(with_values(scene, QUADRATURE), axes, order="given").results
+    tight = sweep(with_values(scene, TIGHT), axes, order="given").results
+    assert np.array_equal(fast["status"], tight["status"])
+    assert set(fast["status"]) <= {RESULT_CODE["separated"], RESULT_CODE["captured"]}
+    assert np.all(fast["steps"] == 0)
+    for name, tolerance in [
+        ("restitution", 1e-12),
+        ("max_indentation", 1e-12),
+        ("max_force", 1e-12),
+        ("min_force", 1e-12),
+        ("contact_time", 2e-8),
+        ("dissipated_energy", 1e-9),
+    ]:
+        mine, theirs = np.asarray(fast[name]), np.asarray(tight[name])
+        finite = np.isfinite(theirs)
+        assert np.array_equal(np.isfinite(mine), finite), name
+        scale = (
+            np.max(np.abs(theirs[finite])) if name in ("restitution", "dissipated_energy") else np.abs(theirs[finite])
+        )
+        assert np.all(np.abs(mine[finite] - theirs[finite]) <= tolerance * scale), name
+
+
+def test_gravity_bounces_as_the_tight_integration_does():
+    """Several contacts under gravity (each a jump-in, a ride in and out, a flight), then captured."""
+    scene = load_scene(CONFIGS / "gravity_bounces.yaml")
+    fast, tight = simulate(with_values(scene, QUADRATURE)), simulate(with_values(scene, TIGHT))
+    assert fast.status == tight.status == "captured" and fast.bounces == tight.bounces > 2
+    assert abs(fast.restitution - tight.restitution) <= 1e-12
+    assert abs(fast.contact_time - tight.contact_time) <= 2e-8 * tight.contact_time
+    touches = [time for time, kind in fast.events if kind == "touch"]
+    expected = [time for time, kind in tight.events if kind == "touch"]
+    assert np.allclose(touches, expected, rtol=2e-8, atol=0.0)
+    assert_passive(fast)
+
+
+@pytest.mark.parametrize("config", ["thornton_ning.yaml", "attach_on_touch.yaml", "cone.yaml"])
+def test_a_quadrature_trajectory_is_the_tight_one(config):
+    """A passive body's (`assert_passive`: time never runs back, the loop is dissipative), whose
+    samples lie on the tight trajectory: depth and speed at the sampled times within 1e-3 of
+    their largest values (the tight one interpolated linearly between its 64 samples a phase)."""
+    scene = load_scene(CONFIGS / config)
+    fast, tight = simulate(with_values(scene, QUADRATURE)), simulate(with_values(scene, TIGHT))
+    assert_passive(fast)
+    assert fast.t[-1] == pytest.approx(tight.t[-1], rel=2e-8)
+    for name in ("indentation", "velocity"):
+        mine, theirs = getattr(fast, name), np.interp(fast.t, tight.t, getattr(tight, name))
+        assert np.max(np.abs(mine - theirs)) <= 1e-3 * np.max(np.abs(getattr(tight, name))), name
+
+
+def test_a_sweep_point_does_not_depend_on_its_batch():
+    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    axes = {"initial.velocity": list(np.geomspace(0.2, 20.0, 13))}
+    whole = sweep(scene, axes, order="given").results
+    for chunk in (1, 7):
+        parts = sweep(scene, axes, order="given", chunk=chunk).results
+        for name in ("restitution", "contact_time", "max_force", "min_force", "status"):
+            assert np.array_equal(np.asarray(parts[name]), np.asarray(whole[name]), equal_nan=True), (chunk, name)
+
+
+def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch):
+    """A leg that ran past its turnaround (here: its end pushed 1e-3 beyond the root) meets v² < 0
+    at its nodes: the run ends with solver_failure."""
+    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    ended = quadrature._Leg.end
+
+    def overshoots(self):
+        end, turned = ended(self)
+        return end + 1e-3 * (end - self.start) * turned, turned
+
+    monkeypatch.setattr(quadrature._Leg, "end", overshoots)
+    integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
+    _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
+    assert int(outcome.status) == RESULT_CODE["solver_failure"]
+
+
+@pytest.mark.parametrize(
+    ("change", "why"),
+    [
+        (
+            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
+            "'quadrature' not with effects.damping: a damped phase does not keep its energy",
+        ),
+        (
+            {"body": {"profile": {"shape": "sphere", "R": 1e-6}, "mass": 1.0472e-14}},
+            "'quadrature' needs a profile of the form g = A·xⁿ (paraboloid, cone, power_law), not 'sphere'",
+        ),
+        (
+            {"body": {"profile": {"shape": "power_law", "n": 0.8, "c": 1e3}, "mass": 1.0472e-14}},
+            "'quadrature' needs a power law with n >= 1 (not 0.8) and, with adhesion, approach_work_of_adhesion "
+            "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope",
+        ),
+        ({"limits": {"duration": 1e-6}}, "'quadrature' does not stop a phase midway: leave limits.duration out"),
+        (
+            {"solver": {"method": "quadrature", "phase_ends": "integrated"}},
+            "'quadrature' ends every phase from its energy balance: leave solver.phase_ends out (or set it to "
+            "'energy')",
+        ),
+    ],
+)
+def test_quadrature_is_refused_where_it_does_not_apply(change, why):
+    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
+    data.update(change)
+    data.setdefault("solver", {})["method"] = "quadrature"
+    with pytest.raises(impact.SceneError) as error:
+        impact.load_scene(data)
+    assert dict(error.value.problems)["solver.method"] == why
