@@ -48,9 +48,10 @@ _ILLINOIS_STEPS = 12
 _SAMPLE_NODES = 4
 
 
-def _rule() -> tuple[jax.Array, jax.Array]:
+def _rule() -> tuple[np.ndarray, np.ndarray]:
     """(the fraction (1 − cos πθ)/2 of a leg at each node θ, its weight w·dx/dθ / (x₁ − x₀)) of
-    the graded rule on θ ∈ [0, 1]."""
+    the graded rule on θ ∈ [0, 1]; NumPy arrays (a JAX array made at import would start JAX's
+    backend before `jax.distributed.initialize`)."""
     nodes, weights = np.polynomial.legendre.leggauss(_PANEL_NODES)
     half = np.asarray(_PANEL_BREAKS)
     breaks = np.concatenate([half, 1.0 - half[::-1][1:]])
@@ -58,7 +59,7 @@ def _rule() -> tuple[jax.Array, jax.Array]:
     theta = (low + width * (nodes + 1.0) / 2.0).ravel()
     theta_weights = (width * weights / 2.0).ravel()
     fraction = (1.0 - np.cos(np.pi * theta)) / 2.0
-    return jnp.asarray(fraction), jnp.asarray(theta_weights * np.pi / 2.0 * np.sin(np.pi * theta))
+    return fraction, theta_weights * np.pi / 2.0 * np.sin(np.pi * theta)
 
 
 class Quadrature(AbstractIntegrator):
