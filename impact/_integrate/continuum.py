@@ -63,12 +63,6 @@ _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 _CREEP = 1e-3
 # Newton steps from the located turnaround radius (within ~rtol of the root) to round-off.
 _TURNAROUND_NEWTON = 3
-# A ride starts on its branch, d = h(a), to round-off: measured ≤ 2.6e-16 of 1 + |d| + |ĝ(a)| over
-# every example and hard-case scene (2026-11-27). A jump of the radius (jump-in, snap-in, snap-out)
-# that landed elsewhere would start the ride deeper or shallower at no cost in energy (the wavy
-# paraboloid's cascades before 828eadd landed 0.08–0.2 off and created energy: e = 1.77); such a
-# run ends with the status `off_branch`.
-_ON_BRANCH = 1e-9
 # |v²| after Newton's steps, relative to v₀² + |v²| at the segment's end + 1 (the phase's
 # energies), below which they found a root of v² (a turnaround), above which there is none near.
 _CONVERGED = 1e-9
@@ -252,11 +246,7 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     args = _phase_args(problem, options, c)
     riding, branch = args.riding, args.branch
-    off_branch = (
-        in_contact
-        & riding
-        & (jnp.abs(branch.level(law, c.radius) - c.d) > _ON_BRANCH * (1.0 + jnp.abs(c.d) + jnp.abs(law.g(c.radius))))
-    )
+    off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
     start = [jnp.where(riding, c.radius, c.d), c.v, c.t] + ([jnp.zeros(())] if options.damped else [])
     solution = integrator.ride(
         _make_vector_field(options.damped),

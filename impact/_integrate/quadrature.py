@@ -202,6 +202,8 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     located, steps = jnp.asarray(True), (jnp.zeros((), int),) * 3  # no solver: every end is found
     closed = close_phase(c, in_contact, located, steps, (t_end, d_end, v_end), nxt, jnp.asarray(False), summary)
     # A speed that is not real at a node inside the leg (the balance cannot be followed there), or
-    # a hold that starts inwards.
+    # a hold that starts inwards; a ride that starts off its edge function (`continuum`).
     unfollowed = in_contact & (~real | (~riding & (c.v > 0.0)))
-    return replace_where(closed, unfollowed, status=RESULT_CODE["solver_failure"], mode=DONE)
+    closed = replace_where(closed, unfollowed, status=RESULT_CODE["solver_failure"], mode=DONE)
+    off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
+    return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)

@@ -31,6 +31,7 @@ def _status(scene) -> int:
         ("thornton_ning.yaml", {}),  # the energy's ends
         ("thornton_ning.yaml", {"solver.phase_ends": "integrated", "solver.rtol": 1e-8, "solver.atol": 1e-10}),
         ("rubber_ball_viscoelastic.yaml", {}),  # damped, no adhesion: the ride starts at the tip
+        ("thornton_ning.yaml", {"solver.method": "quadrature"}),
     ],
 )
 def test_a_ride_that_starts_off_its_edge_function_ends_the_run(monkeypatch, config, changes):
