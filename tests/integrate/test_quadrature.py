@@ -4,12 +4,13 @@ Gauss quadrature of dt = dd/v, against the same impacts integrated by dopri8 at 
 from pathlib import Path
 
 import jax
+import jax.numpy as jnp
 import numpy as np
 import pytest
 import yaml
 
 import impact
-from impact import simulate
+from impact import simulate, theory
 from impact._integrate import quadrature
 from impact._integrate.codes import RESULT_CODE
 from impact._run.parameters import integrator_for, options_for, physics_for
@@ -111,6 +112,20 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
     _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
     assert int(outcome.status) == RESULT_CODE["solver_failure"]
+
+
+@pytest.mark.parametrize("mode", ["reverse", "forward"])
+def test_derivatives_are_thornton_nings(mode):
+    """`impact.as_function` differentiates through the quadrature: de/dΔγ and de/dv0 are those
+    of (3.50–51) to 1e-10."""
+    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    restitution = impact.as_function(scene, ["effects.adhesion.work_of_adhesion", "initial.velocity"], "restitution")
+    mass, radius = scene.body.resolved_mass, scene.body.profile.R
+    modulus, work = scene.material.E_star, scene.effects.adhesion.work_of_adhesion
+    point = jnp.array([work, 0.6])
+    derivatives = (jax.grad if mode == "reverse" else jax.jacfwd)(restitution)(point)
+    expected = jax.grad(lambda x: theory.thornton_ning_restitution(x[1], mass, radius, modulus, x[0]))(point)
+    np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
 
 
 @pytest.mark.parametrize(
