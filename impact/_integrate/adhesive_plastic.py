@@ -24,7 +24,7 @@ from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .continuum import Continuum
@@ -209,7 +209,7 @@ def _contact(integrator: AdhesivePlastic, problem: AdhesivePlasticProblem, optio
         horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
         dense=options.samples_per_phase > 0,
     )
-    _, (a_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    found, (a_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
     # A branch end lies on its radius to round-off: the next phase starts there.
     a_end = jnp.where(~turned & ~out_of_time & ~jnp.isnan(end), end, a_end)
     d_start, d_end = law.depth(jnp.stack([c.radius, a_end]), state, flowing)
@@ -228,7 +228,7 @@ def _contact(integrator: AdhesivePlastic, problem: AdhesivePlasticProblem, optio
         deepest=jnp.maximum(d_start, d_end),
     )
     nxt = replace(_after(advancing, turned), radius=a_end)
-    found, steps = ride_record(solution)
+    steps = ride_steps(solution)
     c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
     turned_over = in_contact & advancing & turned
     return replace(c, memory=where(turned_over, law.after_turn(a_end, state), state))

@@ -44,7 +44,7 @@ from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
-from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
+from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land_on_touch
@@ -279,7 +279,7 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
 
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    _, steps = ride_record(solution)
+    steps = ride_steps(solution)
     if not options.damped:
         closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         if integrator.phase_ends == "integrated":

@@ -31,7 +31,7 @@ from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
 from .._law.curve import AbstractCurve, CurveLaw
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
@@ -216,7 +216,7 @@ def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options
         horizon=jnp.where(riding, _PHASE_HORIZON, 1e-9),
         dense=options.samples_per_phase > 0,
     )
-    _, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    found, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
     s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
     d_end = curve.depth(law, s_end)
 
@@ -231,6 +231,6 @@ def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options
     low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
     nxt, memory = _after(problem, curve, advancing, turned, c.segment, s_end, d_end, c.memory)
     summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    found, steps = ride_record(solution)
+    steps = ride_steps(solution)
     closed = close_phase(c, riding, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
     return replace(closed, memory=jnp.where(riding, memory, c.memory)) if curve.remembers else closed

@@ -21,7 +21,7 @@ from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.plastic import PlasticLaw, PlasticState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_record
+from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .flight import land
@@ -167,7 +167,7 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
         horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
         dense=options.samples_per_phase > 0,
     )
-    _, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
+    found, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
     # Branch ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
     on_branch_end = ~turned & ~out_of_time
     d_end = jnp.where(on_branch_end, jnp.where(advancing, onset, state.residual), _depth(x_end, state))
@@ -185,7 +185,7 @@ def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: 
         highest_force=jnp.max(forces),
         deepest=jnp.maximum(c.d, d_end),
     )
-    found, steps = ride_record(solution)
+    steps = ride_steps(solution)
     c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
     turned_over = in_contact & advancing
     return replace(c, memory=where(turned_over, law.after_turn(d_end, state), state))
