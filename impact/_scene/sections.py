@@ -203,6 +203,7 @@ class Contact(Section):
 
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
+    'quadrature', the continuum law's phases timed by quadrature without an ODE solve; or
     'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
 
     method: str = Field(

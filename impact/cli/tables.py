@@ -13,6 +13,7 @@ from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._plots.figures import si_prefix
 from .._run.impacts import Result
 from .._scene.scene import Scene
+from .._scene.sections import QUADRATURE
 
 if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs neither
     from .._run.indentation import IndentationResult
@@ -188,9 +189,14 @@ def facts_table(scene: Scene) -> Table:
         return key_value_table(f"{scene.name} (SI units)", rows)
     density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     solver = scene.solver
-    steps = f"dt {solver.dt:g} s" if solver.method == "verlet" else f"rtol {solver.rtol:g}, atol {solver.atol:g}"
-    if scene.phase_ends == "energy":
-        steps += ", phase ends from the energy"
+    if solver.method == "verlet":
+        steps = f"dt {solver.dt:g} s"
+    elif solver.method == QUADRATURE:
+        steps = "phase ends from the energy, timed by quadrature"
+    else:
+        steps = f"rtol {solver.rtol:g}, atol {solver.atol:g}"
+        if scene.phase_ends == "energy":
+            steps += ", phase ends from the energy"
     rows = [
         shape,
         ("mass", f"{body.resolved_mass:.6g} kg{density}"),

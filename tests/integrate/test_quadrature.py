@@ -8,6 +8,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 import yaml
+from typer.testing import CliRunner
 
 import impact
 from impact import simulate, theory
@@ -17,6 +18,7 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep import sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
+from impact.cli import app
 from tests.run.passive import assert_passive
 
 CONFIGS = Path(__file__).parents[2] / "configs"
@@ -159,3 +161,11 @@ def test_quadrature_is_refused_where_it_does_not_apply(change, why):
     with pytest.raises(impact.SceneError) as error:
         impact.load_scene(data)
     assert dict(error.value.problems)["solver.method"] == why
+
+
+def test_validate_shows_the_quadrature():
+    path = str(CONFIGS / "thornton_ning.yaml")
+    result = CliRunner().invoke(app, ["validate", path, "--set", "solver.method=quadrature"])
+    assert result.exit_code == 0, result.output
+    shown = " ".join(result.output.split())
+    assert "│ solver │ quadrature, phase ends from the energy, timed by quadrature │" in shown
