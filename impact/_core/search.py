@@ -65,6 +65,34 @@ def log_sign_change(
     return jnp.where(found, implicit_root(excess, jnp.exp(0.5 * (low + high))), upper), found
 
 
+def illinois_root(function: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int) -> Array:
+    """A root of `function` between `lower` (function ≥ 0 there) and `upper` (≤ 0): regula falsi
+    with the Illinois modification (Dowell & Jarratt, BIT 11, 168 (1971)), `steps` steps, each
+    keeping the bracket (a secant point outside it is replaced by the middle). Returns the point
+    tried of least |function|: once the method has settled, the bracket's ends carry halved
+    values, and the last point tried may be a stale end's neighbour. (`_integrate.rootfind`'s
+    `BracketIllinois` is the same method for diffrax's events, in optimistix's interface.)"""
+
+    def step(state, _):
+        a, fa, b, fb, best, least = state
+        slope = fb - fa
+        trial = jnp.where(slope != 0.0, b - fb * (b - a) / jnp.where(slope != 0.0, slope, 1.0), 0.5 * (a + b))
+        lo, hi = jnp.minimum(a, b), jnp.maximum(a, b)
+        trial = jnp.where((trial > lo) & (trial < hi), trial, 0.5 * (a + b))
+        ft = function(trial)
+        crosses = ft * fb < 0.0
+        a, fa = jnp.where(crosses, b, a), jnp.where(crosses, fb, 0.5 * fa)
+        better = jnp.abs(ft) < least
+        return (a, fa, trial, ft, jnp.where(better, trial, best), jnp.where(better, jnp.abs(ft), least)), None
+
+    lower, upper = jnp.asarray(lower), jnp.asarray(upper)
+    f_lower, f_upper = function(lower), function(upper)
+    best = jnp.where(jnp.abs(f_lower) < jnp.abs(f_upper), lower, upper)
+    state = (lower, f_lower, upper, f_upper, best, jnp.minimum(jnp.abs(f_lower), jnp.abs(f_upper)))
+    state, _ = jax.lax.scan(step, state, None, length=steps)
+    return state[4]
+
+
 def golden_section(
     function: Callable[[Array], Array], lower: ArrayLike, upper: ArrayLike, steps: int
 ) -> tuple[Array, Array]:

@@ -42,7 +42,7 @@ PHASE_ENDS = ("integrated", "energy")
 # forward mode (`jax.jvp`, `jax.jacfwd`); each fails under the other kind of derivative.
 ADJOINTS = {"checkpoint": "RecursiveCheckpointAdjoint", "forward": "ForwardMode"}
 
-# Events are located by bisection inside the step that crossed, to a bracket of
+# Events are located inside the step that crossed (`rootfind.BracketIllinois`), to a bracket of
 # 1e-14 relative (+1e-15 absolute) in pseudo-time: a few ulps.
 _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 
@@ -104,7 +104,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator):
 
     def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> "dfx.Solution":
         """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
-        upwards (located by bisection to a few ulps) or `horizon` is reached.
+        upwards (located by the Illinois method to a few ulps) or `horizon` is reached.
 
         The state is integrated padded with zeros (`_STATE_TILE`); the solution's `ys` are
         not, its dense output is (`dense_states` strips it)."""

@@ -50,7 +50,17 @@ from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import Next
-from .work import ContactSummary, active_branch, branch_work, drifts, extremes, hold_work, phase_summary, squared_speed
+from .work import (
+    ContactSummary,
+    active_branch,
+    branch_work,
+    drifts,
+    extremes,
+    hold_work,
+    phase_summary,
+    segment_end,
+    squared_speed,
+)
 
 # A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
 _PHASE_HORIZON = 1.0e4
@@ -189,7 +199,7 @@ def _conditions(y, args: PhaseArgs):
 
 
 def _first_event(t, y, args: PhaseArgs, **kwargs):
-    """Crosses zero upwards when the first of the conditions does (one scalar to bisect)."""
+    """Crosses zero upwards when the first of the conditions does (one scalar to locate)."""
     return jnp.max(_conditions(y, args))
 
 
@@ -209,11 +219,11 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
     # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
     # detach edge of the held radius.
-    segment_end = _segment_end(branch, c.mode, c.segment)
+    node = segment_end(branch, c.mode, c.segment)
     level = jnp.where(
         riding,
-        segment_end,
-        jnp.where(c.mode == HOLD, problem.detach.level(law, c.radius), branch.level(law, segment_end)),
+        node,
+        jnp.where(c.mode == HOLD, problem.detach.level(law, c.radius), branch.level(law, node)),
     )
     return PhaseArgs(
         law=law,
@@ -232,12 +242,6 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
         releases=(c.mode != ADVANCE) & ~law.adhesive,
         timed_loading=options.timed_loading,
     )
-
-
-def _segment_end(branch: Branch, mode, segment):
-    """The radius where the phase's segment of the branch ends: its upper node while advancing,
-    else its lower one."""
-    return jnp.where(mode == ADVANCE, branch.nodes[segment + 1], branch.nodes[segment])
 
 
 def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry) -> Carry:
@@ -354,7 +358,7 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
 
     # The radius where the phase ended: riding, the state itself; timed along a branch, the
     # segment's end, or at a turnaround the branch root at the located depth.
-    node = _segment_end(branch, args.mode, args.segment)
+    node = segment_end(branch, args.mode, args.segment)
     if args.timed_loading:
         timed = ((args.mode == ADVANCE) | (args.mode == RECEDE)) & ~args.riding
         radius_located = jnp.where(args.riding, x_located, jnp.where(turned, timed_radius(x_located, args), node))

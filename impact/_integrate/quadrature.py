@@ -29,13 +29,14 @@ import numpy as np
 from .._core import derivatives
 from .._core.pytree import replace_where, where
 from .._core.quadrature import ordered_sum
+from .._core.search import illinois_root
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, HOLD, RECEDE, RESULT_CODE
 from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import after_phase
-from .work import active_branch, branch_work, hold_work, phase_summary, squared_speed
+from .work import active_branch, branch_work, hold_work, phase_summary, segment_end, squared_speed
 
 # Panels of the rule in θ ∈ [0, ½], mirrored onto [½, 1], each with _PANEL_NODES Gauss–Legendre
 # nodes: 80 nodes a leg.
@@ -96,7 +97,7 @@ class _Leg:
         first = jnp.argmax(values <= 0.0)  # the last cell's end is `far`, where v² ≤ 0 when it turns
         low = jnp.where(first > 0, cells[jnp.maximum(first - 1, 0)], self.start)
         high = cells[first]
-        root = _illinois(self.squared, low, high)
+        root = illinois_root(self.squared, low, high, _ILLINOIS_STEPS)
         turned = at_far <= 0.0
         return jnp.where(turned, root, self.far), turned
 
@@ -131,30 +132,6 @@ class _Leg:
 _RULE = _rule()
 
 
-def _illinois(function, low, high):
-    """A root of `function` between `low` (≥ 0 there) and `high` (≤ 0): the Illinois method,
-    a fixed number of steps (each keeps the bracket); of the points tried, the one of least
-    |function| (the bracket's ends carry halved values once the method has settled)."""
-
-    def step(state, _):
-        a, fa, b, fb, best, least = state
-        slope = fb - fa
-        trial = jnp.where(slope != 0.0, b - fb * (b - a) / jnp.where(slope != 0.0, slope, 1.0), 0.5 * (a + b))
-        lo, hi = jnp.minimum(a, b), jnp.maximum(a, b)
-        trial = jnp.where((trial > lo) & (trial < hi), trial, 0.5 * (a + b))
-        ft = function(trial)
-        crosses = ft * fb < 0.0
-        a, fa = jnp.where(crosses, b, a), jnp.where(crosses, fb, 0.5 * fa)
-        better = jnp.abs(ft) < least
-        return (a, fa, trial, ft, jnp.where(better, trial, best), jnp.where(better, jnp.abs(ft), least)), None
-
-    f_low, f_high = function(low), function(high)
-    best = jnp.where(jnp.abs(f_low) < jnp.abs(f_high), low, high)
-    state = (low, f_low, high, f_high, best, jnp.minimum(jnp.abs(f_low), jnp.abs(f_high)))
-    state, _ = jax.lax.scan(step, state, None, length=_ILLINOIS_STEPS)
-    return state[4]
-
-
 def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     """One contact phase: its end from the energy balance, its duration by quadrature."""
     law, gravity = problem.law, problem.gravity
@@ -162,7 +139,7 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
     advancing = c.mode == ADVANCE
-    node = jnp.where(advancing, branch.nodes[c.segment + 1], branch.nodes[c.segment])
+    node = segment_end(branch, c.mode, c.segment)
     start = (c.d, c.v)
 
     def squared(x):  # v² at x: the radius while riding, the depth while held

@@ -189,3 +189,9 @@ def phase_summary(law: ContactLaw, branch: Branch, riding, radii, gravity, start
 def active_branch(mode, attach: Branch, detach: Branch) -> Branch:
     """Loading rides the attach branch; hold and unloading answer to the detach branch."""
     return jax.tree.map(lambda a, d: jnp.where(mode == ADVANCE, a, d), attach, detach)
+
+
+def segment_end(branch: Branch, mode, segment):
+    """The radius where the phase's segment of the branch ends: its upper node while advancing,
+    else its lower one."""
+    return jnp.where(mode == ADVANCE, branch.nodes[segment + 1], branch.nodes[segment])

@@ -9,6 +9,7 @@ import optimistix as optx
 import pytest
 
 from impact._core.runtime import float64
+from impact._core.search import illinois_root
 from impact._integrate.rootfind import BracketIllinois
 
 RTOL, ATOL = 1e-14, 1e-15
@@ -57,3 +58,21 @@ def test_lanes_of_a_batch_are_located_each_to_its_own_root():
     roots = jnp.linspace(0.05, 0.95, 9)
     located = jax.vmap(lambda r: locate(lambda t: jnp.sin(3.0 * (t - r)), 0.0, 1.0).value)(roots)
     np.testing.assert_allclose(located, roots, rtol=0, atol=2 * (ATOL + RTOL))
+
+
+@pytest.mark.parametrize(
+    ("function", "lower", "upper", "root"),
+    [
+        (lambda x: 2.0 - x**2, 1.0, 2.0, np.sqrt(2.0)),
+        (lambda x: 1.0 - jnp.exp(8.0 * (x - 0.3)), 0.0, 1.0, 0.3),  # values 0.91 and −267: lopsided
+    ],
+)
+def test_the_fixed_step_illinois_root_is_the_root_to_round_off(function, lower, upper, root):
+    """`impact._core.search.illinois_root` (the quadrature's turnarounds): 16 steps reach the root
+    to 4 ulps from a bracket of width 1, vmapped as well as alone (12 leave the lopsided one
+    1.2e-4 off: measured)."""
+    with jax.enable_x64(True):
+        found = float(illinois_root(function, jnp.float64(lower), jnp.float64(upper), 16))
+        batched = jax.vmap(lambda a: illinois_root(function, a, jnp.float64(upper), 16))(jnp.full(3, lower))
+    assert abs(found - root) <= 4 * np.finfo(float).eps * root
+    assert np.all(np.asarray(batched) == found)
