@@ -45,6 +45,10 @@ _PANEL_NODES = 8
 # Cells scanned for the first root of v² along a leg, then Illinois steps inside the cell.
 _SCAN_CELLS = 8
 _ILLINOIS_STEPS = 12
+# |v²| at a turnaround found, relative to v₀² + |v² at the leg's far end| + 1 (the leg's energies),
+# above which its root search did not settle (as `continuum`'s Newton steps at a turnaround): a
+# phase ended there would lose that energy, so the run ends with `solver_failure` instead.
+_SETTLED = 1e-9
 # Gauss–Legendre nodes per interval between two trajectory samples.
 _SAMPLE_NODES = 4
 
@@ -89,8 +93,9 @@ class _Leg:
     direction: jax.Array
 
     def end(self):
-        """(x where the leg ends, whether it turned there): its far end where v² > 0 there, else
-        the first root of v² between."""
+        """(x where the leg ends, whether it turned there, whether that end is settled): its far
+        end where v² > 0 there, else the first root of v² between (settled where |v²| there is
+        within `_SETTLED` of the leg's energies)."""
         at_far = self.squared(self.far)
         cells = self.start + (self.far - self.start) * jnp.arange(1, _SCAN_CELLS + 1) / _SCAN_CELLS
         values = self.squared(cells)
@@ -99,7 +104,9 @@ class _Leg:
         high = cells[first]
         root = illinois_root(self.squared, low, high, _ILLINOIS_STEPS)
         turned = at_far <= 0.0
-        return jnp.where(turned, root, self.far), turned
+        energies = jnp.abs(self.squared(self.start)) + jnp.abs(at_far) + 1.0
+        settled = ~turned | (jnp.abs(self.squared(root)) <= _SETTLED * energies)
+        return jnp.where(turned, root, self.far), turned, settled
 
     def time(self, end):
         """The leg's duration from its start to `end`, and whether v² > 0 at every node between."""
@@ -159,7 +166,7 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
         rate,
         jnp.where(advancing, 1.0, -1.0),
     )
-    x_end, turned = leg.end()
+    x_end, turned, settled = leg.end()
     duration, real = leg.time(x_end)
     a_end = jnp.where(riding, x_end, c.radius)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
@@ -178,9 +185,10 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     nxt = after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
     located, steps = jnp.asarray(True), (jnp.zeros((), int),) * 3  # no solver: every end is found
     closed = close_phase(c, in_contact, located, steps, (t_end, d_end, v_end), nxt, jnp.asarray(False), summary)
-    # A speed that is not real at a node inside the leg (the balance cannot be followed there), or
-    # a hold that starts inwards; a ride that starts off its edge function (`continuum`).
-    unfollowed = in_contact & (~real | (~riding & (c.v > 0.0)))
+    # A speed that is not real at a node inside the leg (the balance cannot be followed there), a
+    # turnaround whose search did not settle, or a hold that starts inwards; a ride that starts
+    # off its edge function (`continuum`).
+    unfollowed = in_contact & (~real | ~settled | (~riding & (c.v > 0.0)))
     closed = replace_where(closed, unfollowed, status=RESULT_CODE["solver_failure"], mode=DONE)
     off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
     return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)

@@ -107,8 +107,8 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
     ended = quadrature._Leg.end
 
     def overshoots(self):
-        end, turned = ended(self)
-        return end + 1e-3 * (end - self.start) * turned, turned
+        end, turned, settled = ended(self)
+        return end + 1e-3 * (end - self.start) * turned, turned, settled
 
     monkeypatch.setattr(quadrature._Leg, "end", overshoots)
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
@@ -128,6 +128,23 @@ def test_derivatives_are_thornton_nings(mode):
     derivatives = (jax.grad if mode == "reverse" else jax.jacfwd)(restitution)(point)
     expected = jax.grad(lambda x: theory.thornton_ning_restitution(x[1], mass, radius, modulus, x[0]))(point)
     np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
+
+
+def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch):
+    """With one Illinois step instead of 12 the turnaround lies off the root of v² (by far more
+    than 1e-9 of the leg's energies): the run ends with solver_failure, not a restitution that
+    lost that energy."""
+    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
+    assert _status(integrator, options, scene) == RESULT_CODE["separated"]
+    monkeypatch.setattr(quadrature, "_ILLINOIS_STEPS", 1)
+    assert _status(integrator, options, scene) == RESULT_CODE["solver_failure"]
+
+
+def _status(integrator, options, scene) -> int:
+    """The run's result code, traced afresh (a cached program would not see a patched constant)."""
+    _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
+    return int(outcome.status)
 
 
 @pytest.mark.parametrize(
