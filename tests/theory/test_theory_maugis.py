@@ -238,7 +238,8 @@ def test_critical_states_of_both_controls(tabor):
     assert d <= np.nanmin(depths) + 1e-12 * abs(d)
     zone = 8 * tabor / (3 * np.pi)
     if zone < theory.maugis_junction_zone_radius(tabor):
-        assert (a, d, F) == pytest.approx((0.0, *theory.maugis_paraboloid_noncontact(zone, tabor)), rel=1e-15)
+        noncontact = tuple(float(value) for value in theory.maugis_paraboloid_noncontact(zone, tabor))
+        assert (float(a), float(d), float(F)) == pytest.approx((0.0, *noncontact), rel=1e-15)
         assert F == pytest.approx(-32 * tabor**3 / (9 * np.pi), rel=1e-14)
     else:
         assert a > 0 and d == pytest.approx(np.nanmin(depths), rel=1e-8)  # the scan: 3e-4 apart in ln(κ − 1)
