@@ -2,7 +2,7 @@
 
 The public API is what this module exports; everything in a module whose name starts with an
 underscore is private. Call `impact.configure()` first in scripts (the CLI does): float64,
-XLA:CPU compiling the spring arrays' loops whole (10× faster), and the compilation cache.
+XLA:CPU compiling the spring arrays' loops whole (many times faster), and the compilation cache.
 
 The names are imported on first use (PEP 562), so that `import impact` (and `impact --help`)
 does not load JAX until something needs it.

@@ -32,8 +32,8 @@ def _ratio(numerator: float, denominator: float) -> str:
 
 def _summary(data: dict) -> list[str]:
     """The title, the provenance and the cheapest setting of each method at each target error."""
-    p, cases, equal = data["provenance"], data["cases"], data["equal"]
-    lines = [
+    p, cases = data["provenance"], data["cases"]
+    return [
         f"# Work-precision benchmark ({p['plan']} run)",
         "",
         f"{p['date']}; impact {p['impact']}, jax {p['jax']}, diffrax {p['diffrax']}, scipy {p['scipy']}, "
@@ -47,6 +47,14 @@ def _summary(data: dict) -> list[str]:
         "A setting counts when it and every tighter setting of the same method reach the error "
         "(no credit for a lucky point of a zigzagging error).",
         "",
+        *cheapest_table(data),
+    ]
+
+
+def cheapest_table(data: dict) -> list[str]:
+    """The cheapest setting of each method at each target error, as Markdown table rows."""
+    equal = data["equal"]
+    lines = [
         "| error ≤ | continuum, single | continuum, batched (per impact) | scipy solve_ivp | springs, exact "
         "| springs, Verlet | scipy ÷ single | scipy ÷ batched |",
         "|---|---|---|---|---|---|---|---|",
@@ -69,10 +77,24 @@ def _continuum(data: dict) -> list[str]:
     """Every solver × rtol of the continuum law, its compile times and the check against `solve`."""
     cont = data["continuum"]
     lines = ["", "## Continuum law (diffrax): solver × rtol (atol = rtol/100, scaled units)", ""]
-    lines += [
-        "| solver | rtol | max error | steps per impact (accepted / rejected) | single impact | batched, per impact "
-        "| batch max error |",
-        "|---|---|---|---|---|---|---|",
+    lines += continuum_table(cont)
+    lines += ["", "Compile times (trace + XLA compile, once per solver for the whole rtol sweep):", ""]
+    for solver, s in cont["solvers"].items():
+        groups = ", ".join(f"{g} {t:.1f} s" for g, t in s["compile_single"].items())
+        lines.append(
+            f"- {solver}: single impact {groups}; batch of {data['plan'].batch_size} {s['compile_batch']:.1f} s"
+        )
+    return lines + _solve_check(cont)
+
+
+def continuum_table(cont: dict, batch_error: bool = True) -> list[str]:
+    """Every solver × rtol of the continuum law as Markdown table rows; `batch_error` adds the
+    batch's own max error (table.md has it, the documentation's fragment leaves it out)."""
+    last = " batch max error |" if batch_error else ""
+    lines = [
+        "| solver | rtol | max error | steps per impact (accepted / rejected) | single impact | batched, per impact |"
+        + last,
+        "|---|---|---|---|---|---|" + ("---|" if batch_error else ""),
     ]
     for solver, s in cont["solvers"].items():
         for r, rtol in enumerate(cont["rtols"]):
@@ -82,19 +104,14 @@ def _continuum(data: dict) -> list[str]:
                 if not failed
                 else f"failed: {failed} ({s['error_max_solved'][r]:.1e} on the rest)"
             )
-            batch_error = _err(s["batch_error"][r]) if np.isfinite(s["time_batch"][r]) else "—"
-            lines.append(
+            row = (
                 f"| {solver} | {rtol:.0e} | {error} | {np.mean(s['accepted'][r]):.0f} / "
-                f"{np.mean(s['rejected'][r]):.0f} | {_ms(s['time_single_mean'][r])} | "
-                f"{_ms(s['time_batch'][r])} | {batch_error} |"
+                f"{np.mean(s['rejected'][r]):.0f} | {_ms(s['time_single_mean'][r])} | {_ms(s['time_batch'][r])} |"
             )
-    lines += ["", "Compile times (trace + XLA compile, once per solver for the whole rtol sweep):", ""]
-    for solver, s in cont["solvers"].items():
-        groups = ", ".join(f"{g} {t:.1f} s" for g, t in s["compile_single"].items())
-        lines.append(
-            f"- {solver}: single impact {groups}; batch of {data['plan'].batch_size} {s['compile_batch']:.1f} s"
-        )
-    return lines + _solve_check(cont)
+            if batch_error:
+                row += f" {_err(s['batch_error'][r]) if np.isfinite(s['time_batch'][r]) else '—'} |"
+            lines.append(row)
+    return lines
 
 
 def _solve_check(cont: dict) -> list[str]:

@@ -11,8 +11,8 @@
   |e − e_ref| of each case and its max, steps (accepted, rejected), the time of a single
   impact (jitted, after compile, no trajectory), the time per impact in a `jit(vmap)` batch of
   10³ velocities of one case, and compile times. The tolerance is passed to the integrator as
-  a traced argument, so one compile serves a whole rtol sweep (a static rtol recompiles, about
-  5 s each); the full run checks against `solve` itself, compiled with static tolerances.
+  a traced argument, so one compile serves a whole rtol sweep (a static rtol would recompile for
+  each); the full run checks against `solve` itself, compiled with static tolerances.
 - **Spring array** (Thornton–Ning at 2 v_s) × N: the exact event-driven stepper
   (`SpringArray`, whose error is the pure spatial error) and a fixed-step velocity Verlet
   (`Verlet`) over Δt, whose difference from the exact discrete model is the pure

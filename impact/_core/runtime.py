@@ -19,30 +19,26 @@ import jax.numpy as jnp
 from .cache import cache_directory, use_cache
 
 # XLA:CPU runs a while-loop whose body exceeds 1 kB op by op; the spring arrays' event and
-# Verlet loops (the law evaluated inside) are a few kB: compiled whole they run 10× faster.
+# Verlet loops (the law evaluated inside) are a few kB: compiled whole they run many times faster.
 SMALL_LOOP_OPTION = "xla_cpu_small_while_loop_byte_threshold=65536"
 
 # A point's result must be bitwise the same alone or at any place of a batch of any size. XLA:CPU
 # vectorises the loops over a vmapped batch; where it contracts multiply–adds into fused ones
 # (FMA), it does so differently in the vector loop, its scalar remainder, a loop compiled whole
-# and one run op by op, so that lanes rounded by their place (measured: Thornton–Ning
-# restitutions a few ulps apart, Maugis–Dugdale's up to 4e-7 with 20 solver steps more or
-# fewer). Without FMA, vector and scalar code run the same IEEE operations: `configure()` caps
+# and one run op by op, so that lanes rounded by their place (Thornton–Ning restitutions a few
+# ulps apart; Maugis–Dugdale's, amplified on its DMT side, by far more, with other solver steps).
+# Without FMA, vector and scalar code run the same IEEE operations: `configure()` caps
 # XLA:CPU at AVX (no FMA) on x86-64, and every lane then keeps its vectors. A process started
 # otherwise (FMA available) compiles with float64 vectors of one element: every lane runs the
-# same scalar code, 1.2–1.6× slower. Other backends ignore the option.
+# same scalar code, which is slower. Other backends ignore the option.
 NO_FMA_FLAG = "--xla_cpu_max_isa=AVX"
 SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
 
-# XLA:CPU's fusion emitters (its default) compile a program 30–45 % slower than its elemental
-# emitters, and the program runs only a little faster: measured 2026-11-27 on this 2-core
-# machine, a sweep's batch of 10³ points (solve, closed form and results) compiled in 2.6–3.2 s
-# instead of 3.9–4.5 s; `impact bench speed --points 10000` ran 3–4 % slower (Thornton–Ning with
-# the energy's ends 12.2–12.3 µs per impact against 11.8, the cone 14.3–14.5 against 13.8–14.1)
-# and compiled in 4.7–5.0 s instead of 6.0–6.8 s; one scene's impact compiled in 3.9 s instead of
-# 6.7 s (2026-11-26).
-# `configure()` makes the elemental emitters the process's default, for every program: a sweep's
-# batch and a scene's run compile the same way.
+# XLA:CPU's fusion emitters (its default) take markedly longer to compile a program than its
+# elemental emitters, and the program runs at most a few per cent faster (the figures are in
+# docs/src/accuracy.md, "Compiling with XLA's elemental emitters"). `configure()` makes the
+# elemental emitters the process's default, for every program: a sweep's batch and a scene's run
+# compile the same way.
 ELEMENTAL_EMITTERS_FLAG = "--xla_cpu_use_fusion_emitters=false"
 
 
@@ -70,7 +66,7 @@ def compiler_options(platform: str | None = None) -> dict[str, int | bool]:
 def _accelerator_plugins() -> bool:
     """Whether a GPU/TPU plugin of jax is installed (the CPU option is then not added): the
     `jax_plugins` namespace its PJRT part installs (jax-cuda*, jax-rocm*), or libtpu. Looked up
-    by module name: reading every installed distribution's metadata took 0.1–0.2 s a process."""
+    by module name: reading every installed distribution's metadata would slow every start."""
     return any(importlib.util.find_spec(name) is not None for name in ("jax_plugins", "libtpu"))
 
 

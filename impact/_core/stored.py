@@ -19,7 +19,7 @@ raising from a host callback, which `jax.export` cannot serialize: with or witho
 that a result never depends on it.
 
 The first call of a stored program on the CPU would initialize jaxlib's LAPACK kernels, which
-imports `scipy.linalg` (0.15–0.4 s of a run) whatever the program calls; a program that calls no
+imports `scipy.linalg` (a noticeable share of a short run) whatever the program calls; a program that calls no
 LAPACK kernel is run without, and one that does initializes them as usual.
 """
 

@@ -25,8 +25,8 @@ def si_prefix(magnitude: float) -> tuple[float, str]:
 
 def write_figures(folder: str | Path, named) -> list[Path]:
     """Write each (file name, figure) into `folder` at 150 dpi, atomically; return the paths. The
-    PNG is compressed at zlib level 1: the same pixels as the default level 6 in a file 13-18 % larger,
-    written in 0.03-0.05 s less a figure."""
+    PNG is compressed at zlib level 1: the same pixels as the default level 6, in a slightly larger
+    file written in less time."""
     paths = []
     for name, figure in named:
         path = Path(folder) / name
@@ -38,7 +38,7 @@ def write_figures(folder: str | Path, named) -> list[Path]:
 
 def import_ahead() -> threading.Thread:
     """Start importing matplotlib's figure and Agg canvas in a background thread, and return it.
-    A command that draws calls this before it computes: the import (0.4–0.7 s of Python) then
+    A command that draws calls this before it computes: the import (much Python) then
     runs while the main thread waits on compiled code (loading an executable from the cache and
     running it release the GIL), instead of after it. A failed import is left to the one where
     the figures are drawn, which raises it; this thread prints nothing."""

@@ -190,8 +190,8 @@ def _compiled_once(function: Callable, described: SceneFunction) -> Callable:
     that executable run for every concrete vector; stored traced in the cache
     (`impact._core.stored`), so that a later process neither traces nor compiles it. Called
     from the rule of a custom_jvp function, a jitted function is lowered and compiled again
-    under each transformation (jacfwd, grad and a plain call each compiled the Thornton–Ning
-    Jacobian, ~25 s, jax 0.10.2). A tracer (f under an outer jit or vmap) goes to the jitted
+    under each transformation (jacfwd, grad and a plain call would each compile the Jacobian
+    again). A tracer (f under an outer jit or vmap) goes to the jitted
     function."""
     program = jax.jit(functools.partial(function, described))
     executables: dict[tuple, Callable] = {}

@@ -76,10 +76,10 @@ LENGTH_OR_ZERO = Domain(0.0, 1e3, "m", reason="up to a kilometre")
 GAP = Domain(1e-15, 1e3, "m", zero=True, reason="touching, or a drop of at most a kilometre")
 INVERSE_LENGTH = Domain(1e-3, 1e12, "1/m", reason="semi-axes from 1 pm to 1 km")
 # Flank angle of a cone: below 1e-6 rad the contact grows beyond any body; above π/2 − 1e-3
-# (slope 1000) the solver fails (measured: π/2 − 1e-8 ends in solver_failure, π/2 − 1e-4 runs).
+# (slope 1000) the solver fails as the angle nears π/2 (π/2 − 1e-8 ends in solver_failure).
 ANGLE = Domain(1e-6, math.pi / 2 - 1e-3, "rad", reason="slopes from 1e-6 to 1000")
-# Power-law exponent: κ(n) holds Γ(n/2 + 1), which overflows float64 for n > 341 (measured:
-# n = 400 gives e = 8e6); n = 100 keeps a factor 3.
+# Power-law exponent: κ(n) holds Γ(n/2 + 1), which overflows float64 for n > 341 (n = 400 gives
+# e = 8e6); n = 100 keeps a factor 3.
 EXPONENT = Domain(1e-3, 100.0, "", reason="κ(n) overflows float64 beyond n = 341")
 PREFACTOR = Domain(1e-300, 1e300, "m^(1-n)", reason="float64's range")
 MASS = Domain(1e-30, 1e6, "kg", reason="from below an electron to a thousand tonnes")

@@ -27,12 +27,12 @@ from ..profiles import Profile
 from .domains import WORK_OF_ADHESION, Domain, outside
 from .errors import FieldProblem
 
-# Measured on configs/thornton_ning.yaml, lowering Δγ (and raising E*, lowering R): the run ends in
-# solver_failure once the detachment length Δl(ℓx) = √(2πℓxΔγ/E*) falls below ~1e-16 of the
-# indentation unit ℓz (4.1e-17 fails, 1.3e-16 runs): float64's resolution. Four decades of margin.
+# A run ends in solver_failure once the detachment length Δl(ℓx) = √(2πℓxΔγ/E*) falls below about
+# 1e-16 of the indentation unit ℓz, float64's resolution (lowering Δγ, raising E* or lowering R
+# on configs/thornton_ning.yaml gets there): the limit keeps four decades of margin.
 RESOLVABLE = 1e-12
-# The units convert every result to SI; within 1e±150 their products stay finite (measured: an
-# energy unit underflowing to 0 gave unbounded_contact and −inf m; 1e±127 still ran).
+# The units convert every result to SI; within 1e±150 their products stay finite (an energy unit
+# that underflows to 0 turns a run into unbounded_contact with −inf m).
 UNIT_RANGE = (1e-150, 1e150)
 # Profiles with a size: the estimated indentation must stay below it (deeper, the body is no
 # longer the shape the field describes: a paraboloid deeper than R is no sphere's cap).

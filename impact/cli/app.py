@@ -29,8 +29,8 @@ app = typer.Typer(
 
 # At its default thresholds (700, 10, 10) Python's cyclic garbage collector runs every 700
 # allocations while a command's imports create hundreds of thousands of long-lived objects (JAX,
-# equinox classes, matplotlib), traversing them again and again: measured, 5 % of a second
-# `impact run`'s CPU time. It stays on, less often (a sweep's or a fit's memory is in arrays).
+# equinox classes, matplotlib), traversing them again and again: a share of a short command's CPU
+# time worth saving. It stays on, less often (a sweep's or a fit's memory is in arrays).
 _COLLECTION_THRESHOLDS = (100_000, 50, 100)
 
 
@@ -49,8 +49,8 @@ def main() -> None:
 def _end(code: object) -> None:
     """End the process with the exit status `code` (None: 0; text: printed, then 1), after the
     atexit handlers and with both output streams flushed, but without tearing the interpreter
-    down: freeing every module, object and JAX's compiled programs one by one took 0.9–1.4 s
-    after a run (measured on `impact run configs/thornton_ning.yaml`), a third of its time."""
+    down: freeing every module, object and JAX's compiled programs one by one would take a large
+    share of a short run's time."""
     if code is not None and not isinstance(code, int):
         print(code, file=sys.stderr)
         code = 1

@@ -15,19 +15,29 @@ import jax
 from rich.console import Console
 from rich.table import Table
 
+from .._bench.fragments import microseconds, speed_fragment, work_precision_fragment
 from .._bench.plans import OUTPUTS
 from .._bench.speed import run as run_speed
+from .._bench.work_precision import provenance
 from .._bench.work_precision import run as run_benchmark
 from .._bench.workloads import SPEED_OUTPUTS, speed_plan, workloads
+from .._core.defaults import SPEED_REPEATS
+from .._io.files import write_text
 from .console import out, refuse, refuse_value, say
-from .folders import check_output
+from .folders import check_output, check_output_file
 
 Measured = TypeVar("Measured")
 
 
-def run_bench(quick: bool, output: Path | None, overwrite: bool) -> None:
-    """`impact bench`: error against time per impact for every integrator (work-precision)."""
-    _into_folder(output, overwrite, lambda folder: run_benchmark(folder, quick=quick, log=say), OUTPUTS)
+def run_bench(quick: bool, output: Path | None, overwrite: bool, markdown: Path | None = None) -> None:
+    """`impact bench`: error against time per impact for every integrator (work-precision);
+    `markdown`: also its tables as a Markdown fragment."""
+    if markdown is not None:
+        check_output_file(markdown, "--markdown")
+    data = _into_folder(output, overwrite, lambda folder: run_benchmark(folder, quick=quick, log=say), OUTPUTS)
+    if markdown is not None:
+        write_text(markdown, work_precision_fragment(data, "impact bench" + (" --quick" if quick else "")))
+        say(f"  {markdown}")
 
 
 def run_bench_speed(
@@ -38,9 +48,11 @@ def run_bench_speed(
     chunk: int | None,
     output: Path | None,
     overwrite: bool,
+    markdown: Path | None = None,
 ) -> None:
     """`impact bench speed`: µs per impact after compile, accuracy, compile time and the split
-    build / integrate / post-process of every workload; writes speed.csv and speed.png."""
+    build / integrate / post-process of every workload; writes speed.csv and speed.png, and with
+    `markdown` the table as a Markdown fragment."""
     for value in points:
         if value < 1:
             refuse_value("--points", value, "be >= 1")
@@ -52,11 +64,26 @@ def run_bench_speed(
     for key in only:
         if key not in keys:
             refuse_value("--only", repr(key), f"be one of {', '.join(keys)}")
+    if markdown is not None:
+        check_output_file(markdown, "--markdown")
     plan = speed_plan(quick=quick, points=tuple(points), only=tuple(only), repeats=repeats, chunk=chunk)
     rows = _into_folder(output, overwrite, lambda folder: run_speed(folder, plan, log=say), SPEED_OUTPUTS)
+    if markdown is not None:
+        command = speed_command(quick, points, only, repeats, chunk)
+        write_text(markdown, speed_fragment(rows, provenance("quick" if quick else "full"), command))
+        say(f"  {markdown}")
     # Twelve columns: printed 160 wide whatever the terminal (rich cannot widen `out` per print,
     # and a narrower table truncates every number); the CSV holds the same rows.
     Console(width=max(out.width, 160), highlight=False).print(speed_table(rows))
+
+
+def speed_command(quick: bool, points: list[int], only: list[str], repeats: int, chunk: int | None) -> str:
+    """The `impact bench speed` command line that measures with these options (output options
+    left out)."""
+    words = ["impact bench speed", *(["--quick"] if quick else [])]
+    words += [f"--only {key}" for key in only] + [f"--points {value}" for value in points]
+    words += [f"--repeats {repeats}"] if repeats != SPEED_REPEATS else []
+    return " ".join(words + ([f"--chunk {chunk}"] if chunk is not None else []))
 
 
 def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:
@@ -102,19 +129,14 @@ def speed_table(rows: list[dict]) -> Table:
             row["workload"],
             str(row["points"]),
             str(row["chunk"]),
-            _microseconds(row["us_per_impact_median"]),
-            f"{_microseconds(row['us_min'])}–{_microseconds(row['us_max'])}",
+            microseconds(row["us_per_impact_median"]),
+            f"{microseconds(row['us_min'])}–{microseconds(row['us_max'])}",
             f"{row['max_error']:.1e}",
             row["error_reference"],
             f"{row['compile_s']:.1f}",
-            _microseconds(row["build_us"]),
-            _microseconds(row["integrate_us"]),
-            _microseconds(row["post_us"]),
+            microseconds(row["build_us"]),
+            microseconds(row["integrate_us"]),
+            microseconds(row["post_us"]),
             f"{row['steps_mean']:.0f}",
         )
     return table
-
-
-def _microseconds(value: float) -> str:
-    """A time in µs to a tenth above 10 µs, else to three digits (a GPU's fraction of a µs)."""
-    return f"{value:.1f}" if value >= 10 else f"{value:.3g}"

@@ -225,10 +225,23 @@ Only = Annotated[
     list[str] | None, typer.Option("--only", help="run only this workload (its key), repeatable", show_default=False)
 ]
 Repeats = Annotated[int, typer.Option("--repeats", help="timed runs per row (the median is shown)")]
+Markdown = Annotated[
+    Path | None,
+    typer.Option(
+        "--markdown",
+        metavar="FILE",
+        help="also write the tables as a Markdown fragment to FILE (the docs include docs/snippets/*.md)",
+        show_default=False,
+    ),
+]
 
 
 def bench_command(
-    ctx: typer.Context, quick: Quick = False, output: BenchFolder = None, overwrite: BenchOverwrite = False
+    ctx: typer.Context,
+    quick: Quick = False,
+    output: BenchFolder = None,
+    overwrite: BenchOverwrite = False,
+    markdown: Markdown = None,
 ) -> None:
     """Measure what accuracy costs: error against time per impact for every integrator (work-precision).
 
@@ -238,7 +251,7 @@ def bench_command(
     configured(ctx)
     from .bench import run_bench
 
-    run_bench(quick, output, overwrite)
+    run_bench(quick, output, overwrite, markdown)
 
 
 def bench_speed_command(
@@ -250,9 +263,10 @@ def bench_speed_command(
     chunk: Chunk = None,
     output: BenchFolder = None,
     overwrite: BenchOverwrite = False,
+    markdown: Markdown = None,
 ) -> None:
     """Measure what a sweep's point costs (µs per impact, accuracy, compile, split); writes speed.csv and .png."""
     configured(ctx)
     from .bench import run_bench_speed
 
-    run_bench_speed(quick, points or [], only or [], repeats, chunk, output, overwrite)
+    run_bench_speed(quick, points or [], only or [], repeats, chunk, output, overwrite, markdown)

@@ -21,3 +21,15 @@ def check_output(folder: Path, overwrite: bool, holds: str = "run") -> None:
         refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is a file, not a folder")])
     if not os.access(nearest, os.W_OK | os.X_OK):
         refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is not writable")])
+
+
+def check_output_file(path: Path, option: str) -> None:
+    """Refuse, before any work, a file `option` cannot write: a folder in its place, or a parent
+    folder that is missing or not writable (an existing file is replaced)."""
+    if path.is_dir():
+        refuse("output file", [(option, f"{path} is a folder, not a file")])
+    parent = path.absolute().parent
+    if not parent.is_dir():
+        refuse("output file", [(option, f"cannot write {path}: folder {parent} does not exist")])
+    if not os.access(parent, os.W_OK | os.X_OK):
+        refuse("output file", [(option, f"cannot write {path}: {parent} is not writable")])

@@ -120,7 +120,7 @@ def maugis_power_law_state(
     F = 2E*(da − cκ a^(n+1)/(n+1)) − σ0[2b² arccos(a/b) − 2a√(b² − a²)], and the range residual
     c bⁿ[1 − 2κ/(π(n+1)) (a/b)^(n+1) ₂F₁(½, (n+1)/2; (n+3)/2; z)] − (2d/π) arccos(a/b)
     − 4σ0(b − a)/(πE*) − h. n = 2, c = 1/(2R) is ``maugis_paraboloid_state``."""
-    from scipy.special import hyp2f1  # imported here: scipy would add 0.2 s to every `impact run`
+    from scipy.special import hyp2f1  # imported here: so that `impact run` does not import scipy
 
     root, angle = _zone_terms(a, b)
     with jax.enable_x64(True):  # κ in float64 whatever the jax setting
@@ -197,7 +197,7 @@ def maugis_paraboloid_noncontact(zone_radius: Scalars, tabor: Scalars):
 
 def _pull_off(tabor):
     """−min F̃ over (3.171) and the non-contact branch for one Λ (see ``maugis_pull_off``)."""
-    from scipy.optimize import minimize_scalar  # imported here: scipy would add 0.2 s to every `impact run`
+    from scipy.optimize import minimize_scalar  # imported here: so that `impact run` does not import scipy
 
     def force(log_excess):
         return _maugis_curve(np.exp(log_excess), tabor)[2]
@@ -224,7 +224,7 @@ def maugis_pull_off(tabor: Scalars):
 
 def _critical_state(tabor, xi):
     """(ã, d̃, F̃) of ``maugis_critical_state`` for one Λ."""
-    from scipy.optimize import minimize_scalar  # imported here: scipy would add 0.2 s to every `impact run`
+    from scipy.optimize import minimize_scalar  # imported here: so that `impact run` does not import scipy
 
     index = 2 if xi == 3 else 1  # force control: the lowest F̃; displacement control: the lowest d̃
 

@@ -1,5 +1,6 @@
 """`impact bench --quick` through the `impact` typer app: its outputs, errors that fall as the
-tolerance tightens, the spring array's order in N, and the baseline."""
+tolerance tightens, the spring array's order in N, the baseline, and the Markdown fragment for
+the docs."""
 
 import subprocess
 import sys
@@ -18,7 +19,8 @@ from impact.cli import app
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):
     folder = tmp_path_factory.mktemp("bench") / "quick"
-    result = CliRunner().invoke(app, ["bench", "--quick", "-o", str(folder)])
+    markdown = folder.parent / "work-precision.md"
+    result = CliRunner().invoke(app, ["bench", "--quick", "-o", str(folder), "--markdown", str(markdown)])
     return folder, result
 
 
@@ -32,6 +34,33 @@ def test_quick_bench_writes_its_outputs(quick):
     for heading in ("What a digit costs", "Continuum law", "exact event-driven", "velocity Verlet", "scipy"):
         assert heading in table, heading
     assert "benchmark written to" in result.output
+
+
+def test_markdown_fragment_holds_the_runs_tables(quick):
+    """--markdown FILE writes the two tables the docs include, from the run's own numbers: the
+    cheapest setting of each target error (its targets in order), then one row per solver × rtol
+    with the error, the steps and the times of bench.h5 (to the digits shown)."""
+    folder, result = quick
+    assert result.exit_code == 0, result.output
+    text = (folder.parent / "work-precision.md").read_text()
+    assert text.startswith("Measured ") and "by `impact bench --quick` on " in text.splitlines()[0]
+    rows = [[cell.strip() for cell in line.strip("|").split("|")] for line in text.splitlines() if line[:1] == "|"]
+    cheapest_rows = [row for row in rows if row[0].startswith("1e-")]
+    continuum_rows = [row for row in rows if row[0] == "tsit5"]
+    with h5py.File(folder / "bench.h5") as file:
+        targets = file["equal_error/targets"][()]
+        rtols = file["continuum/rtol"][()]
+        errors = file["continuum/tsit5/error_max"][()]
+        single = file["continuum/tsit5/time_single_mean"][()]
+        accepted = file["continuum/tsit5/accepted"][()]
+    assert [float(row[0]) for row in cheapest_rows] == pytest.approx(list(targets))
+    assert len(continuum_rows) == len(rtols)
+    for row, rtol, error, times, steps in zip(continuum_rows, rtols, errors, single, accepted, strict=True):
+        assert float(row[1]) == pytest.approx(rtol, rel=0.051)
+        assert float(row[2]) == pytest.approx(error, rel=0.051), row
+        assert int(row[3].split(" / ")[0]) == round(float(np.mean(steps))), row
+        value, unit = row[4].split()
+        assert float(value) * {"µs": 1e-6, "ms": 1e-3, "s": 1.0}[unit] == pytest.approx(times, rel=5e-3)
 
 
 def test_error_falls_as_the_tolerance_tightens(quick):

@@ -1,6 +1,6 @@
 """`impact bench speed` through the command line, on a tiny plan
 (two spring arrays, two point counts): the CSV's rows and columns, the split into parts that add up to
-timed calls, the figure, and the refusals of bad options."""
+timed calls, the figure, the Markdown fragment for the docs, and the refusals of bad options."""
 
 import csv
 
@@ -11,7 +11,9 @@ from typer.testing import CliRunner
 from impact._bench import speed
 from impact._bench.speed import COLUMNS, Reduction, speed_csv
 from impact._bench.workloads import CLOSED_FORM, TIGHTER, speed_plan, workloads
+from impact._core.defaults import SPEED_REPEATS
 from impact.cli import app
+from impact.cli.bench import speed_command
 
 POINTS = (32, 64)
 ONLY = ("springs256", "springs64")  # in the plan's order
@@ -25,7 +27,8 @@ def invoke(*args: str):
 def tiny(tmp_path_factory):
     folder = tmp_path_factory.mktemp("speed") / "tiny"
     options = [f"--points={n}" for n in POINTS] + [f"--only={key}" for key in ONLY]
-    result = invoke(*options, "--repeats", "3", "--chunk", "64", "-o", str(folder))
+    markdown = folder.parent / "speed.md"
+    result = invoke(*options, "--repeats", "3", "--chunk", "64", "-o", str(folder), "--markdown", str(markdown))
     rows = list(csv.DictReader((folder / "speed.csv").open())) if result.exit_code == 0 else []
     return folder, result, rows
 
@@ -43,6 +46,56 @@ def test_one_row_per_workload_and_points_count(tiny):
         assert (row["chunk"], row["device"], row["device_peak_mb"]) == ("64", "cpu", "nan"), row
     assert (folder / "speed.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "What a point costs" in result.output and "springs256" in result.output
+
+
+def _cells(line: str) -> list[str]:
+    return [cell.strip() for cell in line.strip().strip("|").split("|")]
+
+
+def test_markdown_fragment_holds_the_runs_table(tiny):
+    """--markdown FILE writes the table the docs include: the command that measured it, one row
+    per workload × points count in the CSV's order, each with the run's own numbers (to the
+    digits shown)."""
+    folder, result, rows = tiny
+    assert result.exit_code == 0, result.output
+    lines = (folder.parent / "speed.md").read_text().splitlines()
+    assert lines[0].startswith("Measured ") and "Sweeps on cpu." in lines[0], lines[0]
+    options = "--only springs256 --only springs64 --points 32 --points 64 --repeats 3 --chunk 64"
+    assert f"`impact bench speed {options}`" in lines[0], lines[0]
+    table = [line for line in lines if line.startswith("|")]
+    assert _cells(table[0]) == [
+        "workload (`--only`)", "points", "µs per impact, median (min–max)", "max error (against)", "steps",
+        "compile", "build / integrate / post, µs", "peak RSS",
+    ]  # fmt: skip
+    assert len(table) == 2 + len(rows)
+    for line, row in zip(table[2:], rows, strict=True):
+        name, points, time, error, steps, compile_time, split, rss = _cells(line)
+        assert name.endswith(f"(`{row['workload']}`)") and int(points) == int(row["points"]), (line, row)
+        median, low, high = (float(x) for x in time.replace("(", " ").replace(")", " ").replace("–", " ").split())
+        for shown, value in ((median, "us_per_impact_median"), (low, "us_min"), (high, "us_max")):
+            assert shown == pytest.approx(float(row[value]), rel=5e-3, abs=0.051), (line, row)
+        assert float(error.split()[0]) == pytest.approx(float(row["max_error"]), rel=0.051), (line, row)
+        assert error.endswith(f"({row['error_reference']})")
+        assert int(steps) == round(float(row["steps_mean"])), (line, row)
+        assert float(compile_time.removesuffix(" s")) == pytest.approx(float(row["compile_s"]), abs=0.051)
+        for shown, value in zip(split.split(" / "), ("build_us", "integrate_us", "post_us"), strict=True):
+            assert float(shown) == pytest.approx(float(row[value]), rel=5e-3, abs=0.051), (line, row)
+        assert float(rss.removesuffix(" MB")) == pytest.approx(float(row["peak_rss_mb"]), abs=0.51)
+
+
+def test_the_markdown_file_is_checked_before_any_work(tmp_path):
+    """A folder in the fragment's place, or a missing folder above it: exit 2 naming --markdown,
+    nothing written."""
+    for target, says in ((tmp_path, "is a folder"), (tmp_path / "missing" / "speed.md", "does not exist")):
+        result = invoke("--only", "tn", "-o", str(tmp_path / "out"), "--markdown", str(target))
+        assert result.exit_code == 2, result.output
+        assert "--markdown" in result.output and says in result.output, result.output
+        assert not (tmp_path / "out").exists()
+
+
+def test_the_fragment_names_only_the_options_that_change_the_measurement():
+    assert speed_command(False, [], ["tn"], SPEED_REPEATS, None) == "impact bench speed --only tn"
+    assert speed_command(True, [10], [], 2, 8) == "impact bench speed --quick --points 10 --repeats 2 --chunk 8"
 
 
 def test_spring_array_error_falls_with_n(tiny):

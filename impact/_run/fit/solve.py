@@ -33,8 +33,7 @@ from .uncertainty import uncertainty
 # Levenberg–Marquardt stops when a step changes u (of order 1) and the residuals by less than
 # this in root mean square, relative and absolute. Near the optimum each step squares the error:
 # the step that passes leaves the parameters far below any standard error from the optimum.
-# (The default max norm, or 1e-8, waits on rounding: 28 steps instead of 10 were measured on the
-# Thornton–Ning drop test.)
+# (A max norm, or a tolerance of 1e-8, waits on rounding: many more steps to the same optimum.)
 TOLERANCE = 1e-6
 MAX_STEPS = 100
 SIGMA_SOURCES = {
@@ -256,8 +255,8 @@ _TRACED = {function: eqx.filter_jit(function) for function in (_solve, _weighted
 
 def _start_residuals(residuals: Residuals, u, data: Measurements) -> jax.Array:
     """The weighted residuals at the start: a model without a batched form called row by row,
-    one compiled program for every row (the simulation's value compiles in a fifth of the time
-    of its batch over the rows, measured on the drop test), a batched one in one call."""
+    one compiled program for every row (one row's program compiles in much less time than a
+    batch over the rows), a batched one in one call."""
     if getattr(residuals.model, "batched", None) is not None:
         return _compiled(_weighted, residuals, u, data)
     values = data.bounds.physical(u)
