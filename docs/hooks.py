@@ -2,9 +2,11 @@
 
 `scene_reference()` walks `impact.Scene` field by field: a field whose type is a section (a
 pydantic model) opens a table of its own, the body profile (a union of models tagged by
-`shape`) one table per shape; every other field is a row with its dotted path, type, default,
-bounds and the `description` of its `Field`. `on_page_markdown` puts the tables in place of
-`PLACEHOLDER` in scene-reference.md, so the page always matches the code.
+`shape`) one table per shape; every other field is a row with its key, type and bounds, default
+and the `description` of its `Field`. The key is its name within the section's table, an
+unbreakable code span (`code.scene-key` in stylesheets/extra.css) whose title is its dotted
+path, so that four columns fit a laptop's screen. `on_page_markdown` puts the tables in place
+of `PLACEHOLDER` in scene-reference.md, so the page always matches the code.
 """
 
 import sys
@@ -135,9 +137,14 @@ def _shape(model: type[BaseModel]) -> str:
     return typing.get_args(options[0])[0]
 
 
+def key(path: str) -> str:
+    """A key's cell: its name, unbreakable, with its dotted path as title."""
+    return f'<code class="scene-key" title="{path}">{path.rsplit(".", 1)[-1]}</code>'
+
+
 def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[str, type[BaseModel] | list]]]:
     """The rows of one section, and the sections (or profile unions) nested in it."""
-    lines = ["| key | type | default | allowed range | meaning (SI units) |", "|---|---|---|---|---|"]
+    lines = ["| key | type, allowed range | default | meaning (SI units) |", "|---|---|---|---|"]
     nested = []
     for name, field in model.model_fields.items():
         path = f"{prefix}{name}"
@@ -149,13 +156,12 @@ def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[s
             kind += " (optional)" if optional else ""
             summary = _summary(models[0]) if len(models) == 1 else "the body's shape"
             description = field.description or summary
-            lines.append(f"| `{path}` | {kind} | {_default(field)} | | {_cell(description or '')} |")
+            lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description or '')} |")
             continue
         description = field.description or ("selects this profile" if name == "shape" else "")
-        lines.append(
-            f"| `{path}` | {_cell(_type_name(field.annotation))} | {_default(field)} | {_bounds(field)} "
-            f"| {_cell(description)} |"
-        )
+        bounds = _bounds(field)
+        kind = _cell(_type_name(field.annotation)) + (f"<br>{bounds}" if bounds else "")
+        lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description)} |")
     return lines, nested
 
 
