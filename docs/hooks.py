@@ -3,12 +3,13 @@
 `scene_reference()` walks `impact.Scene` field by field: a field whose type is a section (a
 pydantic model) opens a table of its own, the body profile (a union of models tagged by
 `shape`) one table per shape; every other field is a row with its key, type and bounds, default
-and the `description` of its `Field`. The key is its name within the section's table, an
-unbreakable code span (`code.scene-key` in stylesheets/extra.css) whose title is its dotted
-path, so that four columns fit a laptop's screen. `on_page_markdown` puts the tables in place
+and the `description` of its `Field`. The key is its name within the section's table, with its
+dotted path as title; keys, values and defaults are code that never breaks inside a name, so
+that four columns read on a laptop's screen. `on_page_markdown` puts the tables in place
 of `PLACEHOLDER` in scene-reference.md, so the page always matches the code.
 """
 
+import html
 import sys
 import types
 import typing
@@ -36,6 +37,17 @@ def _scene_model() -> type[BaseModel]:
     import impact
 
     return impact.Scene
+
+
+def token(value: object, title: str | None = None) -> str:
+    """`value` as code that never breaks inside (`code.nowrap` in stylesheets/extra.css)."""
+    hint = f' title="{title}"' if title else ""
+    return f'<code class="nowrap"{hint}>{html.escape(str(value))}</code>'
+
+
+def key(path: str) -> str:
+    """A key's cell: its name within its section, with its dotted path as title."""
+    return token(path.rsplit(".", 1)[-1], title=path)
 
 
 def _unwrap(annotation) -> tuple[list, bool]:
@@ -67,7 +79,7 @@ def _type_name(annotation) -> str:
     names = []
     for option in options:
         if typing.get_origin(option) is typing.Literal:
-            names.append(" or ".join(f"`{value}`" for value in typing.get_args(option)))
+            names.append(" or ".join(token(value) for value in typing.get_args(option)))
         elif typing.get_origin(option) is list:
             (item,) = typing.get_args(option)
             names.append(f"list of {_type_name(item)}s")
@@ -93,7 +105,7 @@ def _default(field: FieldInfo) -> str:
         return "none"
     if isinstance(default, BaseModel):
         return "section defaults"
-    return f"`{default}`"
+    return token(default)
 
 
 def _domains(annotation) -> list[str]:
@@ -135,11 +147,6 @@ def _summary(model: type[BaseModel]) -> str:
 def _shape(model: type[BaseModel]) -> str:
     options, _ = _unwrap(model.model_fields["shape"].annotation)
     return typing.get_args(options[0])[0]
-
-
-def key(path: str) -> str:
-    """A key's cell: its name, unbreakable, with its dotted path as title."""
-    return f'<code class="scene-key" title="{path}">{path.rsplit(".", 1)[-1]}</code>'
 
 
 def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[str, type[BaseModel] | list]]]:

@@ -98,6 +98,8 @@ def test_no_emphasis_opened_right_after_a_symbol(site):
         for match in EMPHASIS_AFTER_SYMBOL.finditer(article)
     ]
     assert not found, "a star after a symbol became emphasis (write `E*` or \\(E^*\\)):\n" + "\n".join(found)
+    escaped = [page.name for page in _pages(site) if "\\*" in _article(page)]
+    assert not escaped, f"a backslash-escaped star inside code shows its backslash: {escaped}"
 
 
 def test_no_list_item_printed_as_text(site):
@@ -249,11 +251,11 @@ def test_signatures_are_formatted_to_the_column(site):
 def test_scene_reference_keys_do_not_break(site):
     """Each key of the generated tables is one unbreakable code span holding its dotted path."""
     article = _article(site / "scene-reference.html")
-    keys = re.findall(r'<code class="scene-key" title="([\w.]+)">(\w+)</code>', article)
+    keys = re.findall(r'<code class="nowrap" title="([\w.]+)">(\w+)</code>', article)
     assert len(keys) > 100
     assert all(path.rsplit(".", 1)[-1] == key for path, key in keys)
     css = (site / "stylesheets/extra.css").read_text()
-    assert re.search(r"code\.scene-key\s*\{[^}]*white-space:\s*nowrap", css)
+    assert re.search(r"code\.nowrap\s*\{[^}]*white-space:\s*nowrap", css)
 
 
 def test_pages_link_the_repository_and_name_their_address(site):
