@@ -5,6 +5,7 @@ full-size link, and the API page for the fields of the result classes with their
 signatures formatted to the column."""
 
 import dataclasses
+import fcntl
 import html
 import importlib.util
 import os
@@ -56,13 +57,23 @@ SIGNATURE_WIDTH = 80  # characters: mkdocstrings' line_length (60) and what ruff
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("site")
-    command = [sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-f", str(CONFIG), "-d", str(out)]
-    built = subprocess.run(
-        command, cwd=ROOT, capture_output=True, text=True, env={**os.environ, "NO_MKDOCS_2_WARNING": "1"}
-    )
-    assert built.returncode == 0, f"mkdocs build --strict failed:\n{built.stdout[-4000:]}{built.stderr[-4000:]}"
+    """The built site: built once per test session, by the first xdist worker that needs it."""
+    shared = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        shared = shared.parent  # the session's folder, common to its workers
+    out = shared / "docs-site"
+    with open(shared / "docs-site.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (out / "index.html").is_file():
+            _build(out)
     return out
+
+
+def _build(out: Path) -> None:
+    command = [sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-f", str(CONFIG), "-d", str(out)]
+    env = {**os.environ, "NO_MKDOCS_2_WARNING": "1"}
+    built = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, env=env)
+    assert built.returncode == 0, f"mkdocs build --strict failed:\n{built.stdout[-4000:]}{built.stderr[-4000:]}"
 
 
 def _pages(site: Path) -> list[Path]:
