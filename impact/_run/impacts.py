@@ -32,8 +32,8 @@ class Result:
         status: How the run ended: `separated` or `captured` (the physical outcomes), else why it
             stopped (`bounce_limit`, `time_limit`, `solver_failure`, ...; the user guide lists
             them).
-        restitution: Rebound speed over touch speed of the first contact [1]; 0 if captured,
-            nan without a physical outcome.
+        restitution: Rebound speed over touch speed of the first contact, dimensionless; 0 if
+            captured, nan without a physical outcome.
         stuck: Whether the body ended captured.
         contact_time: Duration of the first contact [s]; inf when it never ends, nan without a
             touch.
@@ -50,7 +50,7 @@ class Result:
             [J]; 0 without.
         viscous_work: The part of `dissipated_energy` lost to damping, ∫F_visc ḋ dt
             (`effects.damping`) [J]; 0 without.
-        tabor_parameter: Λ (3.172) [1] of a Maugis–Dugdale scene on a paraboloid, the
+        tabor_parameter: Λ (3.172), dimensionless, of a Maugis–Dugdale scene on a paraboloid, the
             equivalent Λ(k) of a Greenwood–Johnson scene; nan otherwise.
         centre_of_mass_velocity: Velocity of the centre of mass, lab frame [m/s]; 0 against a
             rigid flat at rest.

@@ -46,10 +46,10 @@ NOT_QUANTITIES = {
     "IndentationResult": {"scene", "status", "leg", "events", "stats", "success", "xi"},
     "FitResult": {"spec", "converged", "iterations", "dof", "sigma_source", "unidentifiable"},
 }
-# A unit in brackets: [m], [m/s], [J], [N·m], [s⁻¹], [1] for a number without dimension, [SI]
-# for values in the SI unit of whatever they hold.
+# A unit in brackets, [m], [m/s], [J], [N·m], [s⁻¹], or [SI] for values in the SI unit of whatever
+# they hold; or the word "dimensionless".
 _SYMBOL = r"(?:kg|Pa|m|s|N|J)(?:[²³]|⁻[¹²³])?"
-UNIT = re.compile(rf"\[(?:1|SI|{_SYMBOL}(?:[·/]{_SYMBOL})*)\]")
+UNIT = re.compile(rf"\[(?:SI|{_SYMBOL}(?:[·/]{_SYMBOL})*)\]|\bdimensionless\b")
 # An emphasis opened right after a letter, digit, prime or closing bracket: the star of E*, R*.
 EMPHASIS_AFTER_SYMBOL = re.compile(r"[\w)\]}′’]<(em|strong)>")
 SIGNATURE_WIDTH = 80  # characters: mkdocstrings' line_length (60) and what ruff cannot break
@@ -173,12 +173,11 @@ def test_every_script_and_stylesheet_is_in_the_site(site):
 def test_math_is_typeset_by_a_mathjax_the_site_serves(site):
     theory = site / "theory.html"
     assert _article(theory).count('class="arithmatex"') > 100
-    (bundle,) = [url for url in _resources(theory) if url.endswith("tex-mml-chtml.js")]
-    folder = (theory.parent / bundle).parent
-    assert (folder / bundle.rsplit("/", 1)[-1]).stat().st_size > 500_000  # MathJax itself, not a stub
-    fonts = list((folder / "output/chtml/fonts/woff-v2").glob("MathJax_*.woff"))
+    (bundle,) = [theory.parent / url for url in _resources(theory) if url.endswith("tex-mml-chtml.js")]
+    assert bundle.stat().st_size > 500_000  # MathJax itself, not a stub
+    fonts = list((bundle.parent / "output/chtml/fonts/woff-v2").glob("MathJax_*.woff"))
     assert len(fonts) >= 20, "MathJax's CommonHTML fonts are not beside its bundle"
-    assert (folder / "input/tex/extensions/ams.js").is_file()
+    assert (bundle.parent / "input/tex/extensions/ams.js").is_file()
 
 
 def test_every_figure_links_to_its_full_size_file(site):
@@ -240,10 +239,10 @@ def test_result_fields_on_the_api_page_with_their_units(site, owner):
     problems = []
     for name in _members(cls):
         description = _member_description(block, owner, name)
-        if not description or description == name:
+        if not description:
             problems.append(f"{name}: not on the API page (an `Attributes:` entry or a docstring)")
         elif name not in NOT_QUANTITIES[owner] and not UNIT.search(description):
-            problems.append(f"{name}: no unit in brackets ([m], [J], [1], ...) in {description!r}")
+            problems.append(f"{name}: no unit ([m], [J], ..., or dimensionless) in {description!r}")
     assert not problems, f"impact.{owner}:\n" + "\n".join(problems)
 
 
@@ -254,9 +253,8 @@ def test_signatures_are_formatted_to_the_column(site):
     ]
     assert len(signatures) > 100
     long = [line for signature in signatures for line in signature.splitlines() if len(line) > SIGNATURE_WIDTH]
-    assert not long, f"signature lines wider than {SIGNATURE_WIDTH} characters (is ruff installed?):\n" + "\n".join(
-        long
-    )
+    message = f"signature lines wider than {SIGNATURE_WIDTH} characters (is ruff installed?):\n"
+    assert not long, message + "\n".join(long)
 
 
 def test_scene_reference_keys_do_not_break(site):

@@ -57,8 +57,9 @@ class FitResult:
             data do not determine it (see `unidentifiable`).
         covariance: The parameters' covariance matrix [p, p], in the products of their SI units
             [SI].
-        correlation: The parameters' correlation matrix [p, p] [1].
-        chi2: χ², the sum of the squared weighted residuals (model − data)/σ at the fit [1].
+        correlation: The parameters' correlation matrix [p, p], dimensionless.
+        chi2: χ², the sum of the squared weighted residuals (model − data)/σ at the fit,
+            dimensionless.
         dof: Degrees of freedom: residuals less parameters.
         converged: Whether Levenberg–Marquardt met its tolerance within the allowed steps.
         iterations: Levenberg–Marquardt steps taken.

@@ -104,8 +104,8 @@ class SweepResult:
     Attributes:
         spec: The validated sweep: the base scene, its axes, the mode and the order.
         params: The swept values of each point, by dotted path [SI].
-        restitution: Rebound speed over touch speed of the first contact [1]; 0 if captured,
-            nan without a physical outcome.
+        restitution: Rebound speed over touch speed of the first contact, dimensionless; 0 if
+            captured, nan without a physical outcome.
         stuck: Whether the body ended captured.
         status: The result code of each point: the index of its name in the table of
             `impact.Result.status` (0 `separated`, 1 `captured`, ...; −1 for a point not run).
@@ -121,8 +121,8 @@ class SweepResult:
         steps: Solver steps.
         accepted_steps: Accepted solver steps.
         rejected_steps: Rejected solver steps.
-        theory_restitution: The chapter's closed-form restitution [1] where the scene has one,
-            else nan.
+        theory_restitution: The chapter's closed-form restitution, dimensionless, where the
+            scene has one, else nan.
         stats: The cost of the run: `points`, `chunk`, `devices`, `groups`, `plan_time`,
             `compile_time`, `solve_time` (s), `points_per_second`.
         plastic_work: The part of `dissipated_energy` lost to plastic flow [J]; only where the
