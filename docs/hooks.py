@@ -2,11 +2,14 @@
 
 `scene_reference()` walks `impact.Scene` field by field: a field whose type is a section (a
 pydantic model) opens a table of its own, the body profile (a union of models tagged by
-`shape`) one table per shape; every other field is a row with its dotted path, type, default,
-bounds and the `description` of its `Field`. `on_page_markdown` puts the tables in place of
-`PLACEHOLDER` in scene-reference.md, so the page always matches the code.
+`shape`) one table per shape; every other field is a row with its key, type and bounds, default
+and the `description` of its `Field`. The key is its name within the section's table, with its
+dotted path as title; keys, values and defaults are code that never breaks inside a name, so
+that four columns read on a laptop's screen. `on_page_markdown` puts the tables in place
+of `PLACEHOLDER` in scene-reference.md, so the page always matches the code.
 """
 
+import html
 import sys
 import types
 import typing
@@ -34,6 +37,17 @@ def _scene_model() -> type[BaseModel]:
     import impact
 
     return impact.Scene
+
+
+def token(value: object, title: str | None = None) -> str:
+    """`value` as code that never breaks inside (`code.nowrap` in stylesheets/extra.css)."""
+    hint = f' title="{title}"' if title else ""
+    return f'<code class="nowrap"{hint}>{html.escape(str(value))}</code>'
+
+
+def key(path: str) -> str:
+    """A key's cell: its name within its section, with its dotted path as title."""
+    return token(path.rsplit(".", 1)[-1], title=path)
 
 
 def _unwrap(annotation) -> tuple[list, bool]:
@@ -65,7 +79,7 @@ def _type_name(annotation) -> str:
     names = []
     for option in options:
         if typing.get_origin(option) is typing.Literal:
-            names.append(" or ".join(f"`{value}`" for value in typing.get_args(option)))
+            names.append(" or ".join(token(value) for value in typing.get_args(option)))
         elif typing.get_origin(option) is list:
             (item,) = typing.get_args(option)
             names.append(f"list of {_type_name(item)}s")
@@ -91,7 +105,7 @@ def _default(field: FieldInfo) -> str:
         return "none"
     if isinstance(default, BaseModel):
         return "section defaults"
-    return f"`{default}`"
+    return token(default)
 
 
 def _domains(annotation) -> list[str]:
@@ -137,7 +151,7 @@ def _shape(model: type[BaseModel]) -> str:
 
 def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[str, type[BaseModel] | list]]]:
     """The rows of one section, and the sections (or profile unions) nested in it."""
-    lines = ["| key | type | default | allowed range | meaning (SI units) |", "|---|---|---|---|---|"]
+    lines = ["| key | type, allowed range | default | meaning (SI units) |", "|---|---|---|---|"]
     nested = []
     for name, field in model.model_fields.items():
         path = f"{prefix}{name}"
@@ -149,13 +163,12 @@ def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[s
             kind += " (optional)" if optional else ""
             summary = _summary(models[0]) if len(models) == 1 else "the body's shape"
             description = field.description or summary
-            lines.append(f"| `{path}` | {kind} | {_default(field)} | | {_cell(description or '')} |")
+            lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description or '')} |")
             continue
         description = field.description or ("selects this profile" if name == "shape" else "")
-        lines.append(
-            f"| `{path}` | {_cell(_type_name(field.annotation))} | {_default(field)} | {_bounds(field)} "
-            f"| {_cell(description)} |"
-        )
+        bounds = _bounds(field)
+        kind = _cell(_type_name(field.annotation)) + (f"<br>{bounds}" if bounds else "")
+        lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description)} |")
     return lines, nested
 
 

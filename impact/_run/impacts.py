@@ -21,68 +21,108 @@ from .programs import solve_by_field
 class Result:
     """Outcome of one impact, in SI units.
 
-    `restitution` and `contact_time` describe the first contact (rebound speed over touch
-    speed); `stuck` says whether the body ended captured. Speeds and the dissipated energy are
-    those of the relative motion (reduced mass) when the scene has a counterpart; the lab-frame
-    velocities after the first contact are positive along the body's approach. Trajectory arrays hold samples of
-    every phase in time order (a jump of the contact shows as two samples at the same time).
+    `restitution` and `contact_time` describe the first contact; `stuck` says whether the body
+    ended captured. Speeds and the dissipated energy are those of the relative motion (reduced
+    mass) when the scene has a counterpart; the lab-frame velocities after the first contact are
+    positive along the body's approach. The trajectory arrays hold samples of every phase in time
+    order (a jump of the contact shows as two samples at the same time).
+
+    Attributes:
+        scene: The scene that was run.
+        status: How the run ended: `separated` or `captured` (the physical outcomes), else why it
+            stopped (`bounce_limit`, `time_limit`, `solver_failure`, ...; the user guide lists
+            them).
+        restitution: Rebound speed over touch speed of the first contact, dimensionless; 0 if
+            captured, nan without a physical outcome.
+        stuck: Whether the body ended captured.
+        contact_time: Duration of the first contact [s]; inf when it never ends, nan without a
+            touch.
+        max_indentation: Deepest indentation [m].
+        max_force: Largest compressive force [N].
+        min_force: Most adhesive (most negative) force [N].
+        bounces: Contacts simulated.
+        touch_velocity: Speed at the first touch [m/s].
+        separation_velocity: Speed when the first contact let go [m/s]; 0 if captured.
+        dissipated_energy: Energy lost in the first contact, ∮F dd of the elastic and viscous
+            force [J]. The named losses below, `adhesion_hysteresis` and
+            `unrecovered_elastic_energy` add up to it.
+        plastic_work: The part of `dissipated_energy` lost to plastic flow (`effects.plasticity`)
+            [J]; 0 without.
+        viscous_work: The part of `dissipated_energy` lost to damping, ∫F_visc ḋ dt
+            (`effects.damping`) [J]; 0 without.
+        tabor_parameter: Λ (3.172), dimensionless, of a Maugis–Dugdale scene on a paraboloid, the
+            equivalent Λ(k) of a Greenwood–Johnson scene; nan otherwise.
+        centre_of_mass_velocity: Velocity of the centre of mass, lab frame [m/s]; 0 against a
+            rigid flat at rest.
+        body_velocity_after: The body's velocity after the first contact, lab frame [m/s]
+            (< 0: rebounding).
+        counterpart_velocity_after: The counterpart's velocity after the first contact, lab
+            frame [m/s]; 0 for the flat.
+        t: Time of each trajectory sample [s].
+        indentation: Indentation d at each sample [m], > 0 pressed in.
+        velocity: Approach speed ḋ at each sample [m/s], towards the surface positive.
+        force: Contact force at each sample [N], compressive positive.
+        contact_radius: Contact radius a at each sample [m].
+        events: The events in time order, as (time [s], kind) pairs; the kinds are listed in
+            the user guide.
+        stats: Solver steps (`steps`, `accepted_steps`, `rejected_steps`) and the run's
+            `scales`.
     """
 
     scene: Scene
-    status: str  # one of phases.RESULT_CODES
+    status: str  # one of codes.RESULT_CODES
     restitution: float
     stuck: bool
-    contact_time: float  # s; inf when the first contact never ends
-    max_indentation: float  # m
-    max_force: float  # N, compressive positive
-    min_force: float  # N, most adhesive (negative) force
-    bounces: int  # contacts simulated
-    touch_velocity: float  # m/s at the first touch
-    separation_velocity: float  # m/s when the first contact let go (0 if captured)
-    dissipated_energy: float  # J lost in the first contact: ∮F dd (elastic and viscous force)
-    plastic_work: float  # J of it dissipated by plastic flow (effects.plasticity); 0 without
-    viscous_work: float  # J of it dissipated by damping, ∫F_visc ḋ dt (effects.damping); 0 without
-    # (the rest of dissipated_energy: with adhesion the adhesion hysteresis, `adhesion_hysteresis`;
-    # damped without adhesion the elastic energy left in the surface, `unrecovered_elastic_energy`)
-    tabor_parameter: float  # Λ (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's Λ(k); else nan
-    centre_of_mass_velocity: float  # m/s, lab frame; 0 for a rigid flat at rest
-    body_velocity_after: float  # m/s, lab frame, after the first contact (< 0: rebounding)
-    counterpart_velocity_after: float  # m/s, lab frame, after the first contact (0 for the flat)
-    t: np.ndarray = field(repr=False)  # s
-    indentation: np.ndarray = field(repr=False)  # m
-    velocity: np.ndarray = field(repr=False)  # m/s, towards the surface positive
-    force: np.ndarray = field(repr=False)  # N
-    contact_radius: np.ndarray = field(repr=False)  # m
-    events: list[tuple[float, str]] = field(repr=False)  # (time in s, kind)
-    stats: dict = field(repr=False)  # solver steps; scales of the run
+    contact_time: float
+    max_indentation: float
+    max_force: float
+    min_force: float
+    bounces: int
+    touch_velocity: float
+    separation_velocity: float
+    dissipated_energy: float
+    plastic_work: float
+    viscous_work: float
+    tabor_parameter: float
+    centre_of_mass_velocity: float
+    body_velocity_after: float
+    counterpart_velocity_after: float
+    t: np.ndarray = field(repr=False)
+    indentation: np.ndarray = field(repr=False)
+    velocity: np.ndarray = field(repr=False)
+    force: np.ndarray = field(repr=False)
+    contact_radius: np.ndarray = field(repr=False)
+    events: list[tuple[float, str]] = field(repr=False)  # kinds: codes.EVENT_KINDS
+    stats: dict = field(repr=False)
 
     @property
     def success(self) -> bool:
+        """Whether the run ended in a physical outcome (separated or captured)."""
         return self.status in ("separated", "captured")
 
     @property
     def adhesion_hysteresis(self) -> float:
-        """J of the first contact's loss dissipated neither by plastic flow nor by damping: the
-        jump-in and the snap-off of the adhesive contact (0 without adhesion)."""
+        """The part of the first contact's loss dissipated neither by plastic flow nor by damping
+        [J]: the jump-in and the snap-off of the adhesive contact (0 without adhesion)."""
         return float(
             adhesion_hysteresis(self.scene.adhesive, self.dissipated_energy, self.plastic_work, self.viscous_work)
         )
 
     @property
     def unrecovered_elastic_energy(self) -> float:
-        """J of the first contact's loss that a damped contact without adhesion leaves in the
-        surface as elastic energy (it lets go at F = 0, still indented); 0 otherwise."""
+        """The part of the first contact's loss that a damped contact without adhesion leaves in
+        the surface as elastic energy [J] (it lets go at F = 0, still indented); 0 otherwise."""
         damped = self.scene.effects.damping is not None
         return float(unrecovered_elastic_energy(self.scene.adhesive, damped, self.dissipated_energy, self.viscous_work))
 
     @property
     def body_velocity_after_cm(self) -> float:
-        """The body's velocity after the first contact in the centre-of-mass frame (m/s)."""
+        """The body's velocity after the first contact in the centre-of-mass frame [m/s]."""
         return self.body_velocity_after - self.centre_of_mass_velocity
 
     @property
     def counterpart_velocity_after_cm(self) -> float:
-        """The counterpart's velocity after the first contact in the centre-of-mass frame (m/s)."""
+        """The counterpart's velocity after the first contact in the centre-of-mass frame [m/s]."""
         return self.counterpart_velocity_after - self.centre_of_mass_velocity
 
 

@@ -36,22 +36,36 @@ class IndentationResult:
 
     The curve is in program order: `leg` numbers the program's legs (0 the first loading, 1 the
     first unloading, ...); a jump of the contact (jump-in, snap, landing at constant force,
-    pull-off) shows as two consecutive points. `events` are (point index, kind) pairs with
-    kind in `quasistatic.EVENT_KINDS`.
+    pull-off) shows as two consecutive points.
+
+    Attributes:
+        scene: The scene that was run.
+        status: `separated` (pulled off), or why the program could not finish (the result codes
+            of `impact.Result.status`).
+        pull_off: The last stable state before the contact is lost: `.contact_radius` [m],
+            `.indentation` [m] and `.force` [N] (< 0, adhesive); nan if it never was.
+        contact_radius: Contact radius a of each point of the curve [m].
+        indentation: Indentation d of each point [m], > 0 pressed in.
+        force: Force F of each point [N], > 0 compressive.
+        leg: The program leg of each point.
+        events: (point index, kind) pairs, the kind one of `touch`, `snap_in`, `snap_out`,
+            `pull_off`, `reversal`.
+        stats: The march's `steps`, the radius its branches reach (`reach`, m) and its `scales`.
     """
 
     scene: Scene
-    status: str  # "separated" (pulled off), or why the program could not finish (phases.RESULT_CODES)
+    status: str  # codes.RESULT_CODES
     pull_off: PullOff
-    contact_radius: np.ndarray = field(repr=False)  # m
-    indentation: np.ndarray = field(repr=False)  # m, > 0 pressed in
-    force: np.ndarray = field(repr=False)  # N, > 0 compressive
-    leg: np.ndarray = field(repr=False)  # program leg of each point
-    events: list[tuple[int, str]] = field(repr=False)
-    stats: dict = field(repr=False)  # steps; scales and the branches' reach
+    contact_radius: np.ndarray = field(repr=False)
+    indentation: np.ndarray = field(repr=False)
+    force: np.ndarray = field(repr=False)
+    leg: np.ndarray = field(repr=False)
+    events: list[tuple[int, str]] = field(repr=False)  # kinds: quasistatic.EVENT_KINDS
+    stats: dict = field(repr=False)
 
     @property
     def success(self) -> bool:
+        """Whether the program ran to its pull-off."""
         return self.status == "separated"
 
     @property
@@ -61,14 +75,17 @@ class IndentationResult:
 
     @property
     def max_force(self) -> float:
+        """Largest compressive force of the curve [N] (0 if it never pressed)."""
         return float(np.max(self.force, initial=0.0))
 
     @property
     def max_indentation(self) -> float:
+        """Deepest indentation of the curve [m] (0 if it never pressed in)."""
         return float(np.max(self.indentation, initial=0.0))
 
     @property
     def max_contact_radius(self) -> float:
+        """Largest contact radius of the curve [m]."""
         return float(np.max(self.contact_radius, initial=0.0))
 
 

@@ -5,8 +5,8 @@ of dimensionality reduction replaces it by the 1-D profile (3.24)
 
     g(x) = x ∫_0^x f'(r) / sqrt(x² - r²) dr = x ∫_0^{π/2} f'(x sin θ) dθ,
 
-and the normal force at contact radius a and indentation d is F = 2E*(a d - G(a)) with
-G(x) = ∫_0^x g(s) ds (3.28). Every profile class gives f, g and G in closed form (the wavy
+and the normal force at contact radius a and indentation d is `F = 2E*(a d - G(a))` with
+`G(x) = ∫_0^x g(s) ds` (3.28). Every profile class gives f, g and G in closed form (the wavy
 paraboloid through Struve functions evaluated to ~1e-14), elementwise on float64 arrays, safe
 under `jax.jit`, `jax.vmap` and `jax.grad` (unused `jnp.where` branches are fed harmless
 arguments, so gradients are finite for 0 < x < extent except at genuine kinks).

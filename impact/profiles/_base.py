@@ -74,7 +74,7 @@ class Profile(eqx.Module):
 
     @abc.abstractmethod
     def G(self, x: ArrayLike) -> Array:
-        """G(x) = ∫_0^x g(s) ds (m²); the normal force is F = 2E*(a d - G(a))."""
+        """`G(x) = ∫_0^x g(s) ds` (m²); the normal force is `F = 2E*(a d - G(a))`."""
 
     def extent(self) -> Array:
         """Largest possible contact radius (m): inf unless the body ends at a wall or equator."""

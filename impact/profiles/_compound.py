@@ -117,8 +117,8 @@ class CappedCone(Profile):
 class CappedParaboloid(Profile):
     """Paraboloid of radius R2 (m) with a tangent-continuous cap of larger radius R1 (m) up to b (m).
 
-    f = r²/(2R1) + (r² - b²)₊/(2R*) with 1/R* = 1/R2 - 1/R1 (3.115);
-    g = x²/R1 + x sqrt(x² - b²)/R* for x > b (3.118).
+    `f = r²/(2R1) + (r² - b²)₊/(2R*)` with `1/R* = 1/R2 - 1/R1` (3.115);
+    `g = x²/R1 + x sqrt(x² - b²)/R*` for x > b (3.118).
     """
 
     b: FloatParameter = float_field()

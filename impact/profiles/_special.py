@@ -41,13 +41,13 @@ class WavyParaboloid(Profile):
 
 class ConstantStress(Profile):
     """The punch of radius a (m) whose whole face carries the uniform tensile stress σ0 (Pa)
-    against a half-space of modulus E* (Pa) (§3.5.6, Gao and Yao):
+    against a half-space of modulus `E*` (Pa) (§3.5.6, Gao and Yao):
 
-    f = (σ0 a/E*)[(4/π) E(r/a) − 2] for r <= a (3.61), a concave face (f <= 0: the rim stands
+    `f = (σ0 a/E*)[(4/π) E(r/a) − 2]` for r <= a (3.61), a concave face (f <= 0: the rim stands
     out); wall at a (extent a). Its MDR transform is the 1-D line load of a uniform stress,
-    g = (2σ0/E*)(√(a² − x²) − a), and G = (2σ0/E*)[(x√(a² − x²) + a² arcsin(x/a))/2 − a x].
-    At d = −2σ0 a/E* every spring carries E*(d − g) ∝ √(a² − x²): the stress is σ0 everywhere
-    and F = −π σ0 a² (3.63).
+    `g = (2σ0/E*)(√(a² − x²) − a)`, and `G = (2σ0/E*)[(x√(a² − x²) + a² arcsin(x/a))/2 − a x]`.
+    At `d = −2σ0 a/E*` every spring carries `E*(d − g) ∝ √(a² − x²)`: the stress is σ0 everywhere
+    and `F = −π σ0 a²` (3.63).
     """
 
     radius: FloatParameter = float_field()

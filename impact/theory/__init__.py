@@ -7,7 +7,7 @@ numbers refer to the chapter "Normal contact with adhesion" of Popov, Heß & Wil
 
 Conventions: indentation d > 0 pressed in, force F > 0 compressive, F < 0 adhesive;
 ``work_of_adhesion`` is the Dupré work Δγ [J/m²] (not a surface energy γ); ``E_star`` is the
-effective modulus E* [Pa]; ``xi`` selects the stability criterion (3.35): 3 force control,
+effective modulus `E*` [Pa]; ``xi`` selects the stability criterion (3.35): 3 force control,
 1 displacement control. A free body separates at the displacement-controlled point (ξ = 1).
 Critical values are returned as a tuple ``(a_c [m], d_c [m], F_c [N])``.
 
@@ -16,13 +16,14 @@ g = κ(n) c |x|ⁿ; cone → g = (π/2) tanθ |x|; sphere → g = x artanh(x/R);
 f = R(1 − √(1 − k²r²)) → g = kR x artanh(kx) (a sphere of radius 1/k scaled by kR).
 
 Misprints found in the chapter (the code uses the corrected forms):
-- (3.57): d(a) must read kR·a·artanh(ka) − √(2πaΔγ/E*); the factor kR is missing (the F_N
-  line and the critical values (3.54)–(3.56) with β = ξ√(πΔγ/(2E*kR²)) are correct).
+
+- (3.57): d(a) must read `kR·a·artanh(ka) − √(2πaΔγ/E*)`; the factor kR is missing (the F_N
+  line and the critical values (3.54)–(3.56) with `β = ξ√(πΔγ/(2E*kR²))` are correct).
 - (3.56): √a must read √α. Its F_c also cancels to O(α³) for a_c ≪ R, losing about
   2 log₁₀(R/a_c) digits; ``ellipsoid_critical`` uses an equivalent cancellation-free form.
 - (3.87): the truncated cone's equation has roots for β ≥ 2.1219 (min of (φ + cot φ)/√cos φ), not
-  2.125; (3.110): the capped cone's for β ≥ 1.7967, not 1.795; (3.123) β0 ≈ 2.2 + 3.2 R1/R* is a
-  fit (β0 = 2 at R1/R* = 0): ``*_threshold`` compute the exact minima. Between β = 2 and β0 the
+  2.125; (3.110): the capped cone's for β ≥ 1.7967, not 1.795; (3.123) `β0 ≈ 2.2 + 3.2 R1/R*` is a
+  fit (β0 = 2 at `R1/R* = 0`): ``*_threshold`` compute the exact minima. Between β = 2 and β0 the
   capped paraboloid loses contact at the edge of its cap (a = b, where the flank's slope jumps),
   not at the JKR state of R1 (whose radius then lies beyond b).
 - Where a profile has two critical states (a flat tip or cap and the flank: §3.5.8–3.5.12) the
@@ -39,6 +40,7 @@ Misprints found in the chapter (the code uses the corrected forms):
   ``maugis_pull_off`` (the exact minimum of (3.171)) confirms 1/12, remainder ≈ −0.0515/Λ⁴.
   (3.186)–(3.187), built on 23/12, inherit the error; (3.188)'s derivative is garbled besides
   (its root follows from (3.187)).
+
 (3.51) and (3.82) follow exactly from the energy balance (see ``power_law_energy_loss``), and
 (3.82) reduces to (3.51) at n = 2, c = 1/(2R).
 

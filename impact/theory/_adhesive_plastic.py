@@ -111,7 +111,7 @@ def _impact(velocity, mass, R, E_star, work_of_adhesion, yield_pressure):
 @float64
 def adhesive_plastic_touch_pressure(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Pressure [Pa] at the centre of the JKR contact right after the jump-in (a = a0):
-    2E*a0/(πR) − √(2ΔγE*/(πa0)) = E*a0/(πR). A limiting pressure p_y at or below it would yield
+    `2E*a0/(πR) − √(2ΔγE*/(πa0)) = E*a0/(πR)`. A limiting pressure p_y at or below it would yield
     the contact as it forms: the model is defined for p_y above it only."""
     a0, _, _ = _jkr_units(R, E_star, work_of_adhesion)
     return E_star * a0 / (jnp.pi * R)
@@ -121,7 +121,7 @@ def adhesive_plastic_touch_pressure(R: Scalars, E_star: Scalars, work_of_adhesio
 @jax.jit  # one compilation per shape (its bisection would recompile on each eager call)
 def adhesive_plastic_yield_radius(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars):
     """Contact radius a_y [m] where the JKR pressure at the centre reaches p_y:
-    2E*a/(πR) − √(2ΔγE*/(πa)) = p_y."""
+    `2E*a/(πR) − √(2ΔγE*/(πa)) = p_y`."""
     a0, _, _ = _jkr_units(R, E_star, work_of_adhesion)
     return a0 * _yield_radius(_yield_pressure(R, E_star, work_of_adhesion, yield_pressure))
 
@@ -155,7 +155,7 @@ def adhesive_plastic_dent(
     max_radius: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, yield_pressure: Scalars
 ):
     """(R_p [m], δ_p [m]) of the dent left by the largest contact radius a_m [m]: R_p = R/ρ with
-    ρ = F_H(a_m)/((4/3)E*a_m³/R), δ_p = (1 − ρ)a_m²/R; (R, 0) while a_m ≤ a_y."""
+    `ρ = F_H(a_m)/((4/3)E*a_m³/R)`, `δ_p = (1 − ρ)a_m²/R`; (R, 0) while a_m ≤ a_y."""
     a0, depth, _ = _jkr_units(R, E_star, work_of_adhesion)
     P = _yield_pressure(R, E_star, work_of_adhesion, yield_pressure)
     a_m = max_radius / a0

@@ -66,7 +66,7 @@ def _truncated_cone_psi(phi, _=None):
 
 @float64
 def truncated_cone_beta(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
-    """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the truncated cone (3.88); b [m] flat-tip radius."""
+    """`β = (ξ/tanθ) √(πΔγ/(2E* b))` of the truncated cone (3.88); b [m] flat-tip radius."""
     return xi / jnp.tan(theta) * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
 
 
@@ -81,9 +81,9 @@ def truncated_cone_critical(
     b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
     """Critical state on the flank of a truncated cone, (3.87)–(3.89): φ = arccos(b/a_c) solves
-    φ + cot φ = β √cos φ; root 0 is the smaller angle, root 1 the larger. Then
-    d_c = a_c tanθ [φ(1 − 2/ξ) − (2/ξ) cot φ],
-    F_c = E* tanθ a_c² [φ(1 − 4/ξ) + cot φ (sin²φ − 4/ξ)]. nan where (3.87) has no root
+    `φ + cot φ = β √cos φ`; root 0 is the smaller angle, root 1 the larger. Then
+    `d_c = a_c tanθ [φ(1 − 2/ξ) − (2/ξ) cot φ]`,
+    `F_c = E* tanθ a_c² [φ(1 − 4/ξ) + cot φ (sin²φ − 4/ξ)]`. nan where (3.87) has no root
     (β < 2.1219). Returns (a_c [m], d_c [m], F_c [N])."""
     beta = truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi)
     phi = _angle_roots(_truncated_cone_psi, beta)[root]
@@ -110,7 +110,7 @@ def _truncated_paraboloid_psi(phi, _=None):
 
 @float64
 def truncated_paraboloid_beta(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
-    """β = (ξR/b) √(πΔγ/(2E* b)) of the truncated paraboloid (3.96)."""
+    """`β = (ξR/b) √(πΔγ/(2E* b))` of the truncated paraboloid (3.96)."""
     return xi * R / b * jnp.sqrt(jnp.pi * work_of_adhesion / (2 * E_star * b))
 
 
@@ -125,9 +125,9 @@ def truncated_paraboloid_critical(
     b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
     """Critical state on the flank of a truncated paraboloid, (3.95)–(3.97):
-    (1 + sin²φ)/(sin φ cos φ) = β √cos φ, a_c = b/cos φ,
-    d_c = (a_c²/R) sin φ (1 − 2/ξ − 2/(ξ sin²φ)),
-    F_c = (2E* a_c³/(3R)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]. nan without a root."""
+    `(1 + sin²φ)/(sin φ cos φ) = β √cos φ`, `a_c = b/cos φ`,
+    `d_c = (a_c²/R) sin φ (1 − 2/ξ − 2/(ξ sin²φ))`,
+    `F_c = (2E* a_c³/(3R)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]`. nan without a root."""
     beta = truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi)
     phi = _angle_roots(_truncated_paraboloid_psi, beta)[root]
     s = jnp.sin(phi)
@@ -148,7 +148,7 @@ def truncated_paraboloid_pull_off(b: Scalars, R: Scalars, E_star: Scalars, work_
 def capped_flat_punch_thresholds(b: Scalars, R: Scalars, E_star: Scalars):
     """(Δγ1, Δγ2) of the flat punch with parabolic cap (3.101): the works of adhesion at which
     the JKR critical radius of the cap reaches the punch radius b under force control (ξ = 3)
-    and displacement control (ξ = 1): Δγ2 = 9Δγ1 = 8E*b³/(πR²)."""
+    and displacement control (ξ = 1): `Δγ2 = 9Δγ1 = 8E*b³/(πR²)`."""
     second = 8 * E_star * b**3 / (jnp.pi * R**2)
     return second / 9, second
 
@@ -156,8 +156,8 @@ def capped_flat_punch_thresholds(b: Scalars, R: Scalars, E_star: Scalars):
 @float64
 def capped_flat_punch_critical(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Flat punch of radius b with a parabolic cap of radius R (§3.5.10, (3.98)–(3.101)):
-    the JKR critical state (3.45) where its radius lies on the cap, else the punch edge a_c = b
-    with d_c = b²/R − √(2πbΔγ/E*) and F_c = 2E*(d_c b − b³/(3R)) (3.99)."""
+    the JKR critical state (3.45) where its radius lies on the cap, else the punch edge `a_c = b`
+    with `d_c = b²/R − √(2πbΔγ/E*)` and `F_c = 2E*(d_c b − b³/(3R))` (3.99)."""
     a_jkr, d_jkr, F_jkr = paraboloid_critical(R, E_star, work_of_adhesion, xi)
     d_edge = b**2 / R - detach_length(b, E_star, work_of_adhesion)
     F_edge = 2 * E_star * (d_edge * b - b**3 / (3 * R))
@@ -178,7 +178,7 @@ def _capped_cone_psi(phi, _=None):
 
 @float64
 def capped_cone_beta(b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
-    """β = (ξ/tanθ) √(πΔγ/(2E* b)) of the cone with parabolic cap (3.111)."""
+    """`β = (ξ/tanθ) √(πΔγ/(2E* b))` of the cone with parabolic cap (3.111)."""
     return truncated_cone_beta(b, theta, E_star, work_of_adhesion, xi)
 
 
@@ -194,9 +194,9 @@ def capped_cone_critical(
     b: Scalars, theta: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
     """Critical state on the conical flank of a cone with parabolic cap (cap radius b/tanθ),
-    (3.110)–(3.113): 2(1 − sin φ)/cos φ + φ = β √cos φ, a_c = b/cos φ,
-    d_c = a_c tanθ [(1 − sin φ)/cos φ (1 − 4/ξ) + φ(1 − 2/ξ)],
-    F_c = E* a_c² tanθ [φ(1 − 4/ξ) + (1 − sin φ)/cos φ (4/3 − 8/ξ) + sin φ cos φ/3].
+    (3.110)–(3.113): `2(1 − sin φ)/cos φ + φ = β √cos φ`, `a_c = b/cos φ`,
+    `d_c = a_c tanθ [(1 − sin φ)/cos φ (1 − 4/ξ) + φ(1 − 2/ξ)]`,
+    `F_c = E* a_c² tanθ [φ(1 − 4/ξ) + (1 − sin φ)/cos φ (4/3 − 8/ξ) + sin φ cos φ/3]`.
     Root 0 (1.7967 ≤ β < 2) or 1 (β ≥ 1.7967); nan where it does not exist."""
     beta = capped_cone_beta(b, theta, E_star, work_of_adhesion, xi)
     phi = _angle_roots(_capped_cone_psi, beta)[root]
@@ -230,14 +230,14 @@ def _capped_paraboloid_psi(phi, ratio):
 
 @float64
 def capped_paraboloid_beta(b: Scalars, R1: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
-    """β = (ξR1/b) √(πΔγ/(2E* b)) of the paraboloid with parabolic cap (3.121)."""
+    """`β = (ξR1/b) √(πΔγ/(2E* b))` of the paraboloid with parabolic cap (3.121)."""
     return truncated_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi)
 
 
 @float64
 def capped_paraboloid_threshold(R1: Scalars, R2: Scalars):
-    """β0(R1/R*), the smallest β with roots of (3.120), R* = R1R2/(R1 − R2) (3.115); the chapter's
-    fit (3.123) is 2.2 + 3.2 R1/R* (exact: 2 at R1/R* = 0, 3.0945 R1/R* for R1/R* → ∞)."""
+    """`β0(R1/R*)`, the smallest β with roots of (3.120), `R* = R1R2/(R1 − R2)` (3.115); the chapter's
+    fit (3.123) is `2.2 + 3.2 R1/R*` (exact: 2 at `R1/R* = 0`, `3.0945 R1/R*` for `R1/R* → ∞`)."""
     ratio = R1 / R2 - 1.0
     return _angle_roots(_capped_paraboloid_psi, 1e300 * jnp.ones_like(as_float(ratio)), ratio)[2]
 
@@ -247,9 +247,9 @@ def capped_paraboloid_critical(
     b: Scalars, R1: Scalars, R2: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars, root: int = 1
 ):
     """Critical state beyond the cap of a paraboloid R2 with a cap R1 ≥ R2 up to b, (3.120)–(3.122):
-    (1/cos φ)(2 + (R1/R*)(1 + sin²φ)/sin φ) = β √cos φ, a_c = b/cos φ,
-    d_c = (a_c²/R1)[1 − 4/ξ + (R1/R*) sin φ (1 − 2/ξ − 2/(ξ sin²φ))],
-    F_c = (4E* a_c³/(3R1)){1 − 6/ξ + (R1/(2R*)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]}."""
+    `(1/cos φ)(2 + (R1/R*)(1 + sin²φ)/sin φ) = β √cos φ`, `a_c = b/cos φ`,
+    `d_c = (a_c²/R1)[1 − 4/ξ + (R1/R*) sin φ (1 − 2/ξ − 2/(ξ sin²φ))]`,
+    `F_c = (4E* a_c³/(3R1)){1 − 6/ξ + (R1/(2R*)) sin φ [3 − sin²φ − (6/ξ)(1 + 1/sin²φ)]}`."""
     ratio = R1 / R2 - 1.0
     beta = capped_paraboloid_beta(b, R1, E_star, work_of_adhesion, xi)
     phi = _angle_roots(_capped_paraboloid_psi, beta, ratio)[root]
@@ -265,7 +265,7 @@ def capped_paraboloid_pull_off(
     b: Scalars, R1: Scalars, R2: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars
 ):
     """The deepest of the cap's JKR state (radius R1, for β < 2), the cap's edge a = b (where the
-    flank's slope jumps: d = b²/R1 − Δl(b), F = 4E*b³/(3R1) − √(8πb³E*Δγ)) and the larger root
+    flank's slope jumps: `d = b²/R1 − Δl(b)`, `F = 4E*b³/(3R1) − √(8πb³E*Δγ)`) and the larger root
     (3.122). For 2 < β < β0 neither root exists and the contact is lost at the edge, not at the
     JKR state of R1 as §3.5.12 states."""
     cap = _on_cap(R1, b, E_star, work_of_adhesion, xi)
@@ -290,16 +290,16 @@ def _rounded_angle(beta):
 
 @float64
 def rounded_flat_punch_beta(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
-    """β = (ξR/b) √(πΔγ/(2E* b)) of the flat punch with rounded edge (3.130)."""
+    """`β = (ξR/b) √(πΔγ/(2E* b))` of the flat punch with rounded edge (3.130)."""
     return truncated_paraboloid_beta(b, R, E_star, work_of_adhesion, xi)
 
 
 @float64
 def rounded_flat_punch_critical(b: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars, xi: Scalars):
     """Flat punch with base radius b and edges rounded with radius R, (3.129)–(3.131): the one
-    root of 2 tan φ − φ = β √cos φ, a_c = b/cos φ,
-    d_c = (a_c²/R)[sin φ (1 − 4/ξ) − φ cos φ (1 − 2/ξ)],
-    F_c = (4E* a_c³/(3R))[sin φ (1 − 6/ξ − cos²φ/4) − (3/4) φ cos φ (1 − 4/ξ)]."""
+    root of `2 tan φ − φ = β √cos φ`, `a_c = b/cos φ`,
+    `d_c = (a_c²/R)[sin φ (1 − 4/ξ) − φ cos φ (1 − 2/ξ)]`,
+    `F_c = (4E* a_c³/(3R))[sin φ (1 − 6/ξ − cos²φ/4) − (3/4) φ cos φ (1 − 4/ξ)]`."""
     phi = _rounded_angle(rounded_flat_punch_beta(b, R, E_star, work_of_adhesion, xi))
     s, c = jnp.sin(phi), jnp.cos(phi)
     a = b / c

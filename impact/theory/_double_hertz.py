@@ -74,13 +74,13 @@ def _ring_constant(k, R, E_star, work_of_adhesion):
 @float64
 def double_hertz_outer_radius(a: Scalars, k: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Outer radius c [m] of the double-Hertz stress at contact radius a [m]: the root c ≥ a of
-    (3.201), Δγ = k(k+1)·2E*/(3πR²)·(c − a)²(c + 2a)."""
+    (3.201), `Δγ = k(k+1)·2E*/(3πR²)·(c − a)²(c + 2a)`."""
     return a + ring_width(a, _ring_constant(k, R, E_star, work_of_adhesion))
 
 
 @float64
 def double_hertz_force(a: Scalars, k: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
-    """Normal force F [N] at contact radius a [m]: (1+k)·4E*a³/(3R) − k·4E*c³/(3R), the integral
+    """Normal force F [N] at contact radius a [m]: `(1+k)·4E*a³/(3R) − k·4E*c³/(3R)`, the integral
     of the stress (3.198), (3.200)."""
     u = ring_width(a, _ring_constant(k, R, E_star, work_of_adhesion))
     return 4.0 * E_star / (3.0 * R) * (a**3 - k * u * (3.0 * a**2 + 3.0 * a * u + u**2))
@@ -109,8 +109,8 @@ def double_hertz_pull_off(k: Scalars, R: Scalars, E_star: Scalars, work_of_adhes
     """Critical state (a [m], d [m], F [N]) that ends the contact, under force control (ξ = 3:
     the minimum of F(a), the pull-off force) or displacement control and for a free body (ξ = 1:
     the minimum of d(a); the onset a = 0 when k ≤ 1). With ρ = a/c from `_critical_ratio_gap`,
-    c³ = K/((1 − ρ)²(1 + 2ρ)) (3.201), F = (4E*c³/(3R))·(1 − (1+k)(1 − ρ)(1 + ρ + ρ²)) and
-    d = (c²/R)·(1 − (1+k)(1 − ρ)(1 + ρ))."""
+    `c³ = K/((1 − ρ)²(1 + 2ρ))` (3.201), `F = (4E*c³/(3R))·(1 − (1+k)(1 − ρ)(1 + ρ + ρ²))` and
+    `d = (c²/R)·(1 − (1+k)(1 − ρ)(1 + ρ))`."""
     ratio, gap = _critical_ratio_gap(jnp.asarray(k, float), xi)
     outer = jnp.cbrt(_ring_constant(k, R, E_star, work_of_adhesion) / (gap**2 * (1.0 + 2.0 * ratio)))
     force = 4.0 * E_star * outer**3 / (3.0 * R) * (1.0 - (1.0 + k) * gap * (1.0 + ratio + ratio**2))
@@ -121,14 +121,14 @@ def double_hertz_pull_off(k: Scalars, R: Scalars, E_star: Scalars, work_of_adhes
 @float64
 def double_hertz_onset(k: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Where the interaction starts, a = 0: (c₀ [m], d₀ [m], F₀ [N]) with c₀³ = K (3.201),
-    d₀ = −k·c₀²/R and F₀ = −k·4E*c₀³/(3R) = −2πRΔγ/(1 + k)."""
+    `d₀ = −k·c₀²/R` and `F₀ = −k·4E*c₀³/(3R) = −2πRΔγ/(1 + k)`."""
     outer = jnp.cbrt(_ring_constant(k, R, E_star, work_of_adhesion))
     return outer, -k * outer**2 / R, -2.0 * jnp.pi * R * work_of_adhesion / (1.0 + k)
 
 
 @float64
 def double_hertz_adhesive_stress(k: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
-    """Equivalent Dugdale stress σ₀ [Pa]: the peak tensile stress at the onset, k·2E*c₀/(πR)
+    """Equivalent Dugdale stress σ₀ [Pa]: the peak tensile stress at the onset, `k·2E*c₀/(πR)`
     (3.200) at r = 0, a = 0."""
     outer = jnp.cbrt(_ring_constant(k, R, E_star, work_of_adhesion))
     return k * 2.0 * E_star * outer / (jnp.pi * R)

@@ -20,7 +20,7 @@ def _restitution(beta):
 @float64
 def power_law_energy_loss(n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Kinetic energy [J] lost in one adhesive impact of f = c rⁿ, n > 1/2 (from (3.82)):
-    W = ½ [(πΔγ/2)^(2n+1) (E* n² c² κ²)^(−2)]^(1/(2n−1)) (8n − 4)/(2n² + 3n + 1)
+    `W = ½ [(πΔγ/2)^(2n+1) (E* n² c² κ²)^(−2)]^(1/(2n−1)) (8n − 4)/(2n² + 3n + 1)`
         · [n + (n + 1)(2n)^(4/(2n−1))].
     W = −∫ F dd along d(a) = g(a) − Δl(a) from the jump-in (d = 0, a₀) down to the
     displacement-controlled critical point; independent of the impact velocity."""
@@ -56,7 +56,7 @@ def power_law_sticking_velocity(mass: Scalars, n: Scalars, c: Scalars, E_star: S
 @float64
 def thornton_ning_energy_loss(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Kinetic energy [J] lost in the JKR impact of a paraboloid of radius R (from (3.51)):
-    W = (1/10) [R⁴ (πΔγ)⁵ / E*²]^(1/3) (1 + 864^(1/3))."""
+    `W = (1/10) [R⁴ (πΔγ)⁵ / E*²]^(1/3) (1 + 864^(1/3))`."""
     return jnp.cbrt(R**4 * (jnp.pi * work_of_adhesion) ** 5 / E_star**2) * (1 + jnp.cbrt(864.0)) / 10
 
 
@@ -98,7 +98,7 @@ def thornton_ning_max_force(velocity: Scalars, mass: Scalars, R: Scalars, E_star
     first touch): the energy balance ½ m v₀² = ∫ F dd along the JKR branch (3.44) from the
     jump-in (a = a0, d = 0) to the turning point a_m, then F_max = F(a_m).
 
-    In JKR units the balance reads w(a_m) − w(1) = ½ m v₀²/(E* a0 (a0²/R)²), with w convex and
+    In JKR units the balance reads `w(a_m) − w(1) = ½ m v₀²/(E* a0 (a0²/R)²)`, with w convex and
     increasing beyond F = 0; Newton's method from above converges monotonically. Its iterations
     run without gradient and one differentiable step follows (exact derivatives)."""
     a0, depth, energy = _jkr_units(R, E_star, work_of_adhesion)
@@ -119,10 +119,10 @@ def attach_on_touch_energy_loss(
 ):
     """Energy lost [J] by a paraboloid that attaches on touch (Δγa = 0) and detaches by Heß.
 
-    Our own reference (not in the chapter). In JKR units (lengths a0 = (2πΔγR²/E*)^(1/3)
-    and a0²/R, energy E*·a0·(a0²/R)²) the loop is: Hertzian loading d = a² up to a_m with
-    (8/15)·a_m⁵ = ½mv0²; a hold at a_m, F = 2(a_m·d − a_m³/3), down to d = a_m² − √a_m; the
-    JKR branch d = a² − √a down to a* = 4^(−2/3) (skipped when a_m < a*, which then
+    Our own reference (not in the chapter). In JKR units (lengths `a0 = (2πΔγR²/E*)^(1/3)`
+    and `a0²/R`, energy `E*·a0·(a0²/R)²`) the loop is: Hertzian loading `d = a²` up to a_m with
+    `(8/15)·a_m⁵ = ½mv0²`; a hold at a_m, `F = 2(a_m·d − a_m³/3)`, down to `d = a_m² − √a_m`; the
+    JKR branch `d = a² − √a` down to `a* = 4^(−2/3)` (skipped when `a_m < a*`, which then
     separates at once). Each piece integrates in closed form.
     """
     a0 = (2.0 * jnp.pi * work_of_adhesion * R**2 / E_star) ** (1.0 / 3.0)
@@ -184,18 +184,18 @@ def power_law_hertz_contact_time(velocity: Scalars, mass: Scalars, n: Scalars, c
 
 @float64
 def hertz_max_indentation(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
-    """Hertz impact of a paraboloid: d_max = (15 m v₀² / (16 E* √R))^(2/5) [m]."""
+    """Hertz impact of a paraboloid: `d_max = (15 m v₀² / (16 E* √R))^(2/5)` [m]."""
     return power_law_hertz_max_indentation(velocity, mass, 2, 1 / (2 * R), E_star)
 
 
 @float64
 def hertz_max_force(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
-    """Hertz impact of a paraboloid: F_max = (4/3) E* √R d_max^(3/2) [N]."""
+    """Hertz impact of a paraboloid: `F_max = (4/3) E* √R d_max^(3/2)` [N]."""
     return power_law_hertz_max_force(velocity, mass, 2, 1 / (2 * R), E_star)
 
 
 @float64
 def hertz_contact_time(velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars):
     """Hertz impact of a paraboloid, exact constant:
-    t_c = 2 (15/16)^(2/5) √π Γ(7/5)/Γ(9/10) (m²/(R E*² v₀))^(1/5) ≈ 2.8682 (…)^(1/5) [s]."""
+    `t_c = 2 (15/16)^(2/5) √π Γ(7/5)/Γ(9/10) (m²/(R E*² v₀))^(1/5) ≈ 2.8682 (…)^(1/5)` [s]."""
     return power_law_hertz_contact_time(velocity, mass, 2, 1 / (2 * R), E_star)

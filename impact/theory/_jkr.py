@@ -16,14 +16,14 @@ def detach_length(a: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
 @float64
 def power_law_indentation(a: Scalars, n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """JKR indentation [m] at contact radius a [m] for f = c rⁿ (3.71):
-    d = κ(n) c aⁿ − √(2π a Δγ / E*). ``c`` is in m^(1−n)."""
+    `d = κ(n) c aⁿ − √(2π a Δγ / E*)`. ``c`` is in m^(1−n)."""
     return kappa(n) * c * a**n - detach_length(a, E_star, work_of_adhesion)
 
 
 @float64
 def power_law_force(a: Scalars, n: Scalars, c: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """JKR normal force [N] at contact radius a [m] for f = c rⁿ (3.71):
-    F = 2E* n/(n+1) κ(n) c a^(n+1) − √(8π a³ E* Δγ)."""
+    `F = 2E* n/(n+1) κ(n) c a^(n+1) − √(8π a³ E* Δγ)`."""
     return 2 * E_star * n / (n + 1) * kappa(n) * c * a ** (n + 1) - jnp.sqrt(
         8 * jnp.pi * a**3 * E_star * work_of_adhesion
     )
@@ -46,14 +46,14 @@ def power_law_normalized_force(a_hat: Scalars, n: Scalars, xi: Scalars):
 @float64
 def jkr_indentation(a: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """JKR indentation [m] of a paraboloid f = r²/(2R) at contact radius a [m] (3.44):
-    d = a²/R − √(2π a Δγ / E*)."""
+    `d = a²/R − √(2π a Δγ / E*)`."""
     return a**2 / R - detach_length(a, E_star, work_of_adhesion)
 
 
 @float64
 def jkr_force(a: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """JKR normal force [N] of a paraboloid at contact radius a [m] (3.44):
-    F = 4E* a³/(3R) − √(8π a³ E* Δγ)."""
+    `F = 4E* a³/(3R) − √(8π a³ E* Δγ)`."""
     return 4 * E_star * a**3 / (3 * R) - jnp.sqrt(8 * jnp.pi * a**3 * E_star * work_of_adhesion)
 
 

@@ -18,16 +18,16 @@ _ARCTAN_SERIES = np.arange(1, 11)
 
 @float64
 def tabor_parameter(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
-    """Tabor parameter Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172); R, h [m], σ0, E* [Pa]. Equivalently
-    Λ = 3Rσ0/(2E* a_c) with the JKR a_c (3.170), and Λ = (3/8)^(1/3) λ with Maugis's
-    λ = 2σ0 (R/(πΔγE*²))^(1/3)."""
+    """Tabor parameter `Λ = (3Rσ0²/(πhE*²))^(1/3)` (3.172); R, h [m], σ0, `E*` [Pa]. Equivalently
+    `Λ = 3Rσ0/(2E* a_c)` with the JKR a_c (3.170), and `Λ = (3/8)^(1/3) λ` with Maugis's
+    `λ = 2σ0 (R/(πΔγE*²))^(1/3)`."""
     return np.cbrt(3 * R * adhesive_stress**2 / (np.pi * adhesion_range * E_star**2))
 
 
 @float64
 def maugis_adhesive_stress(tabor: Scalars, R: Scalars, work_of_adhesion: Scalars, E_star: Scalars):
     """σ0 [Pa] giving the Tabor parameter Λ at fixed Δγ = σ0 h, (3.172) with (3.4):
-    σ0 = Λ (πE*²Δγ/(3R))^(1/3)."""
+    `σ0 = Λ (πE*²Δγ/(3R))^(1/3)`."""
     return tabor * np.cbrt(np.pi * E_star**2 * work_of_adhesion / (3 * R))
 
 
@@ -39,7 +39,7 @@ def maugis_range(tabor: Scalars, R: Scalars, work_of_adhesion: Scalars, E_star: 
 
 @float64
 def tabor_criterion(R: Scalars, work_of_adhesion: Scalars, adhesion_range: Scalars, E_star: Scalars):
-    """Left side of (3.181), 2RΔγ²(1 − 2/π)²/(E*²h³) = (2π/3)(1 − 2/π)² Λ³: Tabor's μ (3.3) with
+    """Left side of (3.181), `2RΔγ²(1 − 2/π)²/(E*²h³) = (2π/3)(1 − 2/π)² Λ³`: Tabor's μ (3.3) with
     z0 = h, times 2(1 − 2/π)². The DMT limit holds where it is ≪ 1."""
     return 2 * R * work_of_adhesion**2 * (1 - 2 / np.pi) ** 2 / (E_star**2 * adhesion_range**3)
 
@@ -61,7 +61,7 @@ def dmt_pull_off(R: Scalars, work_of_adhesion: Scalars):
 @float64
 def dmt_zone_radius(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
     """Adhesive zone radius b [m] of the paraboloid where contact begins (a = 0, the centre gap just
-    closed): the positive root (3.178) of b²/(2R) + (2σ0b/E*)(1 − 2/π) = h (3.177);
+    closed): the positive root (3.178) of `b²/(2R) + (2σ0b/E*)(1 − 2/π) = h` (3.177);
     b ≈ √(2Rh) under (3.179)."""
     q = 2 * R * adhesive_stress / E_star * (1 - 2 / np.pi)
     return 2 * R * adhesion_range / (q + np.sqrt(q**2 + 2 * R * adhesion_range))
@@ -70,9 +70,9 @@ def dmt_zone_radius(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalar
 @float64
 def dugdale_zone_width(E_star: Scalars, work_of_adhesion: Scalars, adhesive_stress: Scalars):
     """Width s = b − a [m] of the Maugis–Dugdale adhesive zone at the edge of a JKR-like contact:
-    the edge is a crack tip with K² = 2E*Δγ (Griffith's balance, the energy release rate
-    K²/(2E*) equal to Δγ), and Dugdale's (1960) zone of constant stress σ0 ahead of a crack tip is
-    s = (π/8)(K/σ0)², so s = (π/4)E*Δγ/σ0² = (π/4)E*h/σ0, for any body. For the paraboloid it
+    the edge is a crack tip with `K² = 2E*Δγ` (Griffith's balance, the energy release rate
+    `K²/(2E*)` equal to Δγ), and Dugdale's (1960) zone of constant stress σ0 ahead of a crack tip is
+    `s = (π/8)(K/σ0)²`, so `s = (π/4)E*Δγ/σ0² = (π/4)E*h/σ0`, for any body. For the paraboloid it
     is the leading term of (3.184), κ − 1 ≈ 1/(2ãΛ²): s/a_c = 1/(2Λ²) (a_c, Λ of (3.170),
     (3.172)), with corrections of order ã^(1/2)/Λ⁴. Against the exact (3.171)
     at the force-controlled pull-off the zone is 0.62, 0.92, 0.99 of s at Λ = 1, 3, 10; deeper
@@ -99,9 +99,9 @@ def maugis_paraboloid_state(
     a: Scalars, b: Scalars, R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars
 ):
     """(residual [m], d [m], F [N]) of the paraboloid f = r²/(2R) at contact radius a and zone radius
-    b ≥ a [m] (3.168): d = a²/R − (2σ0/E*)√(b² − a²),
-    F = 2E*(ad − a³/(3R)) − σ0[2b² arccos(a/b) − 2a√(b² − a²)], and the residual of the range
-    condition, (2/π)[(b²/(2R) − d) arccos(a/b) + (a/(2R))√(b² − a²) − (2σ0/E*)(b − a)] − h,
+    b ≥ a [m] (3.168): `d = a²/R − (2σ0/E*)√(b² − a²)`,
+    `F = 2E*(ad − a³/(3R)) − σ0[2b² arccos(a/b) − 2a√(b² − a²)]`, and the residual of the range
+    condition, `(2/π)[(b²/(2R) − d) arccos(a/b) + (a/(2R))√(b² − a²) − (2σ0/E*)(b − a)] − h`,
     which vanishes on the equilibrium curve."""
     root, angle = _zone_terms(a, b)
     stress = adhesive_stress / E_star
@@ -116,10 +116,10 @@ def maugis_power_law_state(
     a: Scalars, b: Scalars, n: Scalars, c: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars
 ):
     """(residual [m], d [m], F [N]) of f = c rⁿ at contact radius a and zone radius b ≥ a [m] (3.192),
-    with κ(n) of (3.193) and z = a²/b²: d = cκ aⁿ − (2σ0/E*)√(b² − a²),
-    F = 2E*(da − cκ a^(n+1)/(n+1)) − σ0[2b² arccos(a/b) − 2a√(b² − a²)], and the range residual
-    c bⁿ[1 − 2κ/(π(n+1)) (a/b)^(n+1) ₂F₁(½, (n+1)/2; (n+3)/2; z)] − (2d/π) arccos(a/b)
-    − 4σ0(b − a)/(πE*) − h. n = 2, c = 1/(2R) is ``maugis_paraboloid_state``."""
+    with κ(n) of (3.193) and z = a²/b²: `d = cκ aⁿ − (2σ0/E*)√(b² − a²)`,
+    `F = 2E*(da − cκ a^(n+1)/(n+1)) − σ0[2b² arccos(a/b) − 2a√(b² − a²)]`, and the range residual
+    `c bⁿ[1 − 2κ/(π(n+1)) (a/b)^(n+1) ₂F₁(½, (n+1)/2; (n+3)/2; z)] − (2d/π) arccos(a/b)
+    − 4σ0(b − a)/(πE*) − h`. n = 2, c = 1/(2R) is ``maugis_paraboloid_state``."""
     from scipy.special import hyp2f1  # imported here: so that `impact run` does not import scipy
 
     root, angle = _zone_terms(a, b)
@@ -185,7 +185,7 @@ def maugis_junction_zone_radius(tabor: Scalars):
 @float64
 def maugis_paraboloid_noncontact(zone_radius: Scalars, tabor: Scalars):
     """(d̃, F̃) of the paraboloid before contact (a = 0, centre gap open) at zone radius b̃ = b/a_c,
-    (3.176) with d free: d = b²/(2R) − 4σ0b/(πE*) − h and F = −πσ0b² become
+    (3.176) with d free: `d = b²/(2R) − 4σ0b/(πE*) − h` and `F = −πσ0b²` become
     d̃ = (3/2)b̃² − (8Λ/π)b̃ − 4/(πΛ), F̃ = −(π/2)Λb̃² (b̃ = 0: d = −h, the stress zone is born).
     nan beyond the junction b̃ > ``maugis_junction_zone_radius`` (the centre gap would be negative)."""
     b = np.asarray(zone_radius, dtype=float)
@@ -273,7 +273,7 @@ def maugis_pull_off_large_tabor(tabor: Scalars):
 
 @float64
 def maugis_pull_off_force_large_tabor(R: Scalars, adhesive_stress: Scalars, adhesion_range: Scalars, E_star: Scalars):
-    """Dimensional (3.190) corrected [N]: F_A = (3/2)πRσ0h + (1/24)(3π⁵E*⁴Rh⁵/σ0)^(1/3)
+    """Dimensional (3.190) corrected [N]: `F_A = (3/2)πRσ0h + (1/24)(3π⁵E*⁴Rh⁵/σ0)^(1/3)`
     (printed 11/24), = (3/2)πRΔγ ``maugis_pull_off_large_tabor``(Λ)."""
     return (
         1.5 * np.pi * R * adhesive_stress * adhesion_range

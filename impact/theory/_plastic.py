@@ -18,13 +18,13 @@ from ..profiles import Scalars
 
 @float64
 def thornton_yield_indentation(R: Scalars, E_star: Scalars, yield_pressure: Scalars):
-    """δ_y = (πp_y/(2E*))²R [m]: where the Hertzian peak pressure reaches p_y."""
+    """`δ_y = (πp_y/(2E*))²R` [m]: where the Hertzian peak pressure reaches p_y."""
     return (jnp.pi * yield_pressure / (2 * E_star)) ** 2 * R
 
 
 @float64
 def thornton_yield_force(R: Scalars, E_star: Scalars, yield_pressure: Scalars):
-    """F_y = (4/3)E*√R δ_y^(3/2) [N]: the Hertzian force at the onset of yield."""
+    """`F_y = (4/3)E*√R δ_y^(3/2)` [N]: the Hertzian force at the onset of yield."""
     return 4 / 3 * E_star * jnp.sqrt(R) * thornton_yield_indentation(R, E_star, yield_pressure) ** 1.5
 
 
@@ -32,7 +32,7 @@ def thornton_yield_force(R: Scalars, E_star: Scalars, yield_pressure: Scalars):
 def thornton_yield_velocity(mass: Scalars, R: Scalars, E_star: Scalars, yield_pressure: Scalars):
     """v_y [m/s] at which a Hertzian impact of a body of mass m just reaches p_y:
     ½mv_y² = (2/5)F_yδ_y. For a sphere of radius R and density ρ on a flat,
-    v_y = (π²/√40)(p_y⁵/(E*⁴ρ))^(1/2) = 1.5605…(p_y⁵/(E*⁴ρ))^(1/2) (Thornton 1997: 1.56)."""
+    `v_y = (π²/√40)(p_y⁵/(E*⁴ρ))^(1/2) = 1.5605…(p_y⁵/(E*⁴ρ))^(1/2)` (Thornton 1997: 1.56)."""
     depth = thornton_yield_indentation(R, E_star, yield_pressure)
     energy = 2 / 5 * thornton_yield_force(R, E_star, yield_pressure) * depth
     return jnp.sqrt(2 * energy / mass)
@@ -51,8 +51,8 @@ def thornton_restitution(velocity: Scalars, yield_velocity: Scalars):
 
 @float64
 def thornton_loading_work(indentation: Scalars, R: Scalars, E_star: Scalars, yield_pressure: Scalars):
-    """∫₀^δ F dδ [J] on first loading to δ [m]: (2/5)(4/3)E*√R δ^(5/2) up to δ_y, then
-    (2/5)F_yδ_y + F_y(δ − δ_y) + (π/2)p_yR(δ − δ_y)²."""
+    """∫₀^δ F dδ [J] on first loading to δ [m]: `(2/5)(4/3)E*√R δ^(5/2)` up to δ_y, then
+    `(2/5)F_yδ_y + F_y(δ − δ_y) + (π/2)p_yR(δ − δ_y)²`."""
     depth = thornton_yield_indentation(R, E_star, yield_pressure)
     force = thornton_yield_force(R, E_star, yield_pressure)
     elastic = 2 / 5 * 4 / 3 * E_star * jnp.sqrt(R) * jnp.minimum(indentation, depth) ** 2.5

@@ -15,7 +15,7 @@ def wavy_paraboloid_indentation(
     a: Scalars, R: Scalars, amplitude: Scalars, wavelength: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
     """JKR indentation [m] of the wavy paraboloid f = r²/(2R) + h(1 − cos(2πr/λ)) (3.134):
-    d = a²/R + (π²ha/λ) H0(2πa/λ) − √(2πaΔγ/E*), H0 the Struve function."""
+    `d = a²/R + (π²ha/λ) H0(2πa/λ) − √(2πaΔγ/E*)`, H0 the Struve function."""
     h0, _ = struve_h0_h1(2 * jnp.pi * a / wavelength)
     return a**2 / R + jnp.pi**2 * amplitude * a / wavelength * h0 - detach_length(a, E_star, work_of_adhesion)
 
@@ -25,7 +25,7 @@ def wavy_paraboloid_force(
     a: Scalars, R: Scalars, amplitude: Scalars, wavelength: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):
     """JKR force [N] of the wavy paraboloid (3.134):
-    F = 4E*a³/(3R) + E*πah[(2πa/λ)H0(2πa/λ) − H1(2πa/λ)] − √(8πa³E*Δγ)."""
+    `F = 4E*a³/(3R) + E*πah[(2πa/λ)H0(2πa/λ) − H1(2πa/λ)] − √(8πa³E*Δγ)`."""
     z = 2 * jnp.pi * a / wavelength
     h0, h1 = struve_h0_h1(z)
     return (
@@ -38,9 +38,9 @@ def wavy_paraboloid_force(
 @float64
 def wavy_paraboloid_normalized(a_hat: Scalars, h_hat: Scalars, gamma_bar: Scalars):
     """The wavy paraboloid's curves in the units of (3.137), â = a/λ, d̂ = dR/λ², ĥ = hR/λ²,
-    F̂ = 2F/(3πRΔγ), Δγ̄ = 2πΔγR²/(E*λ³), (3.138):
-    d̂ = â² + π²ĥâ H0(2πâ) − √(Δγ̄ â),
-    F̂ = 16â³/(9Δγ̄) + (4π/3)(ĥâ/Δγ̄)[2πâ H0(2πâ) − H1(2πâ)] − (8/3)√(â³/Δγ̄).
+    F̂ = 2F/(3πRΔγ), `Δγ̄ = 2πΔγR²/(E*λ³)`, (3.138):
+    `d̂ = â² + π²ĥâ H0(2πâ) − √(Δγ̄ â)`,
+    `F̂ = 16â³/(9Δγ̄) + (4π/3)(ĥâ/Δγ̄)[2πâ H0(2πâ) − H1(2πâ)] − (8/3)√(â³/Δγ̄)`.
     Returns (d̂, F̂). (Δγ̄ = 100, ĥ = 0.5 puts the lowest force at F̂ = −1.32, Fig. 3.27.)"""
     z = 2 * jnp.pi * a_hat
     h0, h1 = struve_h0_h1(z)
@@ -56,23 +56,23 @@ def wavy_paraboloid_normalized(a_hat: Scalars, h_hat: Scalars, gamma_bar: Scalar
 @float64
 def constant_stress_profile(r: Scalars, radius: Scalars, stress: Scalars, E_star: Scalars):
     """The profile that carries a uniform tensile stress σ0 over the whole contact of radius a
-    (3.61): f = (σ0 a/E*)[(4/π) E(r/a) − 2] for r ≤ a, E the complete elliptic integral (3.62)."""
+    (3.61): `f = (σ0 a/E*)[(4/π) E(r/a) − 2]` for r ≤ a, E the complete elliptic integral (3.62)."""
     return stress * radius / E_star * (4 / jnp.pi * ellipe(r / radius) - 2)
 
 
 @float64
 def constant_stress_uniform_state(radius: Scalars, stress: Scalars, E_star: Scalars):
     """(d [m], F [N]) where the profile (3.61) in full contact carries σ0 everywhere:
-    d = −2σ0 a/E* (3.60 at r = 0) and F = −πσ0a² (3.63; tensile, hence negative here)."""
+    `d = −2σ0 a/E*` (3.60 at r = 0) and `F = −πσ0a²` (3.63; tensile, hence negative here)."""
     return -2 * stress * radius / E_star, -jnp.pi * stress * radius**2
 
 
 @float64
 def constant_stress_pull_off(radius: Scalars, stress: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
     """Pull-off of the profile (3.61) under the rule of Heß (ours, not in the chapter): its MDR
-    transform g = (2σ0/E*)(√(a² − x²) − a) leaves only the wall as a critical radius, so under
-    either control a_c = a, d_c = g(a) − Δl(a) = −2σ0a/E* − √(2πaΔγ/E*) and
-    F_c = −(πσ0a² + √(8πa³E*Δγ)): the uniform stress (3.63) plus Kendall's punch (3.66).
+    transform `g = (2σ0/E*)(√(a² − x²) − a)` leaves only the wall as a critical radius, so under
+    either control `a_c = a`, `d_c = g(a) − Δl(a) = −2σ0a/E* − √(2πaΔγ/E*)` and
+    `F_c = −(πσ0a² + √(8πa³E*Δγ))`: the uniform stress (3.63) plus Kendall's punch (3.66).
     Returns (a_c, d_c, F_c)."""
     radius = as_float(radius)
     d_c = -2 * stress * radius / E_star - detach_length(radius, E_star, work_of_adhesion)
@@ -82,6 +82,6 @@ def constant_stress_pull_off(radius: Scalars, stress: Scalars, E_star: Scalars, 
 
 @float64
 def kendall_to_optimal_ratio(radius: Scalars, stress: Scalars, E_star: Scalars, range_: Scalars):
-    """F_Kendall/F_opt = √(8E*h/(πσ0 a)) (3.69) with Δγ = σ0 h (3.68): Kendall's flat punch (3.66)
+    """`F_Kendall/F_opt = √(8E*h/(πσ0 a))` (3.69) with Δγ = σ0 h (3.68): Kendall's flat punch (3.66)
     against the optimal profile (3.67) of the same radius a; `range_` is h [m]."""
     return jnp.sqrt(8 * E_star * range_ / (jnp.pi * stress * radius))

@@ -9,6 +9,7 @@ import typing
 from pathlib import Path
 
 import pytest
+import yaml
 from pydantic import BaseModel
 
 import impact
@@ -103,7 +104,7 @@ def test_scene_reference_covers_every_leaf_path():
     generated = hooks.scene_reference()
     leaves = _leaf_paths(impact.Scene)
     assert {"body.profile.R", "effects.adhesion.work_of_adhesion", "solver.rtol", "program.peak"} <= leaves
-    missing = sorted(path for path in leaves if f"`{path}`" not in generated)
+    missing = sorted(path for path in leaves if hooks.key(path) not in generated)
     assert not missing, f"scene reference lacks: {missing}"
 
 
@@ -152,3 +153,11 @@ def test_no_control_characters(path):
         }
     )
     assert not found, f"{path.name} holds control characters: {found}"
+
+
+def test_home_page_leads_to_every_page():
+    nav = yaml.safe_load((DOCS / "mkdocs.yml").read_text())["nav"]
+    pages = [page for entry in nav for page in entry.values() if page != "index.md"]
+    section = (PAGES / "index.md").read_text().split("## Where to go next", 1)[1].split("\n## ", 1)[0]
+    missing = [page for page in pages if f"]({page})" not in section]
+    assert not missing, f"the home page's 'Where to go next' lacks: {missing}"

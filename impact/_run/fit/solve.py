@@ -46,11 +46,32 @@ Progress = Callable[[int, float, dict[str, float]], None]
 
 @dataclass(frozen=True)
 class FitResult:
-    """A fit's outcome. `values` and `standard_errors` by dotted path (SI units; a standard
-    error is nan where the data do not determine the parameter, see `unidentifiable`);
-    `covariance` and `correlation` [p, p] in the order of `spec.parameters`; `model` [rows,
-    observables] at the fit; `sigma` [rows, observables] as weighted (1 where σ is unknown);
-    `jacobian` [rows·observables, p] of the weighted residuals in the physical parameters."""
+    """A fit's outcome, in SI units. The matrices over the parameters follow the order of
+    `spec.parameters`; those over the data have one row per data row, one column per observable.
+
+    Attributes:
+        spec: The validated fit: the scene, the data, the parameters and the observables.
+        values: The fitted value of each parameter, by dotted path [SI].
+        standard_errors: The standard error of each parameter, by dotted path [SI]; nan where the
+            data do not determine it (see `unidentifiable`).
+        covariance: The parameters' covariance matrix [p, p], in the products of their SI units
+            [SI].
+        correlation: The parameters' correlation matrix [p, p], dimensionless.
+        chi2: χ², the sum of the squared weighted residuals (model − data)/σ at the fit,
+            dimensionless.
+        dof: Degrees of freedom: residuals less parameters.
+        converged: Whether Levenberg–Marquardt met its tolerance within the allowed steps.
+        iterations: Levenberg–Marquardt steps taken.
+        sigma_source: Where the standard errors come from: the σ of the data (`given`), or
+            the scatter of the residuals (σ unknown: the covariance is scaled by χ²/dof).
+        unidentifiable: A message for each parameter, or combination, the data do not
+            determine.
+        model: The model at the fit [rows, observables], in the observables' units [SI].
+        sigma: The σ each residual was weighted with [rows, observables], in the observables'
+            units [SI]; 1 where σ is unknown.
+        jacobian: The derivatives of the weighted residuals in the parameters
+            [rows·observables, p], per SI unit of each parameter [SI].
+    """
 
     spec: FitSpec
     values: dict[str, float]

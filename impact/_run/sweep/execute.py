@@ -244,14 +244,15 @@ def sweep(
     progress: Progress | None = None,
 ) -> SweepResult:
     """Simulate a scene over axes of its numeric fields (dotted path → values, or a generator
-    such as {"geomspace": [0.2, 20, 400]}), combined as a grid or zipped.
+    such as {"geomspace": [0.2, 20, 400]}), combined as a grid or zipped (`mode`).
 
     Returns every scalar result as an array in the sweep's shape, with the chapter's closed-form
     restitution where it has one, each named loss of the scene's effects (plastic work, viscous
     work, adhesion hysteresis, unrecovered elastic energy) and, with a counterpart, both bodies'
-    lab velocities. `chunk`: points per compiled call (None: 1000 on CPU devices, 131 072 per
-    GPU); `devices`: how many of the local devices (or which) each chunk is sharded over (None:
-    all). Raises SweepError (a SceneError: `.problems` names each bad field) before running
-    anything. Enable float64 first (`jax.config.update("jax_enable_x64",
-    True)`)."""
+    lab velocities; it computes in float64 whatever JAX's global flag. `order`: "cost" runs
+    points of like cost together, "given" in the order of the axes. `chunk`: points per compiled
+    call (None: 1000 on CPU devices, 131 072 per GPU); `devices`: how many of the local devices
+    (or which) each chunk is sharded over (None: all); `progress`: an object whose methods
+    `compiling(group, groups)`, `compiled(seconds)` and `advance(points)` are called as it runs.
+    Raises `impact.SceneError` (`.problems` names each bad field) before running anything."""
     return run_spec(make_spec(scene, axes, mode, order), chunk=chunk, devices=devices, progress=progress)

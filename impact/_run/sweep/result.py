@@ -98,9 +98,48 @@ def chunk_columns(scene: Scene, params: dict[str, np.ndarray], points: np.ndarra
 @dataclass
 class SweepResult:
     """Every scalar result of a sweep as an array in the sweep's shape (grid: one axis per swept
-    field, in the order given; zip: one axis). `params[path]` holds the swept values per point,
-    `status` the result codes (`impact._integrate.codes.RESULT_CODES`; -1 for a point not run), `stats` the
-    cost of the run (points, chunk, devices, groups, plan/compile/solve time in s, points/s)."""
+    field, in the order given; zip: one axis), in SI units. Each point's results are those of
+    `impact.Result` for its scene.
+
+    Attributes:
+        spec: The validated sweep: the base scene, its axes, the mode and the order.
+        params: The swept values of each point, by dotted path [SI].
+        restitution: Rebound speed over touch speed of the first contact, dimensionless; 0 if
+            captured, nan without a physical outcome.
+        stuck: Whether the body ended captured.
+        status: The result code of each point: the index of its name in the table of
+            `impact.Result.status` (0 `separated`, 1 `captured`, ...; −1 for a point not run).
+        contact_time: Duration of the first contact [s]; inf if it never let go, nan without a
+            touch.
+        max_indentation: Deepest indentation [m].
+        max_force: Largest compressive force [N].
+        min_force: Most adhesive (most negative) force [N].
+        bounces: Contacts simulated.
+        touch_velocity: Speed at the first touch [m/s].
+        separation_velocity: Speed when the first contact let go [m/s]; 0 if captured.
+        dissipated_energy: Energy lost in the first contact [J].
+        steps: Solver steps.
+        accepted_steps: Accepted solver steps.
+        rejected_steps: Rejected solver steps.
+        theory_restitution: The chapter's closed-form restitution, dimensionless, where the
+            scene has one, else nan.
+        stats: The cost of the run: `points`, `chunk`, `devices`, `groups`, `plan_time`,
+            `compile_time`, `solve_time` (s), `points_per_second`.
+        plastic_work: The part of `dissipated_energy` lost to plastic flow [J]; only where the
+            base scene names `effects.plasticity`, else None.
+        viscous_work: The part of `dissipated_energy` lost to damping [J]; only where the base
+            scene names `effects.damping`, else None.
+        adhesion_hysteresis: The rest of `dissipated_energy`, lost at the jump-in and the
+            snap-off of the adhesive contact [J]; only where the base scene names adhesion, else
+            None.
+        unrecovered_elastic_energy: The rest of `dissipated_energy` of a damped contact without
+            adhesion, the elastic energy left in the surface [J]; only where the base scene names
+            damping, else None.
+        body_velocity_after: The body's velocity after the first contact, lab frame, along its
+            approach [m/s] (< 0: rebounding); only with a counterpart, else None.
+        counterpart_velocity_after: The counterpart's velocity after the first contact, lab
+            frame, along the body's approach [m/s]; only with a counterpart, else None.
+    """
 
     spec: SweepSpec
     params: dict[str, np.ndarray]
@@ -130,20 +169,22 @@ class SweepResult:
 
     @property
     def scene(self) -> Scene:
+        """The base scene."""
         return self.spec.scene
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """The sweep's shape: one axis per swept field (grid), or one (zip)."""
         return self.spec.shape
 
     @property
     def axes(self) -> dict[str, np.ndarray]:
-        """The values of each axis (1-D)."""
+        """The values of each axis (1-D), by dotted path [SI]."""
         return {axis.path: axis.values for axis in self.spec.axes}
 
     @property
     def results(self) -> dict[str, np.ndarray]:
-        """Every result column the sweep holds, by name (in the order of RESULTS)."""
+        """Every result column the sweep holds, by name (in the order of RESULTS) [SI]."""
         return {name: getattr(self, name) for name in RESULTS if getattr(self, name) is not None}
 
     @property
