@@ -10,6 +10,7 @@ from pathlib import Path
 
 import h5py
 
+from .._core.runtime import float64
 from .._run.impacts import Result
 from .._run.indentation import IndentationResult
 from .._run.sweep.result import SweepResult
@@ -21,6 +22,7 @@ from .sweep import SWEEP_FILE, read_sweep
 RUN_FILE = "run.h5"  # what `impact run` writes into its output folder
 
 
+@float64
 def open_sweep(path: str | Path) -> SweepResult:
     """A stored sweep as the `SweepResult` that `impact.sweep` returns, in the sweep's shape.
 
@@ -37,6 +39,7 @@ def open_sweep(path: str | Path) -> SweepResult:
     return result
 
 
+@float64
 def open_run(path: str | Path) -> Result | IndentationResult:
     """A stored run as the result `impact.simulate` returned: a `Result` for an impact, an
     `IndentationResult` for an indentation test (the scene rebuilt from the stored YAML).

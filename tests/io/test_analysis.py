@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 
 import h5py
+import jax
 import numpy as np
 import pandas as pd
 import pytest
@@ -188,6 +189,18 @@ def test_open_sweep_gives_back_the_same_dataset(grid, zipped, stored):
     with h5py.File(stored["grid"] / "sweep.h5", "r") as file:
         assert file["sweep/axes"][VELOCITY].attrs["unit"] == "m s-1"
         assert file["sweep/params"][WORK].attrs["unit"] == "J m-2"
+
+
+def test_open_sweep_validates_in_float64_with_the_flag_off(grid, stored):
+    """Reading a sweep validates its points again (units of the scaled problem): in float64
+    whatever JAX's global flag, which it leaves as it found it."""
+    jax.config.update("jax_enable_x64", False)
+    try:
+        opened = impact.open_sweep(stored["grid"])
+        assert jax.config.read("jax_enable_x64") is False
+    finally:
+        jax.config.update("jax_enable_x64", True)
+    assert np.array_equal(opened.restitution, grid.restitution)
 
 
 def flat_columns(result) -> dict:
