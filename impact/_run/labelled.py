@@ -44,9 +44,8 @@ if TYPE_CHECKING:
 EXTRA = "analysis"
 NOT_RUN = "not run"  # the status of a sweep's point not run (code −1)
 STATUS_NAMES = (*RESULT_CODES, NOT_RUN)  # a data frame's categories, in the order of the codes
-ZIPPED = "point"  # the one dimension of a zipped sweep
+POINT = "point"  # the dimension of a zipped sweep and of an indentation curve; a sweep's table rows
 SAMPLE = "sample"  # the dimension of an impact's time series
-CURVE_POINT = "point"  # the dimension of an indentation test's curve
 EVENT = "event"  # the dimension of a run's events
 TIME = ("s", "time since the start of the run")
 
@@ -121,10 +120,10 @@ def sweep_dataset(result: "SweepResult") -> "xarray.Dataset":
     spec = result.spec
     zipped = spec.mode == "zip"
     coordinates = {
-        axis.path: (ZIPPED if zipped else axis.path, axis.values, number_attributes(axis.unit, "swept scene field"))
+        axis.path: (POINT if zipped else axis.path, axis.values, number_attributes(axis.unit, "swept scene field"))
         for axis in spec.axes
     }
-    dimensions = (ZIPPED,) if zipped else spec.paths
+    dimensions = (POINT,) if zipped else spec.paths
     variables = {}
     for name, column in result.results.items():
         _, _, unit, description = RESULTS[name]
@@ -143,7 +142,7 @@ def sweep_frame(result: "SweepResult") -> "pandas.DataFrame":
     """See `SweepResult.to_pandas`."""
     columns = {path: values.reshape(-1) for path, values in result.params.items()}
     columns.update({name: column.reshape(-1) for name, column in result.results.items()})
-    return frame_of(columns, sweep_units(result), "point")
+    return frame_of(columns, sweep_units(result), POINT)
 
 
 # --- one impact ---------------------------------------------------------------------------------
@@ -199,7 +198,7 @@ def indentation_dataset(result: "IndentationResult") -> "xarray.Dataset":
     """See `IndentationResult.to_xarray`."""
     xarray = require("xarray")
     variables: dict[str, tuple] = {
-        name: (CURVE_POINT, values, number_attributes(*described))
+        name: (POINT, values, number_attributes(*described))
         for name, (values, *described) in curve_series(result).items()
     }
     variables["status"] = _scalar("status", result.status, "")
@@ -215,7 +214,7 @@ def indentation_dataset(result: "IndentationResult") -> "xarray.Dataset":
 def indentation_frame(result: "IndentationResult") -> "pandas.DataFrame":
     """See `IndentationResult.to_pandas`."""
     series = curve_series(result)
-    return frame_of({name: values for name, (values, _, _) in series.items()}, _units(series), CURVE_POINT)
+    return frame_of({name: values for name, (values, _, _) in series.items()}, _units(series), POINT)
 
 
 # --- parts --------------------------------------------------------------------------------------

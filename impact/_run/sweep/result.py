@@ -198,7 +198,8 @@ class SweepResult:
         CF flags (`flag_values` −1, 0, 1, …; `flag_meanings` `not_run separated captured …`).
         Attributes: `scene` (the resolved base scene, YAML), `sweep` (the sweep's definition),
         `mode`, and `impact_version`, `jax_version`, `diffrax_version`, `x64` (those stored in
-        the file for a sweep read by `impact.open_sweep`, else this process's)."""
+        the file for a sweep read by `impact.open_sweep`, else this process's). The variables
+        hold the result's own arrays, not copies."""
         from ..labelled import sweep_dataset
 
         return sweep_dataset(self)
