@@ -58,7 +58,7 @@ class Result:
     force: np.ndarray = field(repr=False)  # N
     contact_radius: np.ndarray = field(repr=False)  # m
     events: list[tuple[float, str]] = field(repr=False)  # (time in s, kind)
-    stats: dict = field(repr=False)  # solver steps; scales of the run
+    stats: dict = field(repr=False)  # solver steps; scales of the run; provenance (read by `open_run`)
 
     @property
     def success(self) -> bool:

@@ -53,7 +53,7 @@ class IndentationResult:
     force: np.ndarray = field(repr=False)  # N, > 0 compressive
     leg: np.ndarray = field(repr=False)  # program leg of each point
     events: list[tuple[int, str]] = field(repr=False)
-    stats: dict = field(repr=False)  # steps; scales and the branches' reach
+    stats: dict = field(repr=False)  # steps; scales and the branches' reach; provenance (read by `open_run`)
 
     @property
     def success(self) -> bool:
