@@ -14,10 +14,12 @@ from .._core.runtime import float64
 from .._run.impacts import Result
 from .._run.indentation import IndentationResult
 from .._run.sweep.result import SweepResult
+from .._scene.errors import SweepError
 from .h5md import CONFIG, stored_provenance
 from .indentation import is_indentation_run, read_indentation
 from .run import read_run
 from .sweep import SWEEP_FILE, read_sweep
+from .sweep_journal import journal_state
 
 RUN_FILE = "run.h5"  # what `impact run` writes into its output folder
 
@@ -31,10 +33,19 @@ def open_sweep(path: str | Path) -> SweepResult:
     finished, another process's share) have status −1 ('not run') and NaN results. `stats` holds
     the file's attributes (rows, expected, complete, ...) and `provenance`.
 
-    Raises `impact.SceneError` (a `SweepError`) for a missing file or one that is no sweep file.
+    Raises `impact.SceneError` (a `SweepError`) for a missing file or one that is no sweep file
+    (or, killed inside a write, a file only its journal can rebuild: the message says how).
     """
     path = _in_folder(path, SWEEP_FILE)
-    result = read_sweep(path)
+    try:
+        result = read_sweep(path)
+    except SweepError:
+        journal = journal_state(path)
+        if journal is None:
+            raise
+        done = f"its journal holds {journal['rows']} finished points"
+        again = "run `impact sweep` on its sweep file again to rebuild the file from the journal and resume it"
+        raise SweepError([("", f"{path} cannot be read (a sweep killed inside a write): {done}; {again}")]) from None
     result.stats["provenance"] = _provenance(path, "parameters/sweep.yaml")
     return result
 

@@ -11,6 +11,7 @@ import csv
 import math
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import h5py
 import jax
@@ -28,6 +29,7 @@ from impact._integrate.codes import RESULT_CODES
 from impact._io.indentation import write_indentation
 from impact._io.run import write_run
 from impact._io.sweep import append_chunk, create_sweep_file, merge
+from impact._io.sweep_journal import SweepWriter
 from impact._run.sweep import RESULTS
 from impact._scene.domains import udunits
 from impact._scene.errors import SweepError
@@ -225,6 +227,20 @@ def test_a_killed_sweep_opens_with_its_points_not_run(grid, tmp_path):
     assert opened.to_pandas().status.tolist().count("not run") == 4
     # The coordinates are the whole sweep's, whatever was run.
     assert np.array_equal(ds[VELOCITY].values, VELOCITIES)
+
+
+def test_a_sweep_killed_inside_a_write_is_refused_with_the_way_out(grid, tmp_path):
+    """The HDF5 file broken, the journal whole: `impact sweep` rebuilds it; reading says so."""
+    path = tmp_path / "sweep.h5"
+    writer = SweepWriter.start(path, grid.spec, SimpleNamespace(params=grid.spec.flat_params()), expected=6, chunk=2)
+    writer.append(np.array([0, 1]), {name: column[:2] for name, column in flat_columns(grid).items()})
+    path.write_bytes(path.read_bytes()[:2000])
+    with pytest.raises(SweepError) as refused:
+        impact.open_sweep(path)
+    assert str(refused.value) == (
+        f"{path} cannot be read (a sweep killed inside a write): its journal holds 2 finished points; "
+        "run `impact sweep` on its sweep file again to rebuild the file from the journal and resume it"
+    )
 
 
 def test_a_merged_sweep_opens_as_the_single_process_one(grid, tmp_path):
