@@ -108,31 +108,16 @@ def _default(field: FieldInfo) -> str:
     return token(default)
 
 
-def _domains(annotation) -> list[str]:
-    """The allowed ranges (`impact._scene.domains.Domain`) an annotation's validators check."""
-    found = []
-    for argument in (annotation, *typing.get_args(annotation)):
-        if typing.get_origin(argument) is typing.Annotated:
-            found += _domains(typing.get_args(argument)[0])
-            for item in argument.__metadata__:
-                domain = getattr(getattr(item, "func", None), "__self__", None)
-                if hasattr(domain, "unit") and str(domain) not in found:
-                    found.append(str(domain))
-        elif argument is not annotation:
-            found += [text for text in _domains(argument) if text not in found]
-    return found
-
-
 def _bounds(field: FieldInfo) -> str:
-    marks = []
-    for item in field.metadata:
-        for kind, attribute, sign in _BOUNDS:
-            if isinstance(item, kind):
-                marks.append(f"{sign} {getattr(item, attribute)}")
-        domain = getattr(getattr(item, "func", None), "__self__", None)
-        if hasattr(domain, "unit"):
-            marks.append(str(domain))
-    return ", ".join([*marks, *(text for text in _domains(field.annotation) if text not in marks)])
+    from impact._scene.domains import domains_of
+
+    marks = [
+        f"{sign} {getattr(item, attribute)}"
+        for item in field.metadata
+        for kind, attribute, sign in _BOUNDS
+        if isinstance(item, kind)
+    ]
+    return ", ".join([*marks, *(str(domain) for domain in domains_of(field))])
 
 
 def _cell(text: str) -> str:

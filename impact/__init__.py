@@ -17,6 +17,8 @@ if TYPE_CHECKING:
     from . import profiles as profiles
     from . import theory as theory
     from ._core.runtime import configure as configure
+    from ._io.results import open_run as open_run
+    from ._io.results import open_sweep as open_sweep
     from ._run.differentiable import as_function as as_function
     from ._run.fit import FitResult as FitResult
     from ._run.fit import fit as fit
@@ -43,6 +45,8 @@ _SOURCES = {
     "configure": "._core.runtime",
     "fit": "._run.fit",
     "load_scene": "._scene.scene",
+    "open_run": "._io.results",
+    "open_sweep": "._io.results",
     "profiles": ".profiles",
     "simulate": "._run.simulate",
     "sweep": "._run.sweep",
@@ -62,6 +66,8 @@ __all__ = [
     "configure",
     "fit",
     "load_scene",
+    "open_run",
+    "open_sweep",
     "profiles",
     "simulate",
     "sweep",

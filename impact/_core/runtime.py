@@ -10,6 +10,7 @@ import importlib.util
 import os
 import platform
 from collections.abc import Callable
+from importlib import metadata
 from pathlib import Path
 from typing import ParamSpec, TypeVar
 
@@ -17,6 +18,7 @@ import jax
 import jax.numpy as jnp
 
 from .cache import cache_directory, use_cache
+from .package import __version__
 
 # XLA:CPU runs a while-loop whose body exceeds 1 kB op by op; the spring arrays' event and
 # Verlet loops (the law evaluated inside) are a few kB: compiled whole they run many times faster.
@@ -92,6 +94,17 @@ def configure(cache_dir: str | os.PathLike[str] | None = None, *, cache: bool = 
             flags = f"{flags} {NO_FMA_FLAG}"
         os.environ["XLA_FLAGS"] = flags.strip()
     return use_cache(cache_directory(cache_dir, cache=cache))
+
+
+def provenance() -> dict[str, str | bool]:
+    """What produced a result in this process: the versions of impact, jax and diffrax, and
+    whether JAX's 64-bit mode is on process-wide (the keys are the attributes of a stored file)."""
+    return {
+        "impact_version": __version__,
+        "jax_version": jax.__version__,
+        "diffrax_version": metadata.version("diffrax"),  # not imported where a run needs none
+        "x64": bool(jax.config.read("jax_enable_x64")),
+    }
 
 
 Arguments = ParamSpec("Arguments")

@@ -4,15 +4,14 @@
 
 import getpass
 from contextlib import contextmanager
-from importlib import metadata
 from pathlib import Path
 
 import h5py
-import jax
 import numpy as np
 import yaml
 
 from .._core.package import __version__
+from .._core.runtime import provenance
 from .._scene.scene import Scene, load_scene, scene_yaml
 
 H5MD_VERSION = (1, 1)
@@ -50,11 +49,19 @@ def read_string(dataset: h5py.Dataset) -> str:
 
 def stamp_provenance(dataset: h5py.Dataset) -> h5py.Dataset:
     """Attach the versions (impact, jax, diffrax) and the x64 flag that produced a file."""
-    dataset.attrs["impact_version"] = __version__
-    dataset.attrs["jax_version"] = jax.__version__
-    dataset.attrs["diffrax_version"] = metadata.version("diffrax")  # not imported where a run needs none
-    dataset.attrs["x64"] = bool(jax.config.read("jax_enable_x64"))
+    dataset.attrs.update(provenance())
     return dataset
+
+
+def stored_provenance(dataset: h5py.Dataset) -> dict[str, str | bool]:
+    """The attributes `stamp_provenance` wrote, as `impact._core.runtime.provenance` gives them."""
+    attributes = dataset.attrs
+    return {
+        "impact_version": str(attributes["impact_version"]),
+        "jax_version": str(attributes["jax_version"]),
+        "diffrax_version": str(attributes["diffrax_version"]),
+        "x64": bool(attributes["x64"]),
+    }
 
 
 def write_scene(parameters: h5py.Group, scene: Scene) -> None:
@@ -93,13 +100,13 @@ def read_provenance(path: str | Path, stats_group: str = "parameters/solver_stat
     """Versions (impact, jax, diffrax), x64 flag and wall time (s, or None) of a stored run
     (`stats_group`: where its wall time lives)."""
     with open_run(path) as file:
-        attributes = dict(file[CONFIG].attrs)
+        stored = stored_provenance(file[CONFIG])
         stats = file[stats_group]
         wall_time = float(stats["wall_time"][()]) if "wall_time" in stats else None
     return {
-        "impact": str(attributes["impact_version"]),
-        "jax": str(attributes["jax_version"]),
-        "diffrax": str(attributes["diffrax_version"]),
-        "x64": bool(attributes["x64"]),
+        "impact": stored["impact_version"],
+        "jax": stored["jax_version"],
+        "diffrax": stored["diffrax_version"],
+        "x64": stored["x64"],
         "wall_time": wall_time,
     }

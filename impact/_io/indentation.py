@@ -26,18 +26,11 @@ import h5py
 import numpy as np
 
 from .._run.indentation import IndentationResult, PullOff
+from .._run.units import INDENTATION_CURVE, MAXIMA_UNITS, PULL_OFF_UNITS
 from .files import atomic_path
 from .h5md import current_user, open_run, read_provenance, read_scene, read_string, write_header, write_scene
 
 KIND = "indentation"
-CURVE = {
-    "contact_radius": ("m", "contact radius a"),
-    "indentation": ("m", "indentation d; > 0 pressed in, < 0 pulled out"),
-    "force": ("N", "normal force; > 0 compressive, < 0 adhesive"),
-    "leg": ("", "leg of the loading program: 0 first loading, 1 first unloading, ..."),
-}
-PULL_OFF = {"contact_radius": "m", "indentation": "m", "force": "N"}
-MAXIMA = {"max_force": "N", "max_indentation": "m", "max_contact_radius": "m"}
 SCALES = {"radial": "m", "normal": "m", "force": "N"}
 
 
@@ -61,7 +54,7 @@ def write_indentation(
         observables = file.create_group("observables")
         curve = observables.create_group("curve")
         step = None
-        for name, (unit, description) in CURVE.items():
+        for name, (unit, description) in INDENTATION_CURVE.items():
             group = curve.create_group(name)
             if step is None:
                 step = group.create_dataset("step", data=np.arange(len(result.force), dtype=np.int64))
@@ -73,10 +66,10 @@ def write_indentation(
                 value.attrs["unit"] = unit
         pull_off = observables.create_group("pull_off")
         pull_off.attrs["description"] = "the last stable state before the contact is lost"
-        for name, unit in PULL_OFF.items():
+        for name, unit in PULL_OFF_UNITS.items():
             pull_off.create_dataset(name, data=float(getattr(result.pull_off, name))).attrs["unit"] = unit
         observables.create_dataset("status", data=result.status, dtype=h5py.string_dtype())
-        for name, unit in MAXIMA.items():
+        for name, unit in MAXIMA_UNITS.items():
             observables.create_dataset(name, data=getattr(result, name)).attrs["unit"] = unit
         events = observables.create_group("events")
         events.create_dataset("point", data=np.array([i for i, _ in result.events], dtype=np.int64))
@@ -112,7 +105,7 @@ def read_indentation(path: str | Path) -> IndentationResult:
         return IndentationResult(
             scene=read_scene(file),
             status=read_string(observables["status"]),
-            pull_off=PullOff(**{name: float(pull_off[name][()]) for name in PULL_OFF}),
+            pull_off=PullOff(**{name: float(pull_off[name][()]) for name in PULL_OFF_UNITS}),
             contact_radius=curve["contact_radius/value"][()],
             indentation=curve["indentation/value"][()],
             force=curve["force/value"][()],

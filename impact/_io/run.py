@@ -33,38 +33,10 @@ import numpy as np
 
 from .._run.impacts import Result
 from .._run.losses import NAMED_LOSSES
+from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, SCALAR_UNITS, VELOCITY_SERIES
 from .files import atomic_path
 from .h5md import current_user, open_run, read_scene, read_string, write_header, write_scene
 
-# Scalar results under observables/: name → unit ("" for dimensionless).
-SCALAR_UNITS = {
-    "restitution": "",
-    "stuck": "",
-    "status": "",
-    "contact_time": "s",
-    "max_indentation": "m",
-    "max_force": "N",
-    "min_force": "N",
-    "bounces": "",
-    "touch_velocity": "m s-1",
-    "separation_velocity": "m s-1",
-    "dissipated_energy": "J",
-    "plastic_work": "J",
-    "viscous_work": "J",
-    "tabor_parameter": "",
-    "centre_of_mass_velocity": "m s-1",
-    "body_velocity_after": "m s-1",
-    "counterpart_velocity_after": "m s-1",
-}
-# Losses derived from the others (`Result` properties, in J), written where the scene names what
-# they describe (`NAMED_LOSSES`) and not read back.
-DERIVED_LOSSES = ("adhesion_hysteresis", "unrecovered_elastic_energy")
-# Time series under observables/contact/: Result field → (unit, description).
-CONTACT_SERIES = {
-    "indentation": ("m", "indentation d of the half-space; > 0 pressed in, < 0 a gap"),
-    "contact_radius": ("m", "contact radius a"),
-    "force": ("N", "normal force on the body; > 0 compressive, < 0 adhesive"),
-}
 SCALE_UNITS = {"radial": "m", "normal": "m", "force": "N", "time": "s"}
 STEP_COUNTS = ("steps", "accepted_steps", "rejected_steps")
 
@@ -130,8 +102,7 @@ def _write_body(body: h5py.Group, result: Result) -> h5py.Group:
         _series(
             body.create_group("velocity"),
             result.velocity.reshape(frames, 1, 1),
-            "m s-1",
-            "velocity ḋ of the body, towards the surface > 0",
+            *VELOCITY_SERIES,
         ),
     )
     return position

@@ -11,9 +11,9 @@ Layout (values SI, `unit` attributes where dimensioned):
     sweep/                        attrs: mode, shape, points (N of the whole sweep), rows (written
                                   here), expected (rows this file will hold), complete, chunk,
                                   process_index, process_count, result_codes, timings
-        axes/<dotted.path>        the values of each axis (1-D)
+        axes/<dotted.path>        the values of each axis (1-D), `unit` where dimensioned
         index[R]                  flat index (C order of `shape`) of the point in each row
-        params/<dotted.path>[R]   the swept values of each row
+        params/<dotted.path>[R]   the swept values of each row (`unit` as the axis)
         results/<name>[R]         restitution, stuck, status (result code), contact_time, ...;
                                   plastic_work, viscous_work, adhesion_hysteresis where the
                                   scene names plasticity, damping, adhesion; body_velocity_after
@@ -81,20 +81,24 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
         )
         axes = group.create_group("axes")
         for axis in spec.axes:
-            axes.create_dataset(axis.path, data=axis.values)
+            _unit(axes.create_dataset(axis.path, data=axis.values), axis.unit)
         _column(group, "index", np.int64, rows_per_chunk).attrs["description"] = (
             "flat index (C order of shape) of each row's point"
         )
         params = group.create_group("params")
         for axis in spec.axes:
-            _column(params, axis.path, axis.values.dtype, rows_per_chunk)
+            _unit(_column(params, axis.path, axis.values.dtype, rows_per_chunk), axis.unit)
         results = group.create_group("results")
         for name in result_names(spec.scene):
             dtype, _, unit, description = RESULTS[name]
             dataset = _column(results, name, dtype, rows_per_chunk)
             dataset.attrs["description"] = description
-            if unit:
-                dataset.attrs["unit"] = unit
+            _unit(dataset, unit)
+
+
+def _unit(dataset: h5py.Dataset, unit: str) -> None:
+    if unit:
+        dataset.attrs["unit"] = unit
 
 
 def _column(group: h5py.Group, name: str, dtype, rows_per_chunk: int) -> h5py.Dataset:

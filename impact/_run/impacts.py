@@ -3,7 +3,7 @@ the result in SI units."""
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -15,6 +15,10 @@ from .._scene.scene import Scene
 from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from .parameters import integrator_for, options_for, physics_for
 from .programs import solve_by_field
+
+if TYPE_CHECKING:
+    import pandas
+    import xarray
 
 
 @dataclass(frozen=True)
@@ -66,7 +70,8 @@ class Result:
         events: The events in time order, as (time [s], kind) pairs; the kinds are listed in
             the user guide.
         stats: Solver steps (`steps`, `accepted_steps`, `rejected_steps`) and the run's
-            `scales`.
+            `scales`; read back by `impact.open_run`, the `provenance` of the file (the versions
+            that wrote it).
     """
 
     scene: Scene
@@ -114,6 +119,23 @@ class Result:
         the surface as elastic energy [J] (it lets go at F = 0, still indented); 0 otherwise."""
         damped = self.scene.effects.damping is not None
         return float(unrecovered_elastic_energy(self.scene.adhesive, damped, self.dissipated_energy, self.viscous_work))
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The run as an `xarray.Dataset` (needs the extra `impact-mdr[analysis]`): the time
+        series along `sample` with the coordinate `time` (s), every scalar result as a 0-d
+        variable (`status` as CF flags), the events along `event`; `units` and `description`
+        on each, the scene (YAML) and versions as attributes. See `SweepResult.to_xarray`."""
+        from .labelled import run_dataset
+
+        return run_dataset(self)
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """The time series as a `pandas.DataFrame`, one row a sample (time, indentation,
+        velocity, contact_radius, force); `attrs["units"]` their units (needs the extra
+        `impact-mdr[analysis]`)."""
+        from .labelled import run_frame
+
+        return run_frame(self)
 
     @property
     def body_velocity_after_cm(self) -> float:

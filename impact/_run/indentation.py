@@ -8,6 +8,7 @@ curve (a, d, F) in program order, a jump showing as two points at the same contr
 
 from dataclasses import dataclass, field
 from types import SimpleNamespace
+from typing import TYPE_CHECKING
 
 import jax.numpy as jnp
 import numpy as np
@@ -19,6 +20,10 @@ from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, 
 from .._law.branches import Tabulation
 from .._scene.scene import Scene
 from .parameters import adhesion_for, spring_capacity
+
+if TYPE_CHECKING:
+    import pandas
+    import xarray
 
 
 @dataclass(frozen=True)
@@ -50,7 +55,8 @@ class IndentationResult:
         leg: The program leg of each point.
         events: (point index, kind) pairs, the kind one of `touch`, `snap_in`, `snap_out`,
             `pull_off`, `reversal`.
-        stats: The march's `steps`, the radius its branches reach (`reach`, m) and its `scales`.
+        stats: The march's `steps`, the radius its branches reach (`reach`, m) and its `scales`;
+            read back by `impact.open_run`, the `provenance` of the file (the versions that wrote it).
     """
 
     scene: Scene
@@ -87,6 +93,23 @@ class IndentationResult:
     def max_contact_radius(self) -> float:
         """Largest contact radius of the curve [m]."""
         return float(np.max(self.contact_radius, initial=0.0))
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The test as an `xarray.Dataset` (needs the extra `impact-mdr[analysis]`): the curve
+        along `point`, the status, extremes and pull-off (`pull_off_force`, ...) as 0-d
+        variables, the events along `event`; units, scene and versions as in
+        `SweepResult.to_xarray`."""
+        from .labelled import indentation_dataset
+
+        return indentation_dataset(self)
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """The curve as a `pandas.DataFrame`, one row a point in program order (contact_radius,
+        indentation, force, leg); `attrs["units"]` their units (needs the extra
+        `impact-mdr[analysis]`)."""
+        from .labelled import indentation_frame
+
+        return indentation_frame(self)
 
 
 _LEGS = 8  # programs of up to 4 cycles share one compilation (padded legs are never reached)

@@ -9,10 +9,12 @@ domain from the field's description.
 """
 
 import math
+import typing
 from dataclasses import dataclass
 from typing import Any
 
 from pydantic import AfterValidator
+from pydantic.fields import FieldInfo
 
 
 @dataclass(frozen=True)
@@ -67,6 +69,50 @@ def outside(value: float, domain: Domain, why: str = "") -> str:
 def within(domain: Domain) -> Any:
     """Pydantic metadata that refuses a value outside `domain` (after numeric coercion)."""
     return AfterValidator(domain.check)
+
+
+def domains_of(field: FieldInfo) -> list[Domain]:
+    """The domains a scene field checks (`within`): in its own metadata, then in the
+    alternatives of its type (a number, or a literal, or None), each once."""
+    found = [domain for item in field.metadata if (domain := _checked(item)) is not None]
+    for domain in _in_annotation(field.annotation):
+        if domain not in found:
+            found.append(domain)
+    return found
+
+
+def _in_annotation(annotation) -> list[Domain]:
+    """The domains checked by the metadata of an annotation and of its alternatives."""
+    found: list[Domain] = []
+    for argument in (annotation, *typing.get_args(annotation)):
+        inner: list[Domain | None] = []
+        if typing.get_origin(argument) is typing.Annotated:
+            inner += _in_annotation(typing.get_args(argument)[0])
+            inner += map(_checked, argument.__metadata__)
+        elif argument is not annotation:
+            inner += _in_annotation(argument)
+        found += [domain for domain in inner if domain is not None and domain not in found]
+    return found
+
+
+def _checked(item) -> Domain | None:
+    """The domain a metadata item of `within` checks (None for any other item)."""
+    domain = getattr(getattr(item, "func", None), "__self__", None)
+    return domain if isinstance(domain, Domain) else None
+
+
+_POWERS = {"²": "2", "³": "3"}
+
+
+def udunits(unit: str) -> str:
+    """A domain's unit as the files write units (UDUNITS, as CF conventions read them):
+    'm/s' → 'm s-1', 'J/m²' → 'J m-2', 'N s/m' → 'N s m-1', '1/m' → 'm-1'; '' stays ''."""
+    numerator, _, denominator = unit.partition("/")
+    terms = [term for term in numerator.split() if term != "1"]
+    for term in denominator.split():
+        base = term.rstrip("".join(_POWERS))
+        terms.append(f"{base}-{_POWERS.get(term[len(base) :], '1')}")
+    return " ".join(terms)
 
 
 # --- the domains ------------------------------------------------------------------------------

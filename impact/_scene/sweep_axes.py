@@ -12,7 +12,9 @@ from typing import Annotated, Any
 
 import numpy as np
 from pydantic import BaseModel, TypeAdapter, ValidationError
+from pydantic.fields import FieldInfo
 
+from .domains import domains_of, udunits
 from .errors import SweepError
 from .paths import AbsentSection, NoField, models_in, resolve_field
 from .scene import Scene
@@ -46,7 +48,13 @@ def build_axis(scene: Scene, path: str, entry) -> Axis:
     array = np.asarray(values, dtype=np.int64 if integer else np.float64)
     if integer and isinstance(spec, list):
         spec = [int(value) for value in array]
-    return Axis(path, array, spec)
+    return Axis(path, array, spec, unit=field_unit(info))
+
+
+def field_unit(info: FieldInfo) -> str:
+    """The unit of a numeric field's values (UDUNITS; '' dimensionless): its domain's."""
+    units = {udunits(domain.unit) for domain in domains_of(info)}
+    return units.pop() if len(units) == 1 else ""
 
 
 def _raw_values(where: str, entry):

@@ -27,6 +27,7 @@ class Axis:
     path: str
     values: np.ndarray  # 1-D, float64 (or int64 for integer fields)
     spec: object = field(repr=False)  # canonical form: a list, or {generator: [start, stop, num]}
+    unit: str = ""  # of the values, as the files write units ('m s-1'; '' dimensionless)
 
     @property
     def static(self) -> bool:

@@ -5,6 +5,7 @@ the command runs. These lazy imports are deliberate: `impact --help`, `impact ru
 mistyped option answer at once, without loading JAX.
 """
 
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated
 
@@ -23,6 +24,7 @@ def register(app: typer.Typer) -> None:
         ("show", show_command),
         ("sweep", sweep_command),
         ("merge", merge_command),
+        ("export", export_command),
         ("fit", fit_command),
     ):
         app.command(name, cls=FlagHelpCommand)(command)
@@ -167,6 +169,50 @@ def merge_command(ctx: typer.Context, shards: Shards, output: MergedFile, overwr
     from .sweep import merge_shards
 
     merge_shards(shards, output, overwrite)
+
+
+# --- export ---------------------------------------------------------------------------------
+
+
+class ExportFormat(StrEnum):
+    csv = "csv"
+    netcdf = "netcdf"
+
+
+StoredFile = Annotated[
+    Path,
+    typer.Argument(
+        metavar="FILE.h5", help="sweep.h5 of `impact sweep` (or a shard) or run.h5 of `impact run`", show_default=False
+    ),
+]
+Format = Annotated[
+    ExportFormat,
+    typer.Option(
+        "--format",
+        help="csv: one header line (names with units), one row a point or sample; netcdf: the labelled dataset",
+        show_default=False,
+    ),
+]
+ExportedFile = Annotated[
+    Path | None,
+    typer.Option(
+        "-o", "--output", help="output file (default: beside the input, suffix .csv or .nc)", show_default=False
+    ),
+]
+
+
+def export_command(
+    ctx: typer.Context,
+    stored: StoredFile,
+    form: Format,
+    output: ExportedFile = None,
+    overwrite: MergeOverwrite = False,
+) -> None:
+    """Export a stored sweep or run as CSV or netCDF (needs the optional analysis extra of impact-mdr)."""
+    configured(ctx)
+    from .export import export_file
+
+    export_file(stored, form.value, output, overwrite)
 
 
 # --- fits -----------------------------------------------------------------------------------

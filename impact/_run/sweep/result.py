@@ -3,6 +3,7 @@
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +13,10 @@ from ..._scene.scene import Scene
 from ..._scene.sweep_spec import SweepSpec
 from ..impacts import velocities_after
 from ..losses import NAMED_LOSSES
+
+if TYPE_CHECKING:
+    import pandas
+    import xarray
 
 # Scalar results per point: name → (dtype, fill value for points not run, unit, description).
 RESULTS = {
@@ -124,7 +129,9 @@ class SweepResult:
         theory_restitution: The chapter's closed-form restitution, dimensionless, where the
             scene has one, else nan.
         stats: The cost of the run: `points`, `chunk`, `devices`, `groups`, `plan_time`,
-            `compile_time`, `solve_time` (s), `points_per_second`.
+            `compile_time`, `solve_time` (s), `points_per_second`; read back by
+            `impact.open_sweep`, the file's attributes and its `provenance` (the versions that
+            wrote it).
         plastic_work: The part of `dissipated_energy` lost to plastic flow [J]; only where the
             base scene names `effects.plasticity`, else None.
         viscous_work: The part of `dissipated_energy` lost to damping [J]; only where the base
@@ -221,6 +228,31 @@ class SweepResult:
         if not usable.any():
             return math.nan
         return float(np.max(np.abs(self.restitution[usable] - self.theory_restitution[usable])))
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The sweep as an `xarray.Dataset` (needs the extra `impact-mdr[analysis]`).
+
+        Dimensions: a grid's axes, each named by its dotted path, with the swept values as
+        coordinates; a zipped sweep's one dimension `point`, with each zipped path a coordinate
+        along it. Variables: every result column (`results`), with `units` (UDUNITS, '1' where
+        dimensionless, coordinates too) and `description`; `status` holds the result codes as
+        CF flags (`flag_values` −1, 0, 1, …; `flag_meanings` `not_run separated captured …`).
+        Attributes: `scene` (the resolved base scene, YAML), `sweep` (the sweep's definition),
+        `mode`, and `impact_version`, `jax_version`, `diffrax_version`, `x64` (those stored in
+        the file for a sweep read by `impact.open_sweep`, else this process's). The variables
+        hold the result's own arrays, not copies."""
+        from ..labelled import sweep_dataset
+
+        return sweep_dataset(self)
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """The sweep as a `pandas.DataFrame`, one row a point in C order of `shape` (needs the
+        extra `impact-mdr[analysis]`): a column per swept path, then every result column;
+        `status` a categorical of the names ('not run' for −1). `attrs["units"]` holds the unit
+        of every numeric column ('1' where dimensionless)."""
+        from ..labelled import sweep_frame
+
+        return sweep_frame(self)
 
     @classmethod
     def from_flat(cls, spec: SweepSpec, params: dict, results: dict, stats: dict | None = None) -> "SweepResult":
