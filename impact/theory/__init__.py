@@ -115,6 +115,7 @@ from ._impact import power_law_hertz_max_force as power_law_hertz_max_force
 from ._impact import power_law_hertz_max_indentation as power_law_hertz_max_indentation
 from ._impact import power_law_restitution as power_law_restitution
 from ._impact import power_law_sticking_velocity as power_law_sticking_velocity
+from ._impact import force_release_energy_loss as force_release_energy_loss
 from ._impact import thornton_ning_beta as thornton_ning_beta
 from ._impact import thornton_ning_energy_loss as thornton_ning_energy_loss
 from ._impact import thornton_ning_max_force as thornton_ning_max_force
@@ -199,6 +200,7 @@ __all__ = [
     "thornton_ning_restitution",
     "thornton_ning_max_force",
     "thornton_ning_sticking_velocity",
+    "force_release_energy_loss",
     "attach_on_touch_energy_loss",
     "attach_on_touch_restitution",
     "power_law_hertz_max_indentation",
