@@ -105,6 +105,7 @@ from ._double_hertz import double_hertz_range as double_hertz_range
 from ._double_hertz import double_hertz_tabor_parameter as double_hertz_tabor_parameter
 from ._impact import attach_on_touch_energy_loss as attach_on_touch_energy_loss
 from ._impact import attach_on_touch_restitution as attach_on_touch_restitution
+from ._impact import force_release_energy_loss as force_release_energy_loss
 from ._impact import hertz_contact_time as hertz_contact_time
 from ._impact import hertz_max_force as hertz_max_force
 from ._impact import hertz_max_indentation as hertz_max_indentation
@@ -115,7 +116,6 @@ from ._impact import power_law_hertz_max_force as power_law_hertz_max_force
 from ._impact import power_law_hertz_max_indentation as power_law_hertz_max_indentation
 from ._impact import power_law_restitution as power_law_restitution
 from ._impact import power_law_sticking_velocity as power_law_sticking_velocity
-from ._impact import force_release_energy_loss as force_release_energy_loss
 from ._impact import thornton_ning_beta as thornton_ning_beta
 from ._impact import thornton_ning_energy_loss as thornton_ning_energy_loss
 from ._impact import thornton_ning_max_force as thornton_ning_max_force
