@@ -20,7 +20,7 @@ from .lammps_batch import BatchResult, run_batch
 from .lammps_model import CompareError, LammpsModel, effective_radius, lammps_model
 
 VELOCITY = "initial.velocity"
-QUANTITIES = ("restitution", "contact_time", "max_force")
+QUANTITIES = ("restitution", "contact_time", "max_force", "min_force")
 DEFAULT_SPEEDS = 16  # speeds of the default sweep, from v0/4 to 2 v0
 STEPS_PER_CONTACT = 2000  # default dt: the Hertz contact time at the fastest speed over this
 LEAST_STEPS_PER_CONTACT = 20  # a dt above 1/20 of that contact time is refused

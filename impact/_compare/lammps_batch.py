@@ -3,11 +3,11 @@ wall (or one pair of particles per speed), spaced so that they never meet, all i
 
 What is measured, per particle, by LAMMPS itself at every step (fix store/state of atom-style
 variables): whether it is in contact (a nonzero force on it: only the contact acts), the number
-of steps in contact and the largest compressive force (the force along the approach, +z on the
-body). The run stops once every particle has left its contact, or at `duration`; a particle
-still in contact then is captured (restitution 0, contact time inf). The restitution is the
-rebound speed over the approach speed (with a counterpart, of the relative motion); the contact
-time is the steps in contact times dt.
+of steps in contact, the largest compressive force and the most adhesive force (the force along
+the approach, +z on the body, and its most negative value). The run stops once every particle
+has left its contact, or at `duration`; a particle still in contact then is captured
+(restitution 0, contact time inf). The restitution is the rebound speed over the approach speed
+(with a counterpart, of the relative motion); the contact time is the steps in contact times dt.
 """
 
 import math
@@ -23,6 +23,10 @@ from .lammps_model import LammpsModel
 _CHECKS = 200
 # Centre-to-centre spacing of neighbouring particles (or pairs), in particle diameters.
 _SPACING = 2.0
+# Overlap at the start, relative to the distance of the centres at the touch: the contact starts
+# at the first force evaluation (t = 0, δ ≈ 0) as impact's does, not one step later at δ = v₀dt
+# (a first-order error: the jump-in's force missed over v₀dt).
+_START_OVERLAP = 1e-12
 # LAMMPS's library interface: per-atom data (style) held as an array (type).
 _PER_ATOM, _ARRAY = 1, 2
 
@@ -34,12 +38,14 @@ class LammpsFailed(RuntimeError):
 @dataclass(frozen=True)
 class BatchResult:
     """Per speed of one LAMMPS run: restitution (0 if captured), contact time (s; inf if
-    captured), largest compressive force (N) and whether it was captured; the time step (s), the
-    steps run, the wall time (s) of the whole run, the LAMMPS release and the input as run."""
+    captured), largest compressive and most adhesive forces (N) and whether it was captured; the time step (s), the
+    steps run, the wall time (s) of the input and the run (after the library has loaded), the
+    LAMMPS release and the input as run."""
 
     restitution: np.ndarray
     contact_time: np.ndarray
     max_force: np.ndarray
+    min_force: np.ndarray
     captured: np.ndarray
     dt: float
     steps: int
@@ -51,8 +57,8 @@ class BatchResult:
 def run_batch(model: LammpsModel, velocities: np.ndarray, dt: float, duration: float) -> BatchResult:
     """Run every speed of `velocities` (m/s, the body's towards the surface) as one LAMMPS batch
     with time step `dt` (s) for at most `duration` (s)."""
-    start = time.perf_counter()
     instance = open_lammps()
+    start = time.perf_counter()
     try:
         commands = setup_commands(model, np.asarray(velocities, dtype=float), dt)
         _execute(instance, commands)
@@ -72,7 +78,7 @@ def run_batch(model: LammpsModel, velocities: np.ndarray, dt: float, duration: f
 
 
 def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> list[str]:
-    """The LAMMPS input of the batch up to its run: SI units, the particles touching their
+    """The LAMMPS input of the batch up to its run: SI units, the particles just touching their
     surface (the gap adds only flight without gravity), the contact model, the integrator and
     the per-particle measurements."""
     n, r1, r2 = len(velocities), model.body_radius, model.counterpart_radius
@@ -89,7 +95,7 @@ def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> lis
         f"region box block 0 {n * spacing:.17g} {-spacing:.17g} {spacing:.17g} {lowest:.17g} {4 * r1:.17g} units box",
         f"create_box {2 if model.pair else 1} box",
     ]
-    body_z = r1 + (r2 if model.pair else 0.0)
+    body_z = (r1 + (r2 if model.pair else 0.0)) * (1 - _START_OVERLAP)
     commands += [f"create_atoms 1 single {(i + 0.5) * spacing:.17g} 0 {body_z:.17g} units box" for i in range(n)]
     commands += [f"set type 1 diameter {2 * r1:.17g}", f"set type 1 mass {model.body_mass:.17g}"]
     commands += [f"set atom {i + 1} vz {-v:.17g}" for i, v in enumerate(velocities)]
@@ -101,8 +107,11 @@ def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> lis
             f"set type 2 mass {model.counterpart_mass:.17g}",
             f"set type 2 vz {model.counterpart_velocity:.17g}",
             "pair_style granular",
-            f"pair_coeff 1 1 {body}",
-            f"pair_coeff 2 2 {counterpart}",  # LAMMPS mixes the 1-2 coefficients (E*, γ, damping)
+            *(
+                [f"pair_coeff * * {body}"]  # one material (mdr takes one normal model only)
+                if body == counterpart
+                else [f"pair_coeff 1 1 {body}", f"pair_coeff 2 2 {counterpart}"]  # LAMMPS mixes 1-2: E*, γ, η₀
+            ),
             f"neighbor {min(r1, r2) / 2:.17g} bin",
         ]
     else:
@@ -113,7 +122,8 @@ def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> lis
         "fix move all nve/sphere",
         "variable largest_force atom 0.5*(f_history[1]+fz+abs(f_history[1]-fz))",
         "variable steps_in_contact atom f_history[2]+(fz!=0)",
-        "fix history body store/state 1 v_largest_force v_steps_in_contact",
+        "variable most_adhesive_force atom 0.5*(f_history[3]+fz-abs(f_history[3]-fz))",
+        "fix history body store/state 1 v_largest_force v_steps_in_contact v_most_adhesive_force",
         f"timestep {dt:.17g}",
     ]
 
@@ -170,5 +180,6 @@ def _read(instance, model: LammpsModel, velocities: np.ndarray, dt: float) -> di
         "restitution": np.where(captured, 0.0, separation),
         "contact_time": np.where(captured, np.inf, history[:, 1] * dt),
         "max_force": history[:, 0],
+        "min_force": history[:, 2],
         "captured": captured,
     }

@@ -143,7 +143,7 @@ def lammps_model(scene: Scene, model: str | None = None, damping: str | None = N
         yield_stress=yield_stress,
         E_star=scene.material.effective_modulus,
         notes=tuple(note for note in (geometry, material_note, adhesion_note, damping_note, yield_note) if note),
-        left_out=left_out(scene, name),
+        left_out=left_out(scene, name, mapped),
     )
 
 
@@ -335,8 +335,8 @@ def _yield_stress(scene: Scene, model: str, material: Material) -> tuple[float, 
     )
 
 
-def left_out(scene: Scene, model: str) -> str:
-    """What LAMMPS's `model` leaves out of the scene, in words."""
+def left_out(scene: Scene, model: str, damping: Damping) -> str:
+    """What LAMMPS's `model` (with `damping`) leaves out of the scene, in words."""
     words = {
         "jkr": (
             "LAMMPS's jkr attaches at the touch with the JKR jump-in (no approach hysteresis, Δγa = Δγ) and "
@@ -360,4 +360,12 @@ def left_out(scene: Scene, model: str) -> str:
     }[model]
     if model != "mdr" and scene.body.profile.shape == "sphere":
         words += " Its laws are those of the paraboloid f = r²/(2R), the scene's sphere within O(a²/R²)."
+    if damping.coefficient > 0 and model not in ADHESIVE_MODELS:
+        words += (
+            " Damped, it keeps the contact until the overlap ends, pulling the body back once the viscous force "
+            "exceeds the elastic one; impact lets the body go where the total force returns to zero (Schwager & "
+            "Pöschel, Granular Matter 9, 465 (2007))."
+        )
+    if damping.origin == "--damping":
+        words += " Its damping is the one given by --damping, not the scene's."
     return words + " Velocity Verlet at a fixed step dt; contact times counted in whole steps."

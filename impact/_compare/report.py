@@ -8,7 +8,7 @@ import numpy as np
 
 from .comparison import IMPACT_ACCURACY, QUANTITIES, STEP_ERROR_FACTOR, Comparison, finite_max
 
-UNITS = {"velocity": "m/s", "contact_time": "s", "max_force": "N"}
+UNITS = {"velocity": "m/s", "contact_time": "s", "max_force": "N", "min_force": "N"}
 
 
 def table_csv(comparison: Comparison) -> str:
