@@ -251,7 +251,12 @@ def _damping_option(text: str, model: str) -> tuple[Damping | None, list[tuple[s
     restitution = kind in RESTITUTION_DAMPINGS
     valid = 0 < coefficient <= 1 if restitution else 0 <= coefficient < math.inf
     if kind not in allowed or not valid:
-        bound = "0 < VALUE <= 1 (a restitution)" if restitution else "VALUE >= 0"
+        restitutions = [name for name in allowed if name in RESTITUTION_DAMPINGS]
+        bound = (
+            f"VALUE >= 0 (0 < VALUE <= 1, a restitution, for {' and '.join(restitutions)})"
+            if restitutions
+            else "VALUE >= 0"
+        )
         why = f"must be MODEL:VALUE with MODEL one of {', '.join(allowed)} for {model} and {bound}, got {text!r}"
         return None, [("--damping", why)]
     return Damping(kind, coefficient, "--damping"), []
