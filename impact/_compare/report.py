@@ -49,11 +49,12 @@ def summary_lines(comparison: Comparison) -> list[str]:
     table, agreement = comparison.columns(), comparison.agreement()
     for name in QUANTITIES:
         unit = f" ({UNITS[name]})" if name in UNITS else ""
+        difference, step = finite_max(table[f"{name}_difference"]), finite_max(table[f"{name}_step_error"])
+        if np.isnan(difference):
+            lines.append(f"  {name}{unit}: not compared (impact's is 0, or no speed let go in both)")
+            continue
         verdict = "agree to the step error" if agreement[name] else "differ beyond the step error"
-        lines.append(
-            f"  {name}{unit}: {finite_max(table[f'{name}_difference']):.3g}, step error "
-            f"{finite_max(table[f'{name}_step_error']):.3g}: {verdict}"
-        )
+        lines.append(f"  {name}{unit}: {difference:.3g}, step error {step:.3g}: {verdict}")
     ratio = table["energy_loss_ratio"]
     shown = ratio[np.isfinite(ratio)]
     if shown.size:

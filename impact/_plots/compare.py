@@ -48,15 +48,15 @@ def comparison_figure(columns: Mapping[str, np.ndarray], title: str, model: str)
 
 
 def _draw_differences(panel, columns: Mapping[str, np.ndarray]) -> None:
+    """|relative difference| (filled, solid) and relative step error (open, dashed) per quantity."""
     velocity = columns["velocity"]
     for k, (name, label, _) in enumerate(_PANELS):
         difference = np.abs(columns[f"{name}_difference"])
-        step = columns[f"{name}_step_error"]
-        short = label.split(" ")[-1] if name != "restitution" else "restitution"
-        panel.plot(velocity, difference, "o-", color=f"C{k}", ms=4, lw=1, label=f"|LAMMPS − impact|/impact: {short}")
-        panel.plot(velocity, step, "s--", mfc="none", color=f"C{k}", ms=4, lw=0.8, label=f"LAMMPS step error: {short}")
+        panel.plot(velocity, difference, "o-", color=f"C{k}", ms=4, lw=1, label=label.removeprefix("coefficient of "))
+        panel.plot(velocity, columns[f"{name}_step_error"], "s--", mfc="none", color=f"C{k}", ms=4, lw=0.8)
     panel.set_yscale("log")
-    panel.set_ylabel("relative difference, step error")
+    panel.set_ylabel("relative to impact's value")
+    panel.set_title("filled: |LAMMPS − impact|; open, dashed: LAMMPS's step error |X(dt) − X(dt/2)|", fontsize="small")
     panel.grid(alpha=0.3, which="both")
     panel.legend(fontsize="x-small", loc="best")
 
