@@ -56,7 +56,7 @@ def _draw_differences(panel, columns: Mapping[str, np.ndarray]) -> None:
         panel.plot(velocity, columns[f"{name}_step_error"], "s--", mfc="none", color=f"C{k}", ms=4, lw=0.8)
     panel.set_yscale("log")
     panel.set_ylabel("relative to impact's value")
-    panel.set_title("filled: |LAMMPS − impact|; open, dashed: LAMMPS's step error |X(dt) − X(dt/2)|", fontsize="small")
+    panel.set_title("filled: |LAMMPS − impact|; open: LAMMPS's step error |X(dt) − X(dt/2)|", fontsize="small")
     panel.grid(alpha=0.3, which="both")
     panel.legend(fontsize="x-small", loc="best")
 
