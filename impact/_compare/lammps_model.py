@@ -105,10 +105,10 @@ def lammps_model(scene: Scene, model: str | None = None, damping: str | None = N
         problems += problem
     if problems:
         raise CompareError(problems)
-    pair = scene.counterpart is not None
+    counterpart = scene.counterpart
+    pair = counterpart is not None
     body_radius = sphere_radius(scene)
-    counterpart_radius = scene.counterpart.radius if scene.counterpart is not None else None
-    counterpart_radius = math.inf if counterpart_radius is None else counterpart_radius
+    counterpart_radius = math.inf if counterpart is None or counterpart.radius is None else counterpart.radius
     materials, material_note = _materials(scene, name)
     gamma, adhesion_note = _surface_energy(scene, name)
     mapped, damping_note = _scene_damping(scene, name)
@@ -119,8 +119,8 @@ def lammps_model(scene: Scene, model: str | None = None, damping: str | None = N
             f"damping: {chosen.model} {chosen.coefficient:g} (--damping; the scene's: {replaced})",
         )
     yield_stress, yield_note = _yield_stress(scene, name, materials[0])
-    counterpart_mass = scene.counterpart.resolved_mass if scene.counterpart is not None else math.inf
-    counterpart_velocity = scene.counterpart.velocity if scene.counterpart is not None else 0.0
+    counterpart_mass = counterpart.resolved_mass if counterpart is not None else math.inf
+    counterpart_velocity = counterpart.velocity if counterpart is not None else 0.0
     partner = (
         f"against a sphere of radius {counterpart_radius:.6g} m and mass {counterpart_mass:.6g} kg moving at "
         f"{counterpart_velocity:.6g} m/s towards it (pair_style granular)"
