@@ -321,7 +321,6 @@ def bench_speed_command(
     run_bench_speed(quick, points or [], only or [], repeats, chunk, output, overwrite, markdown)
 
 
-
 # --- comparisons ----------------------------------------------------------------------------
 
 LammpsModelOption = Annotated[
