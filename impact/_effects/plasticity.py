@@ -27,6 +27,7 @@ class Plasticity(eqx.Module):
         depth δ_y = (πp_y/(2E*))²R."""
         yield_depth = (jnp.pi * self.yield_pressure / (2.0 * E_star)) ** 2 * radius
         return PlasticLaw(
+            scales=scales,
             stiffness=4.0 / 3.0 * E_star * jnp.sqrt(radius) * scales.normal**1.5 / scales.force,
             radius_unit=jnp.sqrt(radius * scales.normal) / scales.radial,
             yield_depth=yield_depth / scales.normal,

@@ -10,7 +10,7 @@ program comes from the compilation cache (`impact._run.programs`) never loads th
 """
 
 import abc
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, ClassVar, Generic, TypeVar
 
 import equinox as eqx
 import jax
@@ -18,7 +18,7 @@ import jax.numpy as jnp
 
 from .._law.scales import Scales
 from .carry import Outcome
-from .problem import Options, Physics
+from .problem import AbstractProblem, Options, Physics
 
 if TYPE_CHECKING:
     import diffrax as dfx
@@ -65,7 +65,10 @@ _STAGE_LOOP = "lax"
 _STATE_TILE = 4
 
 
-class AbstractIntegrator(eqx.Module):
+ProblemT = TypeVar("ProblemT", bound=AbstractProblem)
+
+
+class AbstractIntegrator(eqx.Module, Generic[ProblemT]):
     """Integrates one impact (possibly several bounces) from SI parameters to scaled results."""
 
     # Lanes a compiled batch of this integrator runs at most per CPU device (None: any number):
@@ -74,11 +77,11 @@ class AbstractIntegrator(eqx.Module):
     most_lanes: ClassVar[int | None] = None
 
     @abc.abstractmethod
-    def build(self, physics: Physics, options: Options):
-        """The scaled problem (it has `.scales`, the SI values of its units)."""
+    def build(self, physics: Physics, options: Options) -> ProblemT:
+        """The scaled problem."""
 
     @abc.abstractmethod
-    def integrate(self, problem, options: Options) -> Outcome:
+    def integrate(self, problem: ProblemT, options: Options) -> Outcome:
         """Run the problem to its outcome, in its scaled units."""
 
     def solve(self, physics: Physics, options: Options) -> tuple[Scales, Outcome]:
@@ -87,7 +90,7 @@ class AbstractIntegrator(eqx.Module):
         return problem.scales, self.integrate(problem, options)
 
 
-class AbstractAdaptiveIntegrator(AbstractIntegrator):
+class AbstractAdaptiveIntegrator(AbstractIntegrator[ProblemT]):
     """An adaptive diffrax solver over contact phases, each ended by a located event."""
 
     method: str = eqx.field(default="tsit5", static=True)  # a key of SOLVERS

@@ -44,11 +44,12 @@ from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
-from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .base import PHASE_ENDS, dense_states
+from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
+from .ride import AbstractRidingIntegrator, PhaseEnd, Ride, in_contact
 from .transitions import Next
 from .work import (
     ContactSummary,
@@ -62,8 +63,6 @@ from .work import (
     squared_speed,
 )
 
-# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
-_PHASE_HORIZON = 1.0e4
 # Radii (scaled) at which the edge slope is compared to tell a steep tip.
 _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # A damped phase that ends without an event (max_steps, or the horizon) at a speed below this
@@ -78,7 +77,7 @@ _TURNAROUND_NEWTON = 3
 _CONVERGED = 1e-9
 
 
-class Continuum(AbstractAdaptiveIntegrator):
+class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
     """The continuum MDR law (N → ∞ springs), phase by phase with an adaptive diffrax solver."""
 
     phase_ends: str = eqx.field(default="integrated", static=True)  # a key of PHASE_ENDS
@@ -90,13 +89,32 @@ class Continuum(AbstractAdaptiveIntegrator):
     def build(self, physics: Physics, options: Options) -> Problem:
         return build_problem(physics, options)
 
-    def integrate(self, problem: Problem, options: Options) -> Outcome:
-        return run_phases(
-            problem,
-            options,
-            lambda c: land_on_touch(problem, options, c),
-            lambda c: _contact(self, problem, options, c),
-        )
+    def flight(self, problem: Problem, options: Options):
+        return lambda c: land_on_touch(problem, options, c)
+
+    def phase(self, problem: Problem, options: Options, c: Carry) -> "PhaseArgs":
+        return _phase_args(problem, options, c)
+
+    def start(self, options: Options, args: "PhaseArgs", c: Carry) -> jax.Array:
+        damped = [jnp.zeros(())] if options.damped else []
+        return jnp.stack([jnp.where(args.riding, c.radius, c.d), c.v, c.t, *damped])
+
+    def vector_field(self, options: Options):
+        return _make_vector_field(options.damped)
+
+    def conditions(self, y, args: "PhaseArgs"):
+        return _conditions(y, args)
+
+    def dense(self, options: Options) -> bool:
+        return options.samples_per_phase > 0 or options.damped
+
+    def end(self, problem: Problem, options: Options, c: Carry, args: "PhaseArgs", ride: Ride) -> PhaseEnd:
+        return _end(self, problem, options, c, args, ride)
+
+    def amend(
+        self, problem: Problem, options: Options, c: Carry, args: "PhaseArgs", ride: Ride, end: PhaseEnd, booked: Carry
+    ) -> Carry:
+        return _amend(self, problem, options, c, args, ride, end, booked)
 
 
 class PhaseArgs(eqx.Module):
@@ -198,11 +216,6 @@ def _conditions(y, args: PhaseArgs):
     return jnp.stack(conditions)
 
 
-def _first_event(t, y, args: PhaseArgs, **kwargs):
-    """Crosses zero upwards when the first of the conditions does (one scalar to locate)."""
-    return jnp.max(_conditions(y, args))
-
-
 def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     """How the phase starting from the carry is integrated and where it ends."""
     law = problem.law
@@ -244,33 +257,23 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
     )
 
 
-def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry) -> Carry:
-    """One contact phase with diffrax, ended by its located event."""
+def _end(integrator: Continuum, problem: Problem, options: Options, c: Carry, args: PhaseArgs, ride: Ride) -> PhaseEnd:
+    """Where the ride ended on the law: from the located event or, with the energy's ends, from
+    the phase's energy balance; its samples, summary and the phase after it."""
     law = problem.law
-    in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
-    args = _phase_args(problem, options, c)
     riding, branch = args.riding, args.branch
-    off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
-    start = [jnp.where(riding, c.radius, c.d), c.v, c.t] + ([jnp.zeros(())] if options.damped else [])
-    solution = integrator.ride(
-        _make_vector_field(options.damped),
-        _first_event,
-        jnp.stack(start),
-        args,
-        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0 or options.damped,
-    )
-    event_found, y_end, turned, out_of_time = located_end(solution, _conditions, args)
-    x_end, v_end, t_end = y_end[0], y_end[1], y_end[2]
+    x_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+    turned = ride.turned
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     if integrator.phase_ends == "energy":
-        x_end, v_end, turned = _energy_end(problem, args, c, (x_end, v_end), event_found & ~out_of_time, turned)
+        x_end, v_end, turned = _energy_end(problem, args, c, (x_end, v_end), ride.found & ~ride.out_of_time, turned)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
+    rows = None
     if options.samples_per_phase:
-        states = dense_states(solution, options.samples_per_phase)
+        states = dense_states(ride.solution, options.samples_per_phase)
         x, v, t = states[:, 0], states[:, 1], states[:, 2]
         radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
         d = jnp.where(riding, branch.level(law, x), x)
@@ -279,24 +282,38 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
         # ends its depth and speed come from the balance, not from the dense output).
         end_force = law.force(a_end, d_end) + viscous_force(a_end, v_end, args)
         rows = rows.at[-1].set(jnp.stack([t_end, d_end, v_end, end_force, a_end]))
-        c = where(in_contact, store_samples(c, options, rows), c)
 
     summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    steps = ride_steps(solution)
+    if options.damped:
+        summary, nxt = _damped(problem, ride.solution, args, summary, nxt, ride.y_end, d_end)
+    return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=c.memory)
+
+
+def _amend(
+    integrator: Continuum,
+    problem: Problem,
+    options: Options,
+    c: Carry,
+    args: PhaseArgs,
+    ride: Ride,
+    end: PhaseEnd,
+    booked: Carry,
+) -> Carry:
+    """The statuses the law detects in a booked phase: a speed off its energy balance (located
+    ends), an overdamped creep, a ride that started off its edge function."""
+    active = in_contact(c)
     if not options.damped:
-        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         if integrator.phase_ends == "integrated":
-            off_balance = drifts((c.d, c.v), (d_end, v_end), summary.work, problem.gravity, problem.touch_speed)
-            drifted = in_contact & event_found & ~out_of_time & off_balance
-            closed = replace_where(closed, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
+            off_balance = drifts((c.d, c.v), (end.d, end.v), end.summary.work, problem.gravity, problem.touch_speed)
+            drifted = active & ride.found & ~ride.out_of_time & off_balance
+            booked = replace_where(booked, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
     else:
-        summary, nxt = _damped(problem, solution, args, summary, nxt, y_end, d_end)
-        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         # A phase that found no event while the body all but stopped: overdamped creep towards rest.
-        creeping = in_contact & ~event_found & (jnp.abs(v_end) <= _CREEP * args.speed_scale)
-        closed = replace_where(closed, creeping, status=RESULT_CODE["overdamped"])
-    return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
+        creeping = active & ~ride.found & (jnp.abs(end.v) <= _CREEP * args.speed_scale)
+        booked = replace_where(booked, creeping, status=RESULT_CODE["overdamped"])
+    off_branch = active & args.riding & args.branch.misses(problem.law, c.radius, c.d)
+    return replace_where(booked, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
 
 
 def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end):

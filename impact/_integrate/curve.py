@@ -24,28 +24,28 @@ which unloads onto the detach curve (`detach_start`); separation clears the memo
 from typing import ClassVar
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 
-from .._core.pytree import replace, where
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
 from .._law.curve import AbstractCurve, CurveLaw
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .base import dense_states
+from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
-from .problem import Options
+from .problem import AbstractProblem, Options
+from .ride import AbstractRidingIntegrator, PhaseEnd, Ride
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
 
-_PHASE_HORIZON = 1.0e4
 _QUADRATURE_NODES = 48
 # A landing further than this (relative) from the segment end is a jump, not a continuation.
 _SAME_STATE = 1e-12
 
 
-class CurveProblem(eqx.Module):
+class CurveProblem(AbstractProblem):
     """The scaled impact: law, its curve and the initial state (`Carry.radius` holds s)."""
 
     law: CurveLaw
@@ -66,18 +66,17 @@ class CurveProblem(eqx.Module):
         return self.curve.overflow
 
 
-class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
+class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
     """Impacts that ride an equilibrium curve, phase by phase with an adaptive diffrax solver;
     a subclass builds the law and its curve (`build` → `CurveProblem`)."""
 
     # XLA:CPU compiles a while loop into one kernel while the bytes it touches stay under a
-    # threshold (64 kB, `impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two
-    # round differently. A curve ride's step crosses it between 32 and 60 lanes (Maugis–Dugdale:
-    # restitutions up to 9e-7 apart, step counts up to 25), so its batches stay below on CPU
-    # devices: 16 lanes cost the same per impact as 512 (measured, 2 cores).
+    # threshold (`impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two round
+    # differently. A curve ride's step crosses it between 32 and 60 lanes, so its batches stay
+    # below it on CPU devices (16 lanes cost the same per impact as 512: `impact bench speed`).
     most_lanes: ClassVar[int | None] = 16
 
-    def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
+    def flight(self, problem: CurveProblem, options: Options):
         # The interaction starts at the onset; the state snaps to the first rising one there
         # (the same for every bounce: found once, outside the loop over phases). A curve too
         # coarse for the law ends the run there.
@@ -87,11 +86,57 @@ class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
         stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], unresolved)
         touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
         landing_force = problem.curve.force(problem.law, landing)
+        return lambda c: land(problem, options, c, reach, touch, landing_force, samples=True)
 
-        def flight(c: Carry) -> Carry:
-            return land(problem, options, c, reach, touch, landing_force, samples=True)
+    def phase(self, problem: CurveProblem, options: Options, c: Carry) -> "_Args":
+        law = problem.law
+        curve = problem.curve.at(law, c.memory)
+        advancing = c.mode == ADVANCE
+        return _Args(
+            law=law,
+            curve=curve,
+            gravity=problem.gravity,
+            velocity_sign=jnp.where(advancing, -1.0, 1.0),
+            end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
+            segment=c.segment,
+            end_sign=jnp.where(advancing, 1.0, -1.0),
+            time_limit=problem.time_limit,
+            speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+        )
 
-        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
+    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
+        return jnp.stack([c.radius, c.v, c.t])
+
+    def vector_field(self, options: Options):
+        return _vector_field
+
+    def conditions(self, y, args: "_Args"):
+        """Turnaround, segment end, time limit: each negative until its event, of relative size."""
+        return jnp.stack(
+            [
+                args.velocity_sign * y[1] / args.speed_scale,
+                args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
+                (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
+            ]
+        )
+
+    def end(self, problem: CurveProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
+        law, curve = problem.law, args.curve
+        s_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+        s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
+        d_end = curve.depth(law, s_end)
+        rows = None
+        if options.samples_per_phase:
+            states = dense_states(ride.solution, options.samples_per_phase)
+            s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
+            depth, force, radius, _ = curve.state(law, s)
+            rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
+        work = _work(law, curve, c.radius, s_end)
+        low, high = extremes(lambda s: curve.force(law, s), c.radius, s_end)
+        advancing = c.mode == ADVANCE
+        nxt, memory = _after(problem, curve, advancing, ride.turned, c.segment, s_end, d_end, c.memory)
+        summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
+        return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
 class _Args(eqx.Module):
@@ -111,21 +156,6 @@ def _vector_field(pseudo_time, y, args: _Args):
     _, force, slope = args.curve.riding(args.law, s, args.segment)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
     return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-
-
-def _conditions(y, args: _Args):
-    """Turnaround, segment end, time limit: each negative until its event, of relative size."""
-    return jnp.stack(
-        [
-            args.velocity_sign * y[1] / args.speed_scale,
-            args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
-
-
-def _first_event(t, y, args: _Args, **kwargs):
-    return jnp.max(_conditions(y, args))
 
 
 def _work(law: CurveLaw, curve: AbstractCurve, start, end):
@@ -188,49 +218,3 @@ def _after(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segme
         stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
     )
     return nxt, memory
-
-
-def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options: Options, c: Carry) -> Carry:
-    """One ride along a rising segment with diffrax, ended by its located event."""
-    law = problem.law
-    curve = problem.curve.at(law, c.memory)
-    riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
-    advancing = c.mode == ADVANCE
-    args = _Args(
-        law=law,
-        curve=curve,
-        gravity=problem.gravity,
-        velocity_sign=jnp.where(advancing, -1.0, 1.0),
-        end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
-        segment=c.segment,
-        end_sign=jnp.where(advancing, 1.0, -1.0),
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
-    )
-    s_start = c.radius
-    solution = integrator.ride(
-        _vector_field,
-        _first_event,
-        jnp.stack([s_start, c.v, c.t]),
-        args,
-        horizon=jnp.where(riding, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
-    )
-    found, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
-    d_end = curve.depth(law, s_end)
-
-    if options.samples_per_phase:
-        states = dense_states(solution, options.samples_per_phase)
-        s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
-        depth, force, radius, _ = curve.state(law, s)
-        rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
-        c = where(riding, store_samples(c, options, rows), c)
-
-    work = _work(law, curve, s_start, s_end)
-    low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
-    nxt, memory = _after(problem, curve, advancing, turned, c.segment, s_end, d_end, c.memory)
-    summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    steps = ride_steps(solution)
-    closed = close_phase(c, riding, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
-    return replace(closed, memory=jnp.where(riding, memory, c.memory)) if curve.remembers else closed

@@ -1,6 +1,7 @@
 """What an integrator is given: the SI parameters of an impact (`Physics`, traced), the static
 choices of the run (`Options`), and the scaled problem built from them (`Problem`)."""
 
+import abc
 from dataclasses import dataclass, field
 
 import equinox as eqx
@@ -77,7 +78,28 @@ def scaled_time_limit(physics: Physics, scales: Scales) -> jax.Array:
     return jnp.where(jnp.isfinite(limit), limit / scales.time, jnp.inf)
 
 
-class Problem(eqx.Module):
+class AbstractProblem(eqx.Module):
+    """The scaled impact an integrator runs: its units, where the motion starts and what bounds it."""
+
+    gravity: eqx.AbstractVar[Parameter]  # scaled acceleration towards the surface
+    start_indentation: eqx.AbstractVar[Parameter]  # where the body starts (scaled)
+    start_velocity: eqx.AbstractVar[Parameter]
+    touch_speed: eqx.AbstractVar[Parameter]  # scaled speed at the first touch
+    bounded: eqx.AbstractVar[Parameter]  # loading stores the impact energy at a finite contact radius
+    time_limit: eqx.AbstractVar[Parameter]  # scaled
+
+    @property
+    @abc.abstractmethod
+    def scales(self) -> Scales:
+        """The SI values of the units."""
+
+    @property
+    @abc.abstractmethod
+    def overflow(self) -> jax.Array:
+        """The law's tables cannot hold the impact: nothing can be trusted."""
+
+
+class Problem(AbstractProblem):
     """The scaled impact of the continuum (and spring-array) law: the law, its two branches and
     the initial state."""
 
