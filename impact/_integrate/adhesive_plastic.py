@@ -24,6 +24,7 @@ from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
 from .._law.scales import Scales
+from .._law.thornton import ThorntonNing
 from .base import dense_states
 from .carry import Carry, Outcome
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
@@ -64,10 +65,9 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
 
     def build(self, physics: Physics, options: Options) -> AdhesivePlasticProblem:
         """The elastic adhesive problem, and the plastic law in its units."""
+        assert isinstance(physics.law, ThorntonNing), f"Thornton & Ning's law, not {type(physics.law).__name__}"
         elastic = build_problem(physics, options)
-        law = physics.plasticity.adhesive_law(
-            physics.profile.radius_scale(), physics.E_star, physics.adhesion.work_of_adhesion, elastic.scales
-        )
+        law = physics.law.adhesive_law(physics.profile.radius_scale(), physics.E_star, elastic.scales)
         return AdhesivePlasticProblem(
             elastic=elastic,
             law=law,

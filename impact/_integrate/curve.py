@@ -12,8 +12,9 @@ At the end of a rising segment (a turning point of d, or the junction where a zo
 closes into a contact) the state moves at fixed d to the next rising segment at that level:
 a snap-in or snap-out, or the release of the body when none is left. An outward turnaround on
 the curve is a capture (the argument of `transitions.capture` holds: only the jumps dissipate).
-The integrators of Maugis–Dugdale (`dugdale`) and Greenwood–Johnson (`double_hertz`) build their
-law and curve and share everything else here.
+Every curve law (`_law.base.AbstractCurveLaw`: Maugis–Dugdale, Greenwood–Johnson) is built
+and ridden here; `CurveIntegrator` rides the continuum law's curve, `dugdale.DugdaleSpringIntegrator`
+the curve of a Maugis–Dugdale spring array.
 
 A curve that remembers (Maugis–Dugdale with approach hysteresis, `_law.dugdale_hysteresis`) is
 one path of a family, chosen by the carry's memory (the frozen zone's radius; 0 apart, where the
@@ -21,6 +22,8 @@ path is the approach curve): loading turns back onto the frozen zone of its path
 which unloads onto the detach curve (`detach_start`); separation clears the memory.
 """
 
+import abc
+import functools
 from typing import ClassVar
 
 import equinox as eqx
@@ -29,13 +32,14 @@ import jax.numpy as jnp
 
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
-from .._law.curve import AbstractCurve, CurveLaw
+from .._law.base import AbstractCurveLaw
+from .._law.curve import AbstractCurve, CurveLaw, Reach, top_of_reach
 from .._law.scales import Scales
 from .base import dense_states
 from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
-from .problem import AbstractProblem, Options
+from .problem import AbstractProblem, Options, Physics, scaled_time_limit, touch_velocity
 from .ride import AbstractRidingIntegrator, PhaseEnd, Ride
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
@@ -67,14 +71,41 @@ class CurveProblem(AbstractProblem):
 
 
 class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
-    """Impacts that ride an equilibrium curve, phase by phase with an adaptive diffrax solver;
-    a subclass builds the law and its curve (`build` → `CurveProblem`)."""
+    """Impacts that ride the equilibrium curve of a curve law, phase by phase with an adaptive
+    diffrax solver; a subclass states which curve (`scaled_curve`)."""
 
     # XLA:CPU compiles a while loop into one kernel while the bytes it touches stay under a
     # threshold (`impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two round
     # differently. A curve ride's step crosses it between 32 and 60 lanes, so its batches stay
     # below it on CPU devices (16 lanes cost the same per impact as 512: `impact bench speed`).
     most_lanes: ClassVar[int | None] = 16
+
+    @abc.abstractmethod
+    def scaled_curve(
+        self, law: AbstractCurveLaw, physics: Physics, options: Options, scales: Scales, reach: Reach
+    ) -> tuple[CurveLaw, AbstractCurve]:
+        """The law in the units of `scales` and the curve it rides, up to `reach`."""
+
+    def build(self, physics: Physics, options: Options) -> CurveProblem:
+        """Scale (JKR units, or the impact energy's where it reaches further) and tabulate."""
+        law = physics.law
+        assert isinstance(law, AbstractCurveLaw), f"a curve is ridden on a curve law, not {type(law).__name__}"
+        speed = touch_velocity(physics, options)
+        scales = law.scales(physics.profile, physics.E_star, physics.mass, speed)
+        touch_speed = speed / scales.velocity
+        scaled, curve = self.scaled_curve(
+            law, physics, options, scales, functools.partial(top_of_reach, speed=touch_speed)
+        )
+        return CurveProblem(
+            law=scaled,
+            curve=curve,
+            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+            start_indentation=law.start_indentation(scaled, physics.gap, scales),
+            start_velocity=physics.velocity / scales.velocity,
+            touch_speed=touch_speed,
+            bounded=jnp.asarray(True),
+            time_limit=scaled_time_limit(physics, scales),
+        )
 
     def flight(self, problem: CurveProblem, options: Options):
         # The interaction starts at the onset; the state snaps to the first rising one there
@@ -137,6 +168,19 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         nxt, memory = _after(problem, curve, advancing, ride.turned, c.segment, s_end, d_end, c.memory)
         summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
+
+
+class CurveIntegrator(AbstractCurveIntegrator):
+    """The continuum law's equilibrium curve (Maugis–Dugdale, Greenwood–Johnson); with
+    `hysteresis` (static) the path of a law with approach hysteresis (Δγa < Δγ)."""
+
+    hysteresis: bool = eqx.field(default=False, static=True)
+
+    def scaled_curve(
+        self, law: AbstractCurveLaw, physics: Physics, options: Options, scales: Scales, reach: Reach
+    ) -> tuple[CurveLaw, AbstractCurve]:
+        scaled = law.scaled(physics.profile, physics.E_star, scales, self.hysteresis)
+        return scaled, law.curve(scaled, reach, options.tabulation.max_turns)
 
 
 class _Args(eqx.Module):

@@ -20,8 +20,10 @@ import jax.numpy as jnp
 
 from .._core.pytree import where
 from .._core.types import Parameter
+from .._law.base import AbstractPlasticLaw
 from .._law.plastic import PlasticLaw, PlasticState
 from .._law.scales import Scales
+from .._law.thornton import plastic_law, plastic_scales
 from .base import dense_states
 from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
@@ -57,12 +59,13 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
 
     def build(self, physics: Physics, options: Options) -> PlasticProblem:
         """Scale with the deepest indentation and the touch speed, and state Thornton's law."""
+        law = physics.law
+        assert isinstance(law, AbstractPlasticLaw), f"Thornton's law needs a yield pressure, not {type(law).__name__}"
         speed = touch_velocity(physics, options)
         radius = physics.profile.radius_scale()  # R: the scene takes paraboloids only
-        plasticity = physics.plasticity
-        scales = plasticity.scales(radius, physics.E_star, physics.mass, speed)
+        scales = plastic_scales(law, radius, physics.E_star, physics.mass, speed)
         return PlasticProblem(
-            law=plasticity.law(radius, physics.E_star, scales),
+            law=plastic_law(law, radius, physics.E_star, scales),
             gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
             start_indentation=-physics.gap / scales.normal,
             start_velocity=physics.velocity / scales.velocity,

@@ -9,14 +9,13 @@ import jax
 import jax.numpy as jnp
 
 from .._core.types import Parameter
-from .._effects.adhesion import Adhesion
 from .._effects.damping import Damping
 from .._effects.gravity import Gravity
-from .._effects.plasticity import Plasticity
+from .._law.base import AbstractContactLaw, AbstractEdgeLaw
 from .._law.branches import Branch, Tabulation, build_branch
 from .._law.law import ContactLaw
 from .._law.reach import radius_bound
-from .._law.scales import Scales, adhesive_scales, energy_scales
+from .._law.scales import Scales, energy_scales
 from ..profiles import Profile
 
 # The branch tables reach this many times the bound on the largest contact radius.
@@ -55,9 +54,8 @@ class Physics(eqx.Module):
     mass: Parameter  # kg
     velocity: Parameter  # approach speed at the start (m/s)
     gap: Parameter  # initial separation (m)
-    adhesion: Adhesion  # unused unless `Options.adhesive`
+    law: AbstractContactLaw  # the contact law the scene names, with its parameters
     gravity: Gravity  # unused unless `Options.gravity`
-    plasticity: Plasticity  # unused unless the scene names plasticity (the `Plastic` integrator)
     damping: Damping  # unused unless `Options.damped`
     time_limit: Parameter  # s
     spring_length: Parameter  # radius covered by a spring array (m); nan: the default
@@ -131,39 +129,39 @@ class Problem(AbstractProblem):
 
 def build_problem(physics: Physics, options: Options) -> Problem:
     """Scale the physics, tabulate the branches and state the initial condition."""
-    profile = physics.profile
+    profile, law = physics.profile, physics.law
+    assert isinstance(law, AbstractEdgeLaw), f"the continuum MDR rides an edge law, not {type(law).__name__}"
     speed = touch_velocity(physics, options)
     if options.adhesive:
-        adhesion = physics.adhesion
-        scales = adhesive_scales(profile, physics.E_star, adhesion.approach_work_of_adhesion, physics.mass, speed)
-        detach_coefficient, attach_coefficient = adhesion.hess_coefficients(scales, physics.E_star)
+        scales = law.scales(profile, physics.E_star, physics.mass, speed)
+        detach_coefficient, attach_coefficient = law.hess_coefficients(scales, physics.E_star)
     else:
         scales = energy_scales(profile, physics.E_star, physics.mass, speed)
         detach_coefficient = attach_coefficient = jnp.zeros(())
-    law = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
+    contact = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
 
     gravity = physics.gravity.scaled(scales) if options.gravity else jnp.zeros(())
     per_radius, constant = physics.damping.scaled(scales) if options.damped else (jnp.zeros(()), jnp.zeros(()))
     touch_speed = speed / scales.velocity
-    reach, bounded = radius_bound(law, attach_coefficient, touch_speed)
-    top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
+    reach, bounded = radius_bound(contact, attach_coefficient, touch_speed)
+    top = jnp.minimum(contact.extent(), _TOP_MARGIN * reach)
     table = _TABLE_SIZE if options.timed_loading else 0
 
     def branch(coefficient):
-        return build_branch(law, coefficient, top, options.tabulation, table)
+        return build_branch(contact, coefficient, top, options.tabulation, table)
 
     both = jax.vmap(branch)(jnp.stack([attach_coefficient, detach_coefficient]))
     attach = jax.tree.map(lambda leaf: leaf[0], both)
     detach = jax.tree.map(lambda leaf: leaf[1], both)
     return Problem(
-        law=law,
+        law=contact,
         attach=attach,
         detach=detach,
         gravity=gravity,
         start_indentation=-physics.gap / scales.normal,
         start_velocity=physics.velocity / scales.velocity,
         touch_speed=touch_speed,
-        bounded=bounded | jnp.isfinite(law.extent()),
+        bounded=bounded | jnp.isfinite(contact.extent()),
         time_limit=scaled_time_limit(physics, scales),
         damping_per_radius=per_radius,
         damping_constant=constant,
