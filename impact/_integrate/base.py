@@ -6,7 +6,7 @@ Its string and integer settings are static; its float settings are static too wh
 Python floats (a new value recompiles) and traced when given as arrays (a benchmark sweeps them).
 
 diffrax and optimistix are imported where a ride is traced, not with this module: a run whose
-program comes from the compilation cache (`impact._run.programs`) never loads them (~0.5 s).
+program comes from the compilation cache (`impact._run.programs`) never loads them.
 """
 
 import abc
@@ -49,10 +49,8 @@ _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 # A Runge–Kutta step loops over its stages in a plain `lax.while_loop` (diffrax's default is a
 # checkpointed loop, there for reverse-mode derivatives). Reverse mode never runs through a ride
 # (the phase loop around it is a `lax.while_loop`; `impact.as_function` differentiates in
-# forward mode), and XLA compiles both to the same program (the same optimized HLO, measured
-# 2026-11-26 for a scene and for a batch), but the checkpointed loop takes longer to trace:
-# Thornton–Ning's impact traced in 1.6–1.7 s instead of 2.65–2.7 s (two runs each),
-# Maugis–Dugdale's in 2.5 s instead of 3.4 s.
+# forward mode), and XLA compiles both to the same optimized program, but the checkpointed loop
+# takes much longer to trace.
 _STAGE_LOOP = "lax"
 
 # A ride's state is padded with zeros to a multiple of this many components, so that a point's

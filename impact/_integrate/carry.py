@@ -196,8 +196,8 @@ def run_phases(
     Each turn of the loop runs a flight or a contact phase; with `landed_contact`, a flight and
     then at once the contact phase it lands in, so that a bounce takes one turn fewer. Under
     `jax.vmap` every turn computes both for every lane: the quadrature's phases, of fixed cost,
-    ran a Thornton–Ning point in 7.1 instead of 8.6 µs; a diffrax ride's was within the noise
-    (11.6 against 12.3 µs, 2026-11-27), and the ODE integrators keep one phase a turn."""
+    gain the turn saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep
+    one phase a turn."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)

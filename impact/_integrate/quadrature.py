@@ -14,9 +14,9 @@ the near-singular speed of a phase that only just reaches its end (an impact jus
 sticking velocity, a late bounce's slow touch).
 
 The restitution and the deepest indentation are exact to round-off, as with the energy's ends;
-the contact times agree with dopri8 at rtol 1e-13 to ≤ 7.4e-9 (10⁴ Thornton–Ning velocities,
-2026-11-27), the rule's error where a phase only just reaches its end. No step is taken: a phase
-costs about a hundred evaluations of the closed forms at any velocity.
+the contact times carry the rule's error, largest where a phase only just reaches its end
+(docs/src/accuracy.md, "Phases timed by quadrature"). No step is taken: a phase costs about a
+hundred evaluations of the closed forms at any velocity.
 """
 
 from collections.abc import Callable

@@ -37,7 +37,7 @@ from .problem import Options, Problem
 from .springs import AbstractSpringArrayIntegrator, SpringArrayProblem, touch_down
 from .work import ContactSummary
 
-# Steps allowed in all (a guard against a runaway; about 20 s of stepping).
+# Steps allowed in all: a guard against a runaway, far above any scene's steps.
 _MAX_STEPS = 1_000_000_000
 
 

@@ -28,8 +28,7 @@ if TYPE_CHECKING:
 # tip (the zone's radius must grow from 0 where the tip comes within range).
 DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
 # The least Δγa/Δγ of approach hysteresis: its approach range ha = Δγa/σ0 must be resolved by
-# the approach curve (Δγa/Δγ = 1e-13 at Λ = 100 and 1e-14 at Λ = 0.1…10 are not; e at 1e-9 is
-# within 2e-5 of its value at 1e-12).
+# the approach curve (docs/src/finite-range.md, "Approach hysteresis", Limits).
 DUGDALE_LEAST_APPROACH = 1e-9
 
 
