@@ -16,12 +16,10 @@ a turnaround (a capture: below the largest radius the branches conserve energy).
 carried to the next contact, which starts with the jump-in at its depth.
 """
 
-import equinox as eqx
 import jax
 import jax.numpy as jnp
 
 from .._core.pytree import replace, where
-from .._core.types import Parameter
 from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
 from .._law.scales import Scales
 from .._law.thornton import ThorntonNing
@@ -30,8 +28,8 @@ from .carry import Carry, Outcome
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .continuum import Continuum
 from .flight import land
-from .problem import AbstractProblem, Options, Physics, Problem, build_problem
-from .ride import AbstractRidingIntegrator, PhaseEnd, Ride
+from .problem import AbstractProblem, Motion, Options, Physics, Problem, build_problem
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary
 
@@ -44,11 +42,7 @@ class AdhesivePlasticProblem(AbstractProblem):
 
     elastic: Problem
     law: AdhesivePlasticLaw
-    gravity: Parameter
-    start_indentation: Parameter
-    start_velocity: Parameter
-    touch_speed: Parameter
-    time_limit: Parameter
+    motion: Motion
     bounded: jax.Array
 
     @property
@@ -71,11 +65,7 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
         return AdhesivePlasticProblem(
             elastic=elastic,
             law=law,
-            gravity=elastic.gravity,
-            start_indentation=elastic.start_indentation,
-            start_velocity=elastic.start_velocity,
-            touch_speed=elastic.touch_speed,
-            time_limit=elastic.time_limit,
+            motion=elastic.motion,
             bounded=jnp.asarray(True),
         )
 
@@ -118,9 +108,8 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
             flowing=flowing,
             advancing=advancing,
             end=jnp.where(advancing, jnp.where(flowing, jnp.nan, state.onset), law.snap_off(state)),
-            gravity=problem.gravity,
-            time_limit=problem.time_limit,
-            speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+            motion=problem.motion,
+            speed_scale=speed_scale(problem, c),
         )
 
     def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
@@ -130,18 +119,12 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
         return _vector_field
 
     def conditions(self, y, args: "_Args"):
-        """Turnaround, the end of the branch (the onset of flow outward, the snap-off inward), time
-        limit: each negative until its event."""
+        """Turnaround and the end of the branch (the onset of flow outward, the snap-off inward):
+        each negative until its event."""
         radius, v = y[0], y[1]
         sign = jnp.where(args.advancing, 1.0, -1.0)
         end = jnp.where(jnp.isnan(args.end), -1.0, sign * (radius - args.end) / (1.0 + args.end))
-        return jnp.stack(
-            [
-                -sign * v / args.speed_scale,
-                end,
-                (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-            ]
-        )
+        return [-sign * v / args.speed_scale, end]
 
     def end(self, problem: AdhesivePlasticProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
         law, state, flowing, advancing = problem.law, args.state, args.flowing, args.advancing
@@ -166,15 +149,14 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
-class _Args(eqx.Module):
+class _Args(AbstractPhaseArgs):
     law: AdhesivePlasticLaw
     state: DentState
     flowing: jax.Array
     advancing: jax.Array
     end: jax.Array  # the radius ending the branch: the onset of flow, the snap-off; nan: none
-    gravity: Parameter
-    time_limit: Parameter
-    speed_scale: Parameter
+    motion: Motion
+    speed_scale: jax.Array
 
 
 def _vector_field(s, y, args: _Args):
@@ -182,7 +164,7 @@ def _vector_field(s, y, args: _Args):
     slope = args.law.slope(radius, args.state, args.flowing)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
     force = args.law.force(radius, args.state, args.flowing)
-    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
 
 
 def _after(advancing, turned) -> Next:

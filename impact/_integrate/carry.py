@@ -79,15 +79,14 @@ class Carry(eqx.Module):
 
 def initial_carry(problem, options: Options, memory: Any = None) -> Carry:
     """The carry before the first flight (or already done: a branch overflow, an unbounded
-    contact). `problem` has `start_indentation`, `start_velocity`, `overflow` and `bounded`;
-    `memory` is the contact law's initial memory (None: a law without one)."""
+    contact); `memory` is the contact law's initial memory (None: a law without one)."""
     events = EVENTS_PER_PHASE * options.max_phases
     rows = options.samples_per_phase * options.max_phases
     zero, inf = jnp.zeros(()), jnp.asarray(jnp.inf)
     return Carry(
         t=zero,
-        d=jnp.asarray(problem.start_indentation, jnp.float64),
-        v=jnp.asarray(problem.start_velocity, jnp.float64),
+        d=jnp.asarray(problem.motion.start_indentation, jnp.float64),
+        v=jnp.asarray(problem.motion.start_velocity, jnp.float64),
         mode=jnp.where(problem.overflow | ~problem.bounded, DONE, FLIGHT),
         segment=jnp.zeros((), int),
         radius=zero,

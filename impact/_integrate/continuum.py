@@ -48,8 +48,8 @@ from .base import PHASE_ENDS, dense_states
 from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
 from .flight import land_on_touch
-from .problem import Options, Physics, Problem, build_problem
-from .ride import AbstractRidingIntegrator, PhaseEnd, Ride, in_contact
+from .problem import Motion, Options, Physics, Problem, build_problem
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, in_contact, speed_scale
 from .transitions import Next
 from .work import (
     ContactSummary,
@@ -117,7 +117,7 @@ class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
         return _amend(self, problem, options, c, args, ride, end, booked)
 
 
-class PhaseArgs(eqx.Module):
+class PhaseArgs(AbstractPhaseArgs):
     """What the vector field and the event conditions of one phase need."""
 
     law: ContactLaw
@@ -126,11 +126,10 @@ class PhaseArgs(eqx.Module):
     mode: jax.Array
     segment: jax.Array
     radius: jax.Array  # held radius (HOLD)
-    gravity: Parameter
+    motion: Motion
     velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
     level_sign: jax.Array  # branch end: sign·(distance to the end) crosses zero upwards
     level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
-    time_limit: Parameter
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
     damping: tuple[Parameter, Parameter]  # (η_a, η_0) of the viscous force (η_a·a + η_0)·v
     releases: jax.Array  # the contact ends where the total force returns to zero (damped, no adhesion)
@@ -164,15 +163,15 @@ def _make_vector_field(damped: bool):
         held_radius = timed_radius(x, args)
         held = law.force(held_radius, x)
         if not damped:
-            riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-            timed = jnp.stack([v, args.gravity - held, jnp.ones_like(v)])
+            riding = jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
+            timed = jnp.stack([v, args.motion.gravity - held, jnp.ones_like(v)])
             return jnp.where(args.riding, riding, timed)
         viscous = viscous_force(radius, v, args)
         held_viscous = viscous_force(held_radius, v, args)
         riding = jnp.stack(
-            [v * pace, (args.gravity - force - viscous) * slope * pace, slope * pace, viscous * v * slope * pace]
+            [v * pace, (args.motion.gravity - force - viscous) * slope * pace, slope * pace, viscous * v * slope * pace]
         )
-        timed = jnp.stack([v, args.gravity - held - held_viscous, jnp.ones_like(v), held_viscous * v])
+        timed = jnp.stack([v, args.motion.gravity - held - held_viscous, jnp.ones_like(v), held_viscous * v])
         return jnp.where(args.riding, riding, timed)
 
     return vector_field
@@ -203,17 +202,13 @@ def _distance_to_end(y, args: PhaseArgs):
     return args.level_sign * distance / (1.0 + jnp.abs(args.level))
 
 
-def _conditions(y, args: PhaseArgs):
-    """The phase's event conditions, each negative until its event and of relative size:
-    turnaround (sign·v), phase end, time limit (t − t_max) and, damped, the release (−F)."""
-    conditions = [
-        args.velocity_sign * y[1] / args.speed_scale,
-        _distance_to_end(y, args),
-        (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-    ]
+def _conditions(y, args: PhaseArgs) -> list[jax.Array]:
+    """The law's event conditions of a phase, each negative until its event and of relative
+    size: turnaround (sign·v), phase end and, damped, the release (−F)."""
+    conditions = [args.velocity_sign * y[1] / args.speed_scale, _distance_to_end(y, args)]
     if y.shape[0] > 3:
         conditions.append(jnp.where(args.releases, -total_force(y, args), -1.0))
-    return jnp.stack(conditions)
+    return conditions
 
 
 def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
@@ -245,12 +240,11 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
         mode=c.mode,
         segment=c.segment,
         radius=c.radius,
-        gravity=problem.gravity,
+        motion=problem.motion,
         velocity_sign=jnp.where(c.mode == ADVANCE, -1.0, 1.0),
         level_sign=jnp.where(c.mode == ADVANCE, 1.0, -1.0),
         level=level,
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+        speed_scale=speed_scale(problem, c),
         damping=(problem.damping_per_radius, problem.damping_constant),
         releases=(c.mode != ADVANCE) & ~law.adhesive,
         timed_loading=options.timed_loading,
@@ -283,10 +277,13 @@ def _end(integrator: Continuum, problem: Problem, options: Options, c: Carry, ar
         end_force = law.force(a_end, d_end) + viscous_force(a_end, v_end, args)
         rows = rows.at[-1].set(jnp.stack([t_end, d_end, v_end, end_force, a_end]))
 
-    summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
+    summary = phase_summary(
+        law, branch, c.mode != HOLD, (c.radius, a_end), problem.motion.gravity, (c.d, c.v), (d_end, v_end)
+    )
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
     if options.damped:
-        summary, nxt = _damped(problem, ride.solution, args, summary, nxt, ride.y_end, d_end)
+        released = jnp.argmax(integrator.all_conditions(ride.y_end, args)) == 3
+        summary, nxt = _damped(problem, ride.solution, args, summary, nxt, ride.y_end, d_end, released)
     return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=c.memory)
 
 
@@ -305,7 +302,9 @@ def _amend(
     active = in_contact(c)
     if not options.damped:
         if integrator.phase_ends == "integrated":
-            off_balance = drifts((c.d, c.v), (end.d, end.v), end.summary.work, problem.gravity, problem.touch_speed)
+            off_balance = drifts(
+                (c.d, c.v), (end.d, end.v), end.summary.work, problem.motion.gravity, problem.motion.touch_speed
+            )
             drifted = active & ride.found & ~ride.out_of_time & off_balance
             booked = replace_where(booked, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
     else:
@@ -316,14 +315,14 @@ def _amend(
     return replace_where(booked, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
 
 
-def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end):
+def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end, released):
     """What damping changes at a phase's end: its viscous work, the range of the total force
-    (scanned along the dense solution) and, where the total force returned to zero, the release.
+    (scanned along the dense solution) and, where the total force returned to zero (`released`:
+    the release event fired), the release.
 
     Under gravity a body released at depth d with v² < 2g·d turns before it clears the
     undeformed surface: it cannot leave, and is counted as captured.
     """
-    released = jnp.argmax(_conditions(y_end, args)) == 3
     lowest, highest = extremes(
         jnp.vectorize(lambda s: total_force(solution.evaluate(s), args)), jnp.zeros(()), solution.ts[-1]
     )
@@ -333,7 +332,7 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
         lowest_force=jnp.minimum(lowest, summary.lowest_force),
         highest_force=jnp.maximum(highest, summary.highest_force),
     )
-    leaves = y_end[1] ** 2 >= 2.0 * problem.gravity * d_end
+    leaves = y_end[1] ** 2 >= 2.0 * problem.motion.gravity * d_end
     release = where(
         leaves, transitions.next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True), transitions.capture()
     )
@@ -358,7 +357,7 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
     capture, left as located.
     """
     x_located, v_located = located
-    law, branch, gravity = problem.law, args.branch, problem.gravity
+    law, branch, gravity = problem.law, args.branch, problem.motion.gravity
 
     def ridden_squared_speed(radius):
         ridden = branch_work(law, branch, c.radius, radius)

@@ -39,8 +39,8 @@ from .base import dense_states
 from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
 from .flight import land
-from .problem import AbstractProblem, Options, Physics, scaled_time_limit, touch_velocity
-from .ride import AbstractRidingIntegrator, PhaseEnd, Ride
+from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
 
@@ -54,12 +54,8 @@ class CurveProblem(AbstractProblem):
 
     law: CurveLaw
     curve: AbstractCurve
-    gravity: Parameter
-    start_indentation: Parameter  # the onset less the gap (scaled)
-    start_velocity: Parameter
-    touch_speed: Parameter  # speed when the interaction starts
+    motion: Motion  # it starts at the onset less the gap; its touch speed is where the interaction starts
     bounded: Parameter
-    time_limit: Parameter
 
     @property
     def scales(self) -> Scales:
@@ -99,12 +95,8 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         return CurveProblem(
             law=scaled,
             curve=curve,
-            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
-            start_indentation=law.start_indentation(scaled, physics.gap, scales),
-            start_velocity=physics.velocity / scales.velocity,
-            touch_speed=touch_speed,
+            motion=motion_of(physics, options, scales, law.start_indentation(scaled, physics.gap, scales), touch_speed),
             bounded=jnp.asarray(True),
-            time_limit=scaled_time_limit(physics, scales),
         )
 
     def flight(self, problem: CurveProblem, options: Options):
@@ -126,13 +118,12 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         return _Args(
             law=law,
             curve=curve,
-            gravity=problem.gravity,
+            motion=problem.motion,
             velocity_sign=jnp.where(advancing, -1.0, 1.0),
             end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
             segment=c.segment,
             end_sign=jnp.where(advancing, 1.0, -1.0),
-            time_limit=problem.time_limit,
-            speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+            speed_scale=speed_scale(problem, c),
         )
 
     def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
@@ -142,14 +133,11 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         return _vector_field
 
     def conditions(self, y, args: "_Args"):
-        """Turnaround, segment end, time limit: each negative until its event, of relative size."""
-        return jnp.stack(
-            [
-                args.velocity_sign * y[1] / args.speed_scale,
-                args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
-                (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-            ]
-        )
+        """Turnaround and segment end, each negative until its event, of relative size."""
+        return [
+            args.velocity_sign * y[1] / args.speed_scale,
+            args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
+        ]
 
     def end(self, problem: CurveProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
         law, curve = problem.law, args.curve
@@ -183,23 +171,22 @@ class CurveIntegrator(AbstractCurveIntegrator):
         return scaled, law.curve(scaled, reach, options.tabulation.max_turns)
 
 
-class _Args(eqx.Module):
+class _Args(AbstractPhaseArgs):
     law: CurveLaw
     curve: AbstractCurve
-    gravity: Parameter
+    motion: Motion
     velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
     end: Parameter  # the segment end in s the phase runs to
     segment: Parameter  # the segment ridden
     end_sign: Parameter
-    time_limit: Parameter
-    speed_scale: Parameter
+    speed_scale: jax.Array
 
 
 def _vector_field(pseudo_time, y, args: _Args):
     s, v = y[0], y[1]
     _, force, slope = args.curve.riding(args.law, s, args.segment)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
-    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
 
 
 def _work(law: CurveLaw, curve: AbstractCurve, start, end):

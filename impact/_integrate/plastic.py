@@ -14,7 +14,6 @@ separation, x = 0, or — under gravity — at a turnaround, where the body can 
 next contact, which starts at the dent d_p.
 """
 
-import equinox as eqx
 import jax
 import jax.numpy as jnp
 
@@ -28,8 +27,8 @@ from .base import dense_states
 from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
 from .flight import land
-from .problem import AbstractProblem, Options, Physics, touch_velocity
-from .ride import AbstractRidingIntegrator, PhaseEnd, Ride
+from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary
 
@@ -38,12 +37,8 @@ class PlasticProblem(AbstractProblem):
     """The scaled impact: Thornton's law and the initial state."""
 
     law: PlasticLaw
-    gravity: Parameter
-    start_indentation: Parameter
-    start_velocity: Parameter
-    touch_speed: Parameter
+    motion: Motion
     bounded: Parameter
-    time_limit: Parameter
 
     @property
     def scales(self) -> Scales:
@@ -66,12 +61,8 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
         scales = plastic_scales(law, radius, physics.E_star, physics.mass, speed)
         return PlasticProblem(
             law=plastic_law(law, radius, physics.E_star, scales),
-            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
-            start_indentation=-physics.gap / scales.normal,
-            start_velocity=physics.velocity / scales.velocity,
-            touch_speed=speed / scales.velocity,
+            motion=motion_of(physics, options, scales, -physics.gap / scales.normal, speed / scales.velocity),
             bounded=jnp.asarray(True),
-            time_limit=physics.time_limit / scales.time,
         )
 
     def memory(self, problem: PlasticProblem) -> PlasticState:
@@ -91,12 +82,11 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
         return _Args(
             law=law,
             state=state,
-            gravity=problem.gravity,
+            motion=problem.motion,
             advancing=c.mode == ADVANCE,
             onset=onset,
             flows=jnp.where(c.d < onset, x_onset, jnp.nan),
-            time_limit=problem.time_limit,
-            speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+            speed_scale=speed_scale(problem, c),
         )
 
     def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
@@ -106,18 +96,11 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
         return _vector_field
 
     def conditions(self, y, args: "_Args"):
-        """Turnaround, the end of the branch (loading: the onset of flow, where the force's second
-        derivative jumps; unloading: separation at x = 0), time limit: each negative until its event."""
+        """Turnaround and the end of the branch (loading: the onset of flow, where the force's
+        second derivative jumps; unloading: separation at x = 0): each negative until its event."""
         x, v = y[0], y[1]
         onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
-        branch_end = jnp.where(args.advancing, onset, -x)
-        return jnp.stack(
-            [
-                jnp.where(args.advancing, -v, v) / args.speed_scale,
-                branch_end,
-                (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-            ]
-        )
+        return [jnp.where(args.advancing, -v, v) / args.speed_scale, jnp.where(args.advancing, onset, -x)]
 
     def end(self, problem: PlasticProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
         law, state, advancing = problem.law, args.state, args.advancing
@@ -143,15 +126,14 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
         )
 
 
-class _Args(eqx.Module):
+class _Args(AbstractPhaseArgs):
     law: PlasticLaw
     state: PlasticState
-    gravity: Parameter
+    motion: Motion
     advancing: Parameter
     onset: Parameter  # the depth where loading starts (or resumes) plastic flow
     flows: Parameter  # x where loading starts (or resumes) plastic flow; nan where it flows already
-    time_limit: Parameter
-    speed_scale: Parameter
+    speed_scale: jax.Array
 
 
 def _depth(x, state: PlasticState):
@@ -164,7 +146,7 @@ def _vector_field(s, y, args: _Args):
     pace = 1.0 / jnp.sqrt(1.0 + 4.0 * x**2)
     slope = 2.0 * x * pace  # dt/ds
     force = args.law.force(_depth(x, args.state), args.state)
-    return jnp.stack([v * pace, (args.gravity - force) * slope, slope])
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope, slope])
 
 
 def _after(advancing, turned) -> Next:

@@ -76,15 +76,34 @@ def scaled_time_limit(physics: Physics, scales: Scales) -> jax.Array:
     return jnp.where(jnp.isfinite(limit), limit / scales.time, jnp.inf)
 
 
-class AbstractProblem(eqx.Module):
-    """The scaled impact an integrator runs: its units, where the motion starts and what bounds it."""
+class Motion(eqx.Module):
+    """How the body moves besides the contact law (scaled): where and how fast it starts, its
+    speed at the first touch, the pull towards the surface and the time limit."""
 
-    gravity: eqx.AbstractVar[Parameter]  # scaled acceleration towards the surface
-    start_indentation: eqx.AbstractVar[Parameter]  # where the body starts (scaled)
-    start_velocity: eqx.AbstractVar[Parameter]
-    touch_speed: eqx.AbstractVar[Parameter]  # scaled speed at the first touch
+    start_indentation: Parameter  # where the body starts (−gap, or less where the interaction starts before the touch)
+    start_velocity: Parameter
+    touch_speed: Parameter  # speed at the first touch (where the interaction starts)
+    gravity: Parameter  # acceleration towards the surface
+    time_limit: Parameter
+
+
+def motion_of(physics: Physics, options: Options, scales: Scales, start_indentation, touch_speed) -> Motion:
+    """The scene's motion in the units of `scales`, from `start_indentation` (scaled) with the
+    scaled speed `touch_speed` at the first touch."""
+    return Motion(
+        start_indentation=start_indentation,
+        start_velocity=physics.velocity / scales.velocity,
+        touch_speed=touch_speed,
+        gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+        time_limit=scaled_time_limit(physics, scales),
+    )
+
+
+class AbstractProblem(eqx.Module):
+    """The scaled impact an integrator runs: its units, the body's motion and what bounds it."""
+
+    motion: eqx.AbstractVar[Motion]
     bounded: eqx.AbstractVar[Parameter]  # loading stores the impact energy at a finite contact radius
-    time_limit: eqx.AbstractVar[Parameter]  # scaled
 
     @property
     @abc.abstractmethod
@@ -104,12 +123,8 @@ class Problem(AbstractProblem):
     law: ContactLaw
     attach: Branch
     detach: Branch
-    gravity: Parameter  # scaled acceleration towards the surface
-    start_indentation: Parameter  # −gap (scaled)
-    start_velocity: Parameter  # scaled
-    touch_speed: Parameter  # scaled speed at the first touch
+    motion: Motion
     bounded: Parameter  # loading stores the impact energy at a finite contact radius (or a wall)
-    time_limit: Parameter  # scaled
     damping_per_radius: Parameter  # η_a of the scaled viscous force (η_a·â + η_0)·v̂ (`Damping.scaled`)
     damping_constant: Parameter  # η_0
 
@@ -140,7 +155,6 @@ def build_problem(physics: Physics, options: Options) -> Problem:
         detach_coefficient = attach_coefficient = jnp.zeros(())
     contact = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
 
-    gravity = physics.gravity.scaled(scales) if options.gravity else jnp.zeros(())
     per_radius, constant = physics.damping.scaled(scales) if options.damped else (jnp.zeros(()), jnp.zeros(()))
     touch_speed = speed / scales.velocity
     reach, bounded = radius_bound(contact, attach_coefficient, touch_speed)
@@ -157,12 +171,8 @@ def build_problem(physics: Physics, options: Options) -> Problem:
         law=contact,
         attach=attach,
         detach=detach,
-        gravity=gravity,
-        start_indentation=-physics.gap / scales.normal,
-        start_velocity=physics.velocity / scales.velocity,
-        touch_speed=touch_speed,
+        motion=motion_of(physics, options, scales, -physics.gap / scales.normal, touch_speed),
         bounded=bounded | jnp.isfinite(contact.extent()),
-        time_limit=scaled_time_limit(physics, scales),
         damping_per_radius=per_radius,
         damping_constant=constant,
     )

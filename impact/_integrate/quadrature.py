@@ -141,7 +141,7 @@ _RULE = _rule()
 
 def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     """One contact phase: its end from the energy balance, its duration by quadrature."""
-    law, gravity = problem.law, problem.gravity
+    law, gravity = problem.law, problem.motion.gravity
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)

@@ -21,7 +21,7 @@ from .._core.pytree import replace, where
 from .base import AbstractAdaptiveIntegrator, ProblemT, located_end, ride_steps
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, HOLD, RECEDE
-from .problem import Options
+from .problem import AbstractProblem, Motion, Options
 from .transitions import Next
 from .work import ContactSummary
 
@@ -33,7 +33,20 @@ PHASE_HORIZON = 1.0e4
 # The horizon of a ride that is not in contact (its result is discarded): it ends at once.
 _IDLE_HORIZON = 1e-9
 
-Args = TypeVar("Args", bound=eqx.Module)
+
+class AbstractPhaseArgs(eqx.Module):
+    """What every ride's vector field and conditions read besides the law's own arguments."""
+
+    motion: eqx.AbstractVar[Motion]  # the body's motion (gravity, time limit)
+    speed_scale: eqx.AbstractVar[jax.Array]  # 1 + the speeds of the phase's start and of the touch
+
+
+Args = TypeVar("Args", bound=AbstractPhaseArgs)
+
+
+def speed_scale(problem: AbstractProblem, c: Carry) -> jax.Array:
+    """The speed a phase's turnaround condition is relative to: 1 + |v| at its start + the touch speed."""
+    return 1.0 + jnp.abs(c.v) + problem.motion.touch_speed
 
 
 class Ride(eqx.Module):
@@ -87,9 +100,16 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
         """The ride's vector field f(s, y, args) in its (pseudo-)time s."""
 
     @abc.abstractmethod
-    def conditions(self, y: jax.Array, args: Args) -> jax.Array:
-        """The ride's event conditions in the order (turnaround, end of the segment, time limit,
-        …), each negative until its event and of relative size (`base.located_end`)."""
+    def conditions(self, y: jax.Array, args: Args) -> list[jax.Array]:
+        """The law's event conditions of the ride, [turnaround, end of the segment, …], each
+        negative until its event and of relative size (`all_conditions` adds the time limit)."""
+
+    def all_conditions(self, y: jax.Array, args: Args) -> jax.Array:
+        """Every event condition of the ride in the order (turnaround, end of the segment, time
+        limit, …) of `base.located_end`: the law's, and the time limit (t − t_max)."""
+        turnaround, end, *others = self.conditions(y, args)
+        time_limit = (y[2] - args.motion.time_limit) / (1.0 + jnp.abs(y[2]))
+        return jnp.stack([turnaround, end, time_limit, *others])
 
     @abc.abstractmethod
     def end(self, problem: ProblemT, options: Options, c: Carry, args: Args, ride: Ride) -> PhaseEnd:
@@ -125,7 +145,7 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
         args = self.phase(problem, options, c)
 
         def first_event(t, y, args, **kwargs):  # crosses zero upwards when the first condition does
-            return jnp.max(self.conditions(y, args))
+            return jnp.max(self.all_conditions(y, args))
 
         solution = self.ride(
             self.vector_field(options),
@@ -135,7 +155,7 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
             horizon=jnp.where(active, PHASE_HORIZON, _IDLE_HORIZON),
             dense=self.dense(options),
         )
-        found, y_end, turned, out_of_time = located_end(solution, self.conditions, args)
+        found, y_end, turned, out_of_time = located_end(solution, self.all_conditions, args)
         ride = Ride(solution=solution, found=found, y_end=y_end, turned=turned, out_of_time=out_of_time)
         end = self.end(problem, options, c, args, ride)
         if end.rows is not None:

@@ -66,7 +66,7 @@ def build_array(problem: Problem, count, length) -> ComputedSpringArray:
     """N = `count` midpoint springs on [0, L]; L is `length` (m) if given, else the default."""
     law = problem.law
     default = jnp.minimum(
-        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.touch_speed)[0]
+        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.motion.touch_speed)[0]
     )
     scaled = jnp.where(jnp.isnan(length), default, length / problem.scales.radial)
     spacing = scaled / count
@@ -140,9 +140,9 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, c: Carry, attach
     inward = c.mode == ADVANCE
     beyond = k >= array.count
     level = jnp.where(inward & beyond, array.beyond_level, array.next_level(k, inward))
-    duration, d, v, turned = _arc(attached, array.spacing, problem.gravity, c.d, c.v, level, inward)
+    duration, d, v, turned = _arc(attached, array.spacing, problem.motion.gravity, c.d, c.v, level, inward)
     t = c.t + duration
-    out_of_time = t > problem.time_limit
+    out_of_time = t > problem.motion.time_limit
     # What the event does to the contact: unless it turned, d sits on the threshold of the
     # event's own spring, so that spring leads its cascade.
     now = where(turned, attached, array.cascade(attached, d, inward))

@@ -156,7 +156,7 @@ def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, c: Car
         return ~s.stopped() & (s.steps < _MAX_STEPS)
 
     def step(s: _Stretch) -> _Stretch:
-        return _verlet_step(array, problem.gravity, problem.time_limit, dt, inward, rows, s)
+        return _verlet_step(array, problem.motion.gravity, problem.motion.time_limit, dt, inward, rows, s)
 
     return jax.lax.while_loop(running, step, _store(start, array, rows))
 

@@ -13,7 +13,7 @@ from ..._law.base import AbstractAdhesiveLaw, AbstractEdgeLaw
 from ..._law.branches import Branch, build_branch
 from ..._law.law import ContactLaw
 from ..._law.scales import Scales
-from ..problem import Problem
+from ..problem import Motion, Problem
 from .loading import BISECTION_STEPS, OCTAVES, SCALE_DECADES, SCALE_STEPS, TOP_MARGIN, Loading, QuasiStaticNumerics
 
 
@@ -62,8 +62,9 @@ def loading_scales(loading: Loading, adhesive: bool) -> Scales:
 
 def branch_problem(law: ContactLaw, attach, detach) -> Problem:
     """A `Problem` holding the law and its two branches (the impact-only fields are zero)."""
-    given = {"law": law, "attach": attach, "detach": detach}
     zero = jnp.zeros(())
+    still = Motion(start_indentation=zero, start_velocity=zero, touch_speed=zero, gravity=zero, time_limit=zero)
+    given = {"law": law, "attach": attach, "detach": detach, "motion": still}
     return Problem(**{f.name: given.get(f.name, zero) for f in dataclasses.fields(Problem) if f.init})
 
 
