@@ -25,7 +25,7 @@ from .._law.scales import Scales
 from .._law.thornton import ThorntonNing
 from .base import dense_states
 from .carry import Carry, Outcome
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .continuum import Continuum
 from .flight import land
 from .problem import AbstractProblem, Motion, Options, Physics, Problem, build_problem
@@ -182,7 +182,8 @@ def _after(advancing, turned) -> Next:
         event=event,
         separated=~advancing & ~turned,
         captured=~advancing & turned,
-        stop=jnp.asarray(-1),
+        stops=jnp.asarray(False),
+        stop=Status.separated,
     )
 
 

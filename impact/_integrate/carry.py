@@ -9,7 +9,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.pytree import replace, where
-from .codes import DONE, EVENT_CODE, FLIGHT, RESULT_CODE
+from .codes import DONE, EVENT_CODE, FLIGHT, Status, status_code
 from .problem import Options
 from .transitions import Next
 from .work import ContactSummary
@@ -20,7 +20,7 @@ EVENTS_PER_PHASE = 2
 class Outcome(eqx.Module):
     """Scaled results of one impact (mass 1, units of `Scales`)."""
 
-    status: jax.Array  # result code (phases.RESULT_CODES)
+    status: jax.Array  # result code (`codes.RESULT_CODES`, the index of a `codes.Status`)
     stuck: jax.Array
     touch_velocity: jax.Array  # speed at the first touch
     separation_velocity: jax.Array  # speed when the first contact let go (0 if captured)
@@ -54,7 +54,7 @@ class Carry(eqx.Module):
     radius: jax.Array  # contact radius at the start of the current phase
     phases: jax.Array
     contacts: jax.Array
-    status: jax.Array
+    status: Status
     stuck: jax.Array
     touch_velocity: jax.Array
     separation_velocity: jax.Array
@@ -92,10 +92,10 @@ def initial_carry(problem, options: Options, memory: Any = None) -> Carry:
         radius=zero,
         phases=jnp.zeros((), int),
         contacts=jnp.zeros((), int),
-        status=jnp.where(
+        status=Status.where(
             problem.overflow,
-            RESULT_CODE["branch_overflow"],
-            jnp.where(problem.bounded, RESULT_CODE["separated"], RESULT_CODE["unbounded_contact"]),
+            Status.branch_overflow,
+            Status.where(problem.bounded, Status.separated, Status.unbounded_contact),
         ),
         stuck=jnp.asarray(False),
         touch_velocity=zero,
@@ -160,14 +160,14 @@ def close_phase(c: Carry, active, found, steps, end, nxt: Next, out_of_time, sum
     separated = found & in_time & nxt.separated
     captured = found & in_time & nxt.captured
     out_of_time = found & out_of_time
-    stopped = (nxt.stop >= 0) & ~out_of_time
-    status = jnp.where(
+    stopped = nxt.stops & ~out_of_time
+    status = Status.where(
         failed,
-        RESULT_CODE["solver_failure"],
-        jnp.where(
+        Status.solver_failure,
+        Status.where(
             out_of_time,
-            RESULT_CODE["time_limit"],
-            jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            Status.time_limit,
+            Status.where(stopped, nxt.stop, Status.where(captured, Status.captured, c.status)),
         ),
     )
     taken, accepted, rejected = steps
@@ -232,7 +232,7 @@ def finish(c: Carry) -> Outcome:
     """Close the books: a run cut off by the phase bound says so."""
     cut = c.mode != DONE
     return Outcome(
-        status=jnp.where(cut, RESULT_CODE["phase_limit"], c.status),
+        status=status_code(Status.where(cut, Status.phase_limit, c.status)),
         stuck=c.stuck,
         touch_velocity=c.touch_velocity,
         separation_velocity=c.separation_velocity,

@@ -46,7 +46,7 @@ from .._law.law import ContactLaw
 from . import transitions
 from .base import PHASE_ENDS, dense_states
 from .carry import Carry
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, Status
 from .flight import land_on_touch
 from .problem import Motion, Options, Physics, Problem, build_problem
 from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, in_contact, speed_scale
@@ -306,13 +306,13 @@ def _amend(
                 (c.d, c.v), (end.d, end.v), end.summary.work, problem.motion.gravity, problem.motion.touch_speed
             )
             drifted = active & ride.found & ~ride.out_of_time & off_balance
-            booked = replace_where(booked, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
+            booked = replace_where(booked, drifted, status=Status.energy_drift, mode=DONE)
     else:
         # A phase that found no event while the body all but stopped: overdamped creep towards rest.
         creeping = active & ~ride.found & (jnp.abs(end.v) <= _CREEP * args.speed_scale)
-        booked = replace_where(booked, creeping, status=RESULT_CODE["overdamped"])
+        booked = replace_where(booked, creeping, status=Status.overdamped)
     off_branch = active & args.riding & args.branch.misses(problem.law, c.radius, c.d)
-    return replace_where(booked, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
+    return replace_where(booked, off_branch, status=Status.off_branch, mode=DONE)
 
 
 def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end, released):

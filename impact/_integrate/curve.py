@@ -37,7 +37,7 @@ from .._law.curve import AbstractCurve, CurveLaw, Reach, top_of_reach
 from .._law.scales import Scales
 from .base import dense_states
 from .carry import Carry
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
 from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
@@ -105,9 +105,9 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         # coarse for the law ends the run there.
         reach = problem.law.onset
         landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-        unresolved = jnp.where(problem.curve.resolves(problem.law), -1, RESULT_CODE["unresolved_zone"])
-        stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], unresolved)
-        touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
+        stops = blocked | ~problem.curve.resolves(problem.law)
+        stop = Status.where(blocked, Status.radius_overflow, Status.unresolved_zone)
+        touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stops=stops, stop=stop)
         landing_force = problem.curve.force(problem.law, landing)
         return lambda c: land(problem, options, c, reach, touch, landing_force, samples=True)
 
@@ -246,6 +246,7 @@ def _after(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segme
         event=event,
         separated=~advancing & ~turned & released,
         captured=~advancing & turned,
-        stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
+        stops=advancing & ~turned & blocked,
+        stop=Status.radius_overflow,
     )
     return nxt, memory

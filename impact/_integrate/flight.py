@@ -6,7 +6,7 @@ import jax.numpy as jnp
 from .._core.pytree import replace
 from .._effects.gravity import flight_to_touch
 from .carry import Carry, log_event, store_samples
-from .codes import DONE, EVENT_CODE, RESULT_CODE
+from .codes import DONE, EVENT_CODE, Status
 from .problem import AbstractProblem, Options
 from .transitions import Next, touch
 
@@ -28,12 +28,10 @@ def land(
     lands = reaches & ~over_bounces & ~over_time
     if samples and options.samples_per_phase:
         c = store_samples(c, options, _flight_rows(problem, options, c, lands, duration))
-    status = jnp.where(
-        ~reaches,
-        RESULT_CODE["separated"],
-        jnp.where(over_bounces, RESULT_CODE["bounce_limit"], RESULT_CODE["time_limit"]),
+    status = Status.where(
+        ~reaches, Status.separated, Status.where(over_bounces, Status.bounce_limit, Status.time_limit)
     )
-    stopped = landing.stop >= 0
+    stopped = landing.stops
     c = log_event(c, touch_time, EVENT_CODE["touch"], lands)
     c = log_event(c, c.t, EVENT_CODE["limit"], reaches & ~lands)
     c = log_event(c, touch_time, EVENT_CODE["limit"], lands & stopped)
@@ -48,7 +46,7 @@ def land(
         radius=landing.radius,
         phases=c.phases + 1,
         contacts=c.contacts + jnp.asarray(lands, int),
-        status=jnp.where(lands, jnp.where(stopped, landing.stop, c.status), status),
+        status=Status.where(lands, Status.where(stopped, landing.stop, c.status), status),
         touch_velocity=jnp.where(lands & first, speed, c.touch_velocity),
         touch_time=jnp.where(lands & first, touch_time, c.touch_time),
         contact_work=jnp.zeros(()),

@@ -25,7 +25,7 @@ from .._law.scales import Scales
 from .._law.thornton import plastic_law, plastic_scales
 from .base import dense_states
 from .carry import Carry
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
 from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
@@ -165,5 +165,6 @@ def _after(advancing, turned) -> Next:
         event=event,
         separated=~advancing & ~turned,
         captured=~advancing & turned,
-        stop=jnp.asarray(-1),
+        stops=jnp.asarray(False),
+        stop=Status.separated,
     )

@@ -32,7 +32,7 @@ from .._core.quadrature import ordered_sum
 from .._core.search import illinois_root
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, HOLD, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, HOLD, RECEDE, Status
 from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import after_phase
@@ -189,6 +189,6 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     # turnaround whose search did not settle, or a hold that starts inwards; a ride that starts
     # off its edge function (`continuum`).
     unfollowed = in_contact & (~real | ~settled | (~riding & (c.v > 0.0)))
-    closed = replace_where(closed, unfollowed, status=RESULT_CODE["solver_failure"], mode=DONE)
+    closed = replace_where(closed, unfollowed, status=Status.solver_failure, mode=DONE)
     off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
-    return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
+    return replace_where(closed, off_branch, status=Status.off_branch, mode=DONE)

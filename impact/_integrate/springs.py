@@ -23,7 +23,7 @@ from .._law.scales import Scales
 from .._law.springs import Attached, ComputedSpringArray
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import next_phase
@@ -159,10 +159,10 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, c: Carry, attach
         ),
     )
     forces = jnp.stack([array.force(attached, d), array.force(now, d)])
-    status = jnp.where(
+    status = Status.where(
         out_of_time,
-        RESULT_CODE["time_limit"],
-        jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        Status.time_limit,
+        Status.where(overflow, Status.radius_overflow, Status.where(captured, Status.captured, c.status)),
     )
     c = log_event(c, t, EVENT_CODE["max_indentation"], inward & turned)
     c = log_event(c, t, EVENT_CODE["separation"], separated)

@@ -32,7 +32,7 @@ import jax.numpy as jnp
 from .._core.pytree import replace
 from .._law.springs import Attached, ComputedSpringArray
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .problem import Options, Problem
 from .springs import AbstractSpringArrayIntegrator, SpringArrayProblem, touch_down
 from .work import ContactSummary
@@ -169,13 +169,13 @@ def _book(c: Carry, s: _Stretch) -> Carry:
         flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
     )
     mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
-    status = jnp.where(
+    status = Status.where(
         s.out_of_time,
-        RESULT_CODE["time_limit"],
-        jnp.where(
+        Status.time_limit,
+        Status.where(
             capped,
-            RESULT_CODE["solver_failure"],
-            jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            Status.solver_failure,
+            Status.where(overflow, Status.radius_overflow, Status.where(captured, Status.captured, c.status)),
         ),
     )
     c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
