@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import theory
 from .._core.defaults import SPEED_REPEATS
+from .._scene.adhesion import GreenwoodJohnsonAdhesion, MaugisDugdaleAdhesion
 from .cases import case_scene, sticking_velocity
 from .plans import BATCH_RANGE, CONE_ANGLE, E_STAR, MASS, POWER_C, RADIUS, WORK_OF_ADHESION
 
@@ -85,17 +86,17 @@ def workloads(quick: bool = False) -> list[Workload]:
 
 
 def _dugdale(v_s: float) -> Workload:
-    scene = case_scene("maugis_dugdale", dict(shape="paraboloid", R=RADIUS), v_s)
-    scene["effects"]["adhesion"] = dict(
-        model="maugis_dugdale", work_of_adhesion=WORK_OF_ADHESION, stress=DUGDALE_STRESS
+    scene = case_scene(MaugisDugdaleAdhesion.model_name(), dict(shape="paraboloid", R=RADIUS), v_s)
+    scene["effects"]["adhesion"] = MaugisDugdaleAdhesion.section(
+        work_of_adhesion=WORK_OF_ADHESION, stress=DUGDALE_STRESS
     )
     return Workload("md", "Maugis–Dugdale Λ=1", scene, _range(v_s), TIGHTER)
 
 
 def _double_hertz(v_s: float) -> Workload:
     """Greenwood–Johnson at k = 10 (configs/greenwood_johnson.yaml): its goal is the JKR law's cost."""
-    scene = case_scene("greenwood_johnson", dict(shape="paraboloid", R=RADIUS), v_s)
-    scene["effects"]["adhesion"] = dict(model="greenwood_johnson", work_of_adhesion=WORK_OF_ADHESION, k=10.0)
+    scene = case_scene(GreenwoodJohnsonAdhesion.model_name(), dict(shape="paraboloid", R=RADIUS), v_s)
+    scene["effects"]["adhesion"] = GreenwoodJohnsonAdhesion.section(work_of_adhesion=WORK_OF_ADHESION, k=10.0)
     return Workload("gj", "Greenwood–Johnson k=10", scene, _range(v_s), TIGHTER)
 
 

@@ -34,12 +34,13 @@ def where(condition: Any, when_true: Module, when_false: Module) -> Module:
 
 def replace_where(module: Module, condition: Any, **changes: Any) -> Module:
     """A copy of `module` with the named fields set to the given values where `condition`
-    holds (each value cast to its field's dtype), kept elsewhere."""
+    holds (an array value cast to its field's dtype; a module, such as a status, leaf by leaf),
+    kept elsewhere."""
     kept = {name: getattr(module, name) for name in changes}
-    return replace(
-        module,
-        **{
-            name: jnp.where(condition, jnp.asarray(value, kept[name].dtype), kept[name])
-            for name, value in changes.items()
-        },
-    )
+
+    def chosen(value, old):
+        if isinstance(old, eqx.Module):
+            return where(condition, value, old)
+        return jnp.where(condition, jnp.asarray(value, old.dtype), old)
+
+    return replace(module, **{name: chosen(value, kept[name]) for name, value in changes.items()})

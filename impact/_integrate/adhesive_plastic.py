@@ -16,78 +16,58 @@ a turnaround (a capture: below the largest radius the branches conserve energy).
 carried to the next contact, which starts with the jump-in at its depth.
 """
 
-import equinox as eqx
 import jax
 import jax.numpy as jnp
 
 from .._core.pytree import replace, where
-from .._core.types import Parameter
 from .._law.adhesive_plastic import AdhesivePlasticLaw, DentState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .._law.thornton import ThorntonNing
+from .base import dense_states
+from .carry import Carry, Outcome
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .continuum import Continuum
 from .flight import land
-from .problem import Options, Physics, Problem, build_problem
+from .problem import AbstractProblem, Motion, Options, Physics, Problem, build_problem
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary
 
-# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
-_PHASE_HORIZON = 1.0e4
 # Plastic loading rides segment 1 of ADVANCE; the dent's elastic branch segment 0.
 _ELASTIC, _FLOWING = 0, 1
 
 
-class AdhesivePlasticProblem(eqx.Module):
+class AdhesivePlasticProblem(AbstractProblem):
     """The elastic adhesive problem (`Continuum`) and the plastic law in its units."""
 
     elastic: Problem
     law: AdhesivePlasticLaw
+    motion: Motion
+    bounded: jax.Array
 
     @property
     def scales(self) -> Scales:
         return self.elastic.scales
 
     @property
-    def gravity(self):
-        return self.elastic.gravity
-
-    @property
-    def start_indentation(self):
-        return self.elastic.start_indentation
-
-    @property
-    def start_velocity(self):
-        return self.elastic.start_velocity
-
-    @property
-    def touch_speed(self):
-        return self.elastic.touch_speed
-
-    @property
-    def time_limit(self):
-        return self.elastic.time_limit
-
-    @property
-    def bounded(self):
-        return jnp.asarray(True)
-
-    @property
     def overflow(self):
         return jnp.asarray(False)
 
 
-class AdhesivePlastic(AbstractAdaptiveIntegrator):
+class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"]):
     """Impacts of an adhesive paraboloid with Thornton & Ning's limiting contact pressure."""
 
     def build(self, physics: Physics, options: Options) -> AdhesivePlasticProblem:
         """The elastic adhesive problem, and the plastic law in its units."""
+        assert isinstance(physics.law, ThorntonNing), f"Thornton & Ning's law, not {type(physics.law).__name__}"
         elastic = build_problem(physics, options)
-        law = physics.plasticity.adhesive_law(
-            physics.profile.radius_scale(), physics.E_star, physics.adhesion.work_of_adhesion, elastic.scales
+        law = physics.law.adhesive_law(physics.profile.radius_scale(), physics.E_star, elastic.scales)
+        return AdhesivePlasticProblem(
+            elastic=elastic,
+            law=law,
+            motion=elastic.motion,
+            bounded=jnp.asarray(True),
         )
-        return AdhesivePlasticProblem(elastic=elastic, law=law)
 
     def integrate(self, problem: AdhesivePlasticProblem, options: Options) -> Outcome:
         continuum = Continuum(
@@ -102,9 +82,12 @@ class AdhesivePlastic(AbstractAdaptiveIntegrator):
         law = problem.law
         virgin = DentState.virgin(law.yield_radius)
         yielded = elastic.max_indentation > law.depth(law.yield_radius, virgin, False)
-        return jax.lax.cond(yielded, lambda: self._plastic(problem, options), lambda: elastic)
+        return jax.lax.cond(yielded, lambda: super(AdhesivePlastic, self).integrate(problem, options), lambda: elastic)
 
-    def _plastic(self, problem: AdhesivePlasticProblem, options: Options) -> Outcome:
+    def memory(self, problem: AdhesivePlasticProblem) -> DentState:
+        return DentState.virgin(problem.law.yield_radius)
+
+    def flight(self, problem: AdhesivePlasticProblem, options: Options):
         law = problem.law
 
         def flight(c: Carry) -> Carry:
@@ -113,21 +96,67 @@ class AdhesivePlastic(AbstractAdaptiveIntegrator):
             touch = next_phase(ADVANCE, _ELASTIC, radius, EVENT_CODE["touch"])
             return land(problem, options, c, state.residual, touch, law.force(radius, state, False), samples=True)
 
-        def contact(c: Carry) -> Carry:
-            return _contact(self, problem, options, c)
+        return flight
 
-        return run_phases(problem, options, flight, contact, memory=DentState.virgin(law.yield_radius))
+    def phase(self, problem: AdhesivePlasticProblem, options: Options, c: Carry) -> "_Args":
+        law, state = problem.law, c.memory
+        advancing = c.mode == ADVANCE
+        flowing = advancing & (c.segment == _FLOWING)
+        return _Args(
+            law=law,
+            state=state,
+            flowing=flowing,
+            advancing=advancing,
+            end=jnp.where(advancing, jnp.where(flowing, jnp.nan, state.onset), law.snap_off(state)),
+            motion=problem.motion,
+            speed_scale=speed_scale(problem, c),
+        )
+
+    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
+        return jnp.stack([c.radius, c.v, c.t])
+
+    def vector_field(self, options: Options):
+        return _vector_field
+
+    def conditions(self, y, args: "_Args"):
+        """Turnaround and the end of the branch (the onset of flow outward, the snap-off inward):
+        each negative until its event."""
+        radius, v = y[0], y[1]
+        sign = jnp.where(args.advancing, 1.0, -1.0)
+        end = jnp.where(jnp.isnan(args.end), -1.0, sign * (radius - args.end) / (1.0 + args.end))
+        return [-sign * v / args.speed_scale, end]
+
+    def end(self, problem: AdhesivePlasticProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
+        law, state, flowing, advancing = problem.law, args.state, args.flowing, args.advancing
+        a_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+        # A branch end lies on its radius to round-off: the next phase starts there.
+        a_end = jnp.where(~ride.turned & ~ride.out_of_time & ~jnp.isnan(args.end), args.end, a_end)
+        d_start, d_end = law.depth(jnp.stack([c.radius, a_end]), state, flowing)
+        rows = None
+        if options.samples_per_phase:
+            a, v, t = dense_states(ride.solution, options.samples_per_phase).T
+            a = jnp.maximum(a, 0.0)
+            rows = jnp.stack([t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
+        lowest, highest = _force_range(law, state, flowing, c.radius, a_end)
+        summary = ContactSummary(
+            work=law.work(c.radius, a_end, state, flowing),
+            lowest_force=lowest,
+            highest_force=highest,
+            deepest=jnp.maximum(d_start, d_end),
+        )
+        nxt = replace(_after(advancing, ride.turned), radius=a_end)
+        memory = where(advancing & ride.turned, law.after_turn(a_end, state), state)
+        return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
-class _Args(eqx.Module):
+class _Args(AbstractPhaseArgs):
     law: AdhesivePlasticLaw
     state: DentState
     flowing: jax.Array
     advancing: jax.Array
     end: jax.Array  # the radius ending the branch: the onset of flow, the snap-off; nan: none
-    gravity: Parameter
-    time_limit: Parameter
-    speed_scale: Parameter
+    motion: Motion
+    speed_scale: jax.Array
 
 
 def _vector_field(s, y, args: _Args):
@@ -135,26 +164,7 @@ def _vector_field(s, y, args: _Args):
     slope = args.law.slope(radius, args.state, args.flowing)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
     force = args.law.force(radius, args.state, args.flowing)
-    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-
-
-def _conditions(y, args: _Args):
-    """Turnaround, the end of the branch (the onset of flow outward, the snap-off inward), time
-    limit: each negative until its event."""
-    radius, v = y[0], y[1]
-    sign = jnp.where(args.advancing, 1.0, -1.0)
-    end = jnp.where(jnp.isnan(args.end), -1.0, sign * (radius - args.end) / (1.0 + args.end))
-    return jnp.stack(
-        [
-            -sign * v / args.speed_scale,
-            end,
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
-
-
-def _first_event(t, y, args: _Args, **kwargs):
-    return jnp.max(_conditions(y, args))
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
 
 
 def _after(advancing, turned) -> Next:
@@ -172,7 +182,8 @@ def _after(advancing, turned) -> Next:
         event=event,
         separated=~advancing & ~turned,
         captured=~advancing & turned,
-        stop=jnp.asarray(-1),
+        stops=jnp.asarray(False),
+        stop=Status.separated,
     )
 
 
@@ -182,53 +193,3 @@ def _force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end)
     weakest = jnp.clip(law.weakest(state, flowing), low, high)
     forces = law.force(jnp.stack([start, end, weakest]), state, flowing)
     return jnp.min(forces), jnp.max(forces[:2])
-
-
-def _contact(integrator: AdhesivePlastic, problem: AdhesivePlasticProblem, options: Options, c: Carry) -> Carry:
-    """One loading or unloading phase with diffrax, ended by its located event."""
-    law, state = problem.law, c.memory
-    in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
-    advancing = c.mode == ADVANCE
-    flowing = advancing & (c.segment == _FLOWING)
-    end = jnp.where(advancing, jnp.where(flowing, jnp.nan, state.onset), law.snap_off(state))
-    args = _Args(
-        law=law,
-        state=state,
-        flowing=flowing,
-        advancing=advancing,
-        end=end,
-        gravity=problem.gravity,
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
-    )
-    solution = integrator.ride(
-        _vector_field,
-        _first_event,
-        jnp.stack([c.radius, c.v, c.t]),
-        args,
-        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
-    )
-    found, (a_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    # A branch end lies on its radius to round-off: the next phase starts there.
-    a_end = jnp.where(~turned & ~out_of_time & ~jnp.isnan(end), end, a_end)
-    d_start, d_end = law.depth(jnp.stack([c.radius, a_end]), state, flowing)
-
-    if options.samples_per_phase:
-        a, v, t = dense_states(solution, options.samples_per_phase).T
-        a = jnp.maximum(a, 0.0)
-        rows = jnp.stack([t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
-        c = where(in_contact, store_samples(c, options, rows), c)
-
-    lowest, highest = _force_range(law, state, flowing, c.radius, a_end)
-    summary = ContactSummary(
-        work=law.work(c.radius, a_end, state, flowing),
-        lowest_force=lowest,
-        highest_force=highest,
-        deepest=jnp.maximum(d_start, d_end),
-    )
-    nxt = replace(_after(advancing, turned), radius=a_end)
-    steps = ride_steps(solution)
-    c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
-    turned_over = in_contact & advancing & turned
-    return replace(c, memory=where(turned_over, law.after_turn(a_end, state), state))

@@ -6,11 +6,11 @@ Its string and integer settings are static; its float settings are static too wh
 Python floats (a new value recompiles) and traced when given as arrays (a benchmark sweeps them).
 
 diffrax and optimistix are imported where a ride is traced, not with this module: a run whose
-program comes from the compilation cache (`impact._run.programs`) never loads them (~0.5 s).
+program comes from the compilation cache (`impact._run.programs`) never loads them.
 """
 
 import abc
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, ClassVar, Generic, TypeVar
 
 import equinox as eqx
 import jax
@@ -18,7 +18,7 @@ import jax.numpy as jnp
 
 from .._law.scales import Scales
 from .carry import Outcome
-from .problem import Options, Physics
+from .problem import AbstractProblem, Options, Physics
 
 if TYPE_CHECKING:
     import diffrax as dfx
@@ -49,10 +49,8 @@ _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 # A Runge–Kutta step loops over its stages in a plain `lax.while_loop` (diffrax's default is a
 # checkpointed loop, there for reverse-mode derivatives). Reverse mode never runs through a ride
 # (the phase loop around it is a `lax.while_loop`; `impact.as_function` differentiates in
-# forward mode), and XLA compiles both to the same program (the same optimized HLO, measured
-# 2026-11-26 for a scene and for a batch), but the checkpointed loop takes longer to trace:
-# Thornton–Ning's impact traced in 1.6–1.7 s instead of 2.65–2.7 s (two runs each),
-# Maugis–Dugdale's in 2.5 s instead of 3.4 s.
+# forward mode), and XLA compiles both to the same optimized program, but the checkpointed loop
+# takes much longer to trace.
 _STAGE_LOOP = "lax"
 
 # A ride's state is padded with zeros to a multiple of this many components, so that a point's
@@ -65,7 +63,10 @@ _STAGE_LOOP = "lax"
 _STATE_TILE = 4
 
 
-class AbstractIntegrator(eqx.Module):
+ProblemT = TypeVar("ProblemT", bound=AbstractProblem)
+
+
+class AbstractIntegrator(eqx.Module, Generic[ProblemT]):
     """Integrates one impact (possibly several bounces) from SI parameters to scaled results."""
 
     # Lanes a compiled batch of this integrator runs at most per CPU device (None: any number):
@@ -74,11 +75,11 @@ class AbstractIntegrator(eqx.Module):
     most_lanes: ClassVar[int | None] = None
 
     @abc.abstractmethod
-    def build(self, physics: Physics, options: Options):
-        """The scaled problem (it has `.scales`, the SI values of its units)."""
+    def build(self, physics: Physics, options: Options) -> ProblemT:
+        """The scaled problem."""
 
     @abc.abstractmethod
-    def integrate(self, problem, options: Options) -> Outcome:
+    def integrate(self, problem: ProblemT, options: Options) -> Outcome:
         """Run the problem to its outcome, in its scaled units."""
 
     def solve(self, physics: Physics, options: Options) -> tuple[Scales, Outcome]:
@@ -87,7 +88,7 @@ class AbstractIntegrator(eqx.Module):
         return problem.scales, self.integrate(problem, options)
 
 
-class AbstractAdaptiveIntegrator(AbstractIntegrator):
+class AbstractAdaptiveIntegrator(AbstractIntegrator[ProblemT]):
     """An adaptive diffrax solver over contact phases, each ended by a located event."""
 
     method: str = eqx.field(default="tsit5", static=True)  # a key of SOLVERS

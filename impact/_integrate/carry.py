@@ -9,7 +9,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.pytree import replace, where
-from .codes import DONE, EVENT_CODE, FLIGHT, RESULT_CODE
+from .codes import DONE, EVENT_CODE, FLIGHT, Status, status_code
 from .problem import Options
 from .transitions import Next
 from .work import ContactSummary
@@ -20,7 +20,7 @@ EVENTS_PER_PHASE = 2
 class Outcome(eqx.Module):
     """Scaled results of one impact (mass 1, units of `Scales`)."""
 
-    status: jax.Array  # result code (phases.RESULT_CODES)
+    status: jax.Array  # result code (`codes.RESULT_CODES`, the index of a `codes.Status`)
     stuck: jax.Array
     touch_velocity: jax.Array  # speed at the first touch
     separation_velocity: jax.Array  # speed when the first contact let go (0 if captured)
@@ -54,7 +54,7 @@ class Carry(eqx.Module):
     radius: jax.Array  # contact radius at the start of the current phase
     phases: jax.Array
     contacts: jax.Array
-    status: jax.Array
+    status: Status
     stuck: jax.Array
     touch_velocity: jax.Array
     separation_velocity: jax.Array
@@ -79,24 +79,23 @@ class Carry(eqx.Module):
 
 def initial_carry(problem, options: Options, memory: Any = None) -> Carry:
     """The carry before the first flight (or already done: a branch overflow, an unbounded
-    contact). `problem` has `start_indentation`, `start_velocity`, `overflow` and `bounded`;
-    `memory` is the contact law's initial memory (None: a law without one)."""
+    contact); `memory` is the contact law's initial memory (None: a law without one)."""
     events = EVENTS_PER_PHASE * options.max_phases
     rows = options.samples_per_phase * options.max_phases
     zero, inf = jnp.zeros(()), jnp.asarray(jnp.inf)
     return Carry(
         t=zero,
-        d=jnp.asarray(problem.start_indentation, jnp.float64),
-        v=jnp.asarray(problem.start_velocity, jnp.float64),
+        d=jnp.asarray(problem.motion.start_indentation, jnp.float64),
+        v=jnp.asarray(problem.motion.start_velocity, jnp.float64),
         mode=jnp.where(problem.overflow | ~problem.bounded, DONE, FLIGHT),
         segment=jnp.zeros((), int),
         radius=zero,
         phases=jnp.zeros((), int),
         contacts=jnp.zeros((), int),
-        status=jnp.where(
+        status=Status.where(
             problem.overflow,
-            RESULT_CODE["branch_overflow"],
-            jnp.where(problem.bounded, RESULT_CODE["separated"], RESULT_CODE["unbounded_contact"]),
+            Status.branch_overflow,
+            Status.where(problem.bounded, Status.separated, Status.unbounded_contact),
         ),
         stuck=jnp.asarray(False),
         touch_velocity=zero,
@@ -161,14 +160,14 @@ def close_phase(c: Carry, active, found, steps, end, nxt: Next, out_of_time, sum
     separated = found & in_time & nxt.separated
     captured = found & in_time & nxt.captured
     out_of_time = found & out_of_time
-    stopped = (nxt.stop >= 0) & ~out_of_time
-    status = jnp.where(
+    stopped = nxt.stops & ~out_of_time
+    status = Status.where(
         failed,
-        RESULT_CODE["solver_failure"],
-        jnp.where(
+        Status.solver_failure,
+        Status.where(
             out_of_time,
-            RESULT_CODE["time_limit"],
-            jnp.where(stopped, nxt.stop, jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            Status.time_limit,
+            Status.where(stopped, nxt.stop, Status.where(captured, Status.captured, c.status)),
         ),
     )
     taken, accepted, rejected = steps
@@ -196,8 +195,8 @@ def run_phases(
     Each turn of the loop runs a flight or a contact phase; with `landed_contact`, a flight and
     then at once the contact phase it lands in, so that a bounce takes one turn fewer. Under
     `jax.vmap` every turn computes both for every lane: the quadrature's phases, of fixed cost,
-    ran a Thornton–Ning point in 7.1 instead of 8.6 µs; a diffrax ride's was within the noise
-    (11.6 against 12.3 µs, 2026-11-27), and the ODE integrators keep one phase a turn."""
+    gain the turn saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep
+    one phase a turn."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
@@ -233,7 +232,7 @@ def finish(c: Carry) -> Outcome:
     """Close the books: a run cut off by the phase bound says so."""
     cut = c.mode != DONE
     return Outcome(
-        status=jnp.where(cut, RESULT_CODE["phase_limit"], c.status),
+        status=status_code(Status.where(cut, Status.phase_limit, c.status)),
         stuck=c.stuck,
         touch_velocity=c.touch_velocity,
         separation_velocity=c.separation_velocity,

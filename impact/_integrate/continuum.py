@@ -44,11 +44,12 @@ from .._core.types import Parameter
 from .._law.branches import Branch
 from .._law.law import ContactLaw
 from . import transitions
-from .base import PHASE_ENDS, AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .base import PHASE_ENDS, dense_states
+from .carry import Carry
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, Status
 from .flight import land_on_touch
-from .problem import Options, Physics, Problem, build_problem
+from .problem import Motion, Options, Physics, Problem, build_problem
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, in_contact, speed_scale
 from .transitions import Next
 from .work import (
     ContactSummary,
@@ -62,8 +63,6 @@ from .work import (
     squared_speed,
 )
 
-# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
-_PHASE_HORIZON = 1.0e4
 # Radii (scaled) at which the edge slope is compared to tell a steep tip.
 _TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # A damped phase that ends without an event (max_steps, or the horizon) at a speed below this
@@ -78,7 +77,7 @@ _TURNAROUND_NEWTON = 3
 _CONVERGED = 1e-9
 
 
-class Continuum(AbstractAdaptiveIntegrator):
+class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
     """The continuum MDR law (N → ∞ springs), phase by phase with an adaptive diffrax solver."""
 
     phase_ends: str = eqx.field(default="integrated", static=True)  # a key of PHASE_ENDS
@@ -90,16 +89,35 @@ class Continuum(AbstractAdaptiveIntegrator):
     def build(self, physics: Physics, options: Options) -> Problem:
         return build_problem(physics, options)
 
-    def integrate(self, problem: Problem, options: Options) -> Outcome:
-        return run_phases(
-            problem,
-            options,
-            lambda c: land_on_touch(problem, options, c),
-            lambda c: _contact(self, problem, options, c),
-        )
+    def flight(self, problem: Problem, options: Options):
+        return lambda c: land_on_touch(problem, options, c)
+
+    def phase(self, problem: Problem, options: Options, c: Carry) -> "PhaseArgs":
+        return _phase_args(problem, options, c)
+
+    def start(self, options: Options, args: "PhaseArgs", c: Carry) -> jax.Array:
+        damped = [jnp.zeros(())] if options.damped else []
+        return jnp.stack([jnp.where(args.riding, c.radius, c.d), c.v, c.t, *damped])
+
+    def vector_field(self, options: Options):
+        return _make_vector_field(options.damped)
+
+    def conditions(self, y, args: "PhaseArgs"):
+        return _conditions(y, args)
+
+    def dense(self, options: Options) -> bool:
+        return options.samples_per_phase > 0 or options.damped
+
+    def end(self, problem: Problem, options: Options, c: Carry, args: "PhaseArgs", ride: Ride) -> PhaseEnd:
+        return _end(self, problem, options, c, args, ride)
+
+    def amend(
+        self, problem: Problem, options: Options, c: Carry, args: "PhaseArgs", ride: Ride, end: PhaseEnd, booked: Carry
+    ) -> Carry:
+        return _amend(self, problem, options, c, args, ride, end, booked)
 
 
-class PhaseArgs(eqx.Module):
+class PhaseArgs(AbstractPhaseArgs):
     """What the vector field and the event conditions of one phase need."""
 
     law: ContactLaw
@@ -108,11 +126,10 @@ class PhaseArgs(eqx.Module):
     mode: jax.Array
     segment: jax.Array
     radius: jax.Array  # held radius (HOLD)
-    gravity: Parameter
+    motion: Motion
     velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
     level_sign: jax.Array  # branch end: sign·(distance to the end) crosses zero upwards
     level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
-    time_limit: Parameter
     speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
     damping: tuple[Parameter, Parameter]  # (η_a, η_0) of the viscous force (η_a·a + η_0)·v
     releases: jax.Array  # the contact ends where the total force returns to zero (damped, no adhesion)
@@ -146,15 +163,15 @@ def _make_vector_field(damped: bool):
         held_radius = timed_radius(x, args)
         held = law.force(held_radius, x)
         if not damped:
-            riding = jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-            timed = jnp.stack([v, args.gravity - held, jnp.ones_like(v)])
+            riding = jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
+            timed = jnp.stack([v, args.motion.gravity - held, jnp.ones_like(v)])
             return jnp.where(args.riding, riding, timed)
         viscous = viscous_force(radius, v, args)
         held_viscous = viscous_force(held_radius, v, args)
         riding = jnp.stack(
-            [v * pace, (args.gravity - force - viscous) * slope * pace, slope * pace, viscous * v * slope * pace]
+            [v * pace, (args.motion.gravity - force - viscous) * slope * pace, slope * pace, viscous * v * slope * pace]
         )
-        timed = jnp.stack([v, args.gravity - held - held_viscous, jnp.ones_like(v), held_viscous * v])
+        timed = jnp.stack([v, args.motion.gravity - held - held_viscous, jnp.ones_like(v), held_viscous * v])
         return jnp.where(args.riding, riding, timed)
 
     return vector_field
@@ -185,22 +202,13 @@ def _distance_to_end(y, args: PhaseArgs):
     return args.level_sign * distance / (1.0 + jnp.abs(args.level))
 
 
-def _conditions(y, args: PhaseArgs):
-    """The phase's event conditions, each negative until its event and of relative size:
-    turnaround (sign·v), phase end, time limit (t − t_max) and, damped, the release (−F)."""
-    conditions = [
-        args.velocity_sign * y[1] / args.speed_scale,
-        _distance_to_end(y, args),
-        (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-    ]
+def _conditions(y, args: PhaseArgs) -> list[jax.Array]:
+    """The law's event conditions of a phase, each negative until its event and of relative
+    size: turnaround (sign·v), phase end and, damped, the release (−F)."""
+    conditions = [args.velocity_sign * y[1] / args.speed_scale, _distance_to_end(y, args)]
     if y.shape[0] > 3:
         conditions.append(jnp.where(args.releases, -total_force(y, args), -1.0))
-    return jnp.stack(conditions)
-
-
-def _first_event(t, y, args: PhaseArgs, **kwargs):
-    """Crosses zero upwards when the first of the conditions does (one scalar to locate)."""
-    return jnp.max(_conditions(y, args))
+    return conditions
 
 
 def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
@@ -232,45 +240,34 @@ def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
         mode=c.mode,
         segment=c.segment,
         radius=c.radius,
-        gravity=problem.gravity,
+        motion=problem.motion,
         velocity_sign=jnp.where(c.mode == ADVANCE, -1.0, 1.0),
         level_sign=jnp.where(c.mode == ADVANCE, 1.0, -1.0),
         level=level,
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
+        speed_scale=speed_scale(problem, c),
         damping=(problem.damping_per_radius, problem.damping_constant),
         releases=(c.mode != ADVANCE) & ~law.adhesive,
         timed_loading=options.timed_loading,
     )
 
 
-def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry) -> Carry:
-    """One contact phase with diffrax, ended by its located event."""
+def _end(integrator: Continuum, problem: Problem, options: Options, c: Carry, args: PhaseArgs, ride: Ride) -> PhaseEnd:
+    """Where the ride ended on the law: from the located event or, with the energy's ends, from
+    the phase's energy balance; its samples, summary and the phase after it."""
     law = problem.law
-    in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
-    args = _phase_args(problem, options, c)
     riding, branch = args.riding, args.branch
-    off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
-    start = [jnp.where(riding, c.radius, c.d), c.v, c.t] + ([jnp.zeros(())] if options.damped else [])
-    solution = integrator.ride(
-        _make_vector_field(options.damped),
-        _first_event,
-        jnp.stack(start),
-        args,
-        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0 or options.damped,
-    )
-    event_found, y_end, turned, out_of_time = located_end(solution, _conditions, args)
-    x_end, v_end, t_end = y_end[0], y_end[1], y_end[2]
+    x_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+    turned = ride.turned
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     if integrator.phase_ends == "energy":
-        x_end, v_end, turned = _energy_end(problem, args, c, (x_end, v_end), event_found & ~out_of_time, turned)
+        x_end, v_end, turned = _energy_end(problem, args, c, (x_end, v_end), ride.found & ~ride.out_of_time, turned)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
+    rows = None
     if options.samples_per_phase:
-        states = dense_states(solution, options.samples_per_phase)
+        states = dense_states(ride.solution, options.samples_per_phase)
         x, v, t = states[:, 0], states[:, 1], states[:, 2]
         radii = jnp.where(riding, x, jax.vmap(lambda d: timed_radius(d, args))(x))
         d = jnp.where(riding, branch.level(law, x), x)
@@ -279,34 +276,53 @@ def _contact(integrator: Continuum, problem: Problem, options: Options, c: Carry
         # ends its depth and speed come from the balance, not from the dense output).
         end_force = law.force(a_end, d_end) + viscous_force(a_end, v_end, args)
         rows = rows.at[-1].set(jnp.stack([t_end, d_end, v_end, end_force, a_end]))
-        c = where(in_contact, store_samples(c, options, rows), c)
 
-    summary = phase_summary(law, branch, c.mode != HOLD, (c.radius, a_end), problem.gravity, (c.d, c.v), (d_end, v_end))
+    summary = phase_summary(
+        law, branch, c.mode != HOLD, (c.radius, a_end), problem.motion.gravity, (c.d, c.v), (d_end, v_end)
+    )
     nxt = transitions.after_phase(problem, c.mode, c.segment, a_end, d_end, turned)
-    steps = ride_steps(solution)
+    if options.damped:
+        released = jnp.argmax(integrator.all_conditions(ride.y_end, args)) == 3
+        summary, nxt = _damped(problem, ride.solution, args, summary, nxt, ride.y_end, d_end, released)
+    return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=c.memory)
+
+
+def _amend(
+    integrator: Continuum,
+    problem: Problem,
+    options: Options,
+    c: Carry,
+    args: PhaseArgs,
+    ride: Ride,
+    end: PhaseEnd,
+    booked: Carry,
+) -> Carry:
+    """The statuses the law detects in a booked phase: a speed off its energy balance (located
+    ends), an overdamped creep, a ride that started off its edge function."""
+    active = in_contact(c)
     if not options.damped:
-        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         if integrator.phase_ends == "integrated":
-            off_balance = drifts((c.d, c.v), (d_end, v_end), summary.work, problem.gravity, problem.touch_speed)
-            drifted = in_contact & event_found & ~out_of_time & off_balance
-            closed = replace_where(closed, drifted, status=RESULT_CODE["energy_drift"], mode=DONE)
+            off_balance = drifts(
+                (c.d, c.v), (end.d, end.v), end.summary.work, problem.motion.gravity, problem.motion.touch_speed
+            )
+            drifted = active & ride.found & ~ride.out_of_time & off_balance
+            booked = replace_where(booked, drifted, status=Status.energy_drift, mode=DONE)
     else:
-        summary, nxt = _damped(problem, solution, args, summary, nxt, y_end, d_end)
-        closed = close_phase(c, in_contact, event_found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
         # A phase that found no event while the body all but stopped: overdamped creep towards rest.
-        creeping = in_contact & ~event_found & (jnp.abs(v_end) <= _CREEP * args.speed_scale)
-        closed = replace_where(closed, creeping, status=RESULT_CODE["overdamped"])
-    return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
+        creeping = active & ~ride.found & (jnp.abs(end.v) <= _CREEP * args.speed_scale)
+        booked = replace_where(booked, creeping, status=Status.overdamped)
+    off_branch = active & args.riding & args.branch.misses(problem.law, c.radius, c.d)
+    return replace_where(booked, off_branch, status=Status.off_branch, mode=DONE)
 
 
-def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end):
+def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary, nxt: Next, y_end, d_end, released):
     """What damping changes at a phase's end: its viscous work, the range of the total force
-    (scanned along the dense solution) and, where the total force returned to zero, the release.
+    (scanned along the dense solution) and, where the total force returned to zero (`released`:
+    the release event fired), the release.
 
     Under gravity a body released at depth d with v² < 2g·d turns before it clears the
     undeformed surface: it cannot leave, and is counted as captured.
     """
-    released = jnp.argmax(_conditions(y_end, args)) == 3
     lowest, highest = extremes(
         jnp.vectorize(lambda s: total_force(solution.evaluate(s), args)), jnp.zeros(()), solution.ts[-1]
     )
@@ -316,7 +332,7 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
         lowest_force=jnp.minimum(lowest, summary.lowest_force),
         highest_force=jnp.maximum(highest, summary.highest_force),
     )
-    leaves = y_end[1] ** 2 >= 2.0 * problem.gravity * d_end
+    leaves = y_end[1] ** 2 >= 2.0 * problem.motion.gravity * d_end
     release = where(
         leaves, transitions.next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True), transitions.capture()
     )
@@ -341,7 +357,7 @@ def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, tur
     capture, left as located.
     """
     x_located, v_located = located
-    law, branch, gravity = problem.law, args.branch, problem.gravity
+    law, branch, gravity = problem.law, args.branch, problem.motion.gravity
 
     def ridden_squared_speed(radius):
         ridden = branch_work(law, branch, c.radius, radius)

@@ -12,8 +12,9 @@ At the end of a rising segment (a turning point of d, or the junction where a zo
 closes into a contact) the state moves at fixed d to the next rising segment at that level:
 a snap-in or snap-out, or the release of the body when none is left. An outward turnaround on
 the curve is a capture (the argument of `transitions.capture` holds: only the jumps dissipate).
-The integrators of Maugis–Dugdale (`dugdale`) and Greenwood–Johnson (`double_hertz`) build their
-law and curve and share everything else here.
+Every curve law (`_law.base.AbstractCurveLaw`: Maugis–Dugdale, Greenwood–Johnson) is built
+and ridden here; `CurveIntegrator` rides the continuum law's curve, `dugdale.DugdaleSpringIntegrator`
+the curve of a Maugis–Dugdale spring array.
 
 A curve that remembers (Maugis–Dugdale with approach hysteresis, `_law.dugdale_hysteresis`) is
 one path of a family, chosen by the carry's memory (the frozen zone's radius; 0 apart, where the
@@ -21,41 +22,40 @@ path is the approach curve): loading turns back onto the frozen zone of its path
 which unloads onto the detach curve (`detach_start`); separation clears the memory.
 """
 
+import abc
+import functools
 from typing import ClassVar
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 
-from .._core.pytree import replace, where
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .._core.types import Parameter
-from .._law.curve import AbstractCurve, CurveLaw
+from .._law.base import AbstractCurveLaw
+from .._law.curve import AbstractCurve, CurveLaw, Reach, top_of_reach
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .base import dense_states
+from .carry import Carry
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
-from .problem import Options
+from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
 
-_PHASE_HORIZON = 1.0e4
 _QUADRATURE_NODES = 48
 # A landing further than this (relative) from the segment end is a jump, not a continuation.
 _SAME_STATE = 1e-12
 
 
-class CurveProblem(eqx.Module):
+class CurveProblem(AbstractProblem):
     """The scaled impact: law, its curve and the initial state (`Carry.radius` holds s)."""
 
     law: CurveLaw
     curve: AbstractCurve
-    gravity: Parameter
-    start_indentation: Parameter  # the onset less the gap (scaled)
-    start_velocity: Parameter
-    touch_speed: Parameter  # speed when the interaction starts
+    motion: Motion  # it starts at the onset less the gap; its touch speed is where the interaction starts
     bounded: Parameter
-    time_limit: Parameter
 
     @property
     def scales(self) -> Scales:
@@ -66,66 +66,127 @@ class CurveProblem(eqx.Module):
         return self.curve.overflow
 
 
-class AbstractCurveIntegrator(AbstractAdaptiveIntegrator):
-    """Impacts that ride an equilibrium curve, phase by phase with an adaptive diffrax solver;
-    a subclass builds the law and its curve (`build` → `CurveProblem`)."""
+class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
+    """Impacts that ride the equilibrium curve of a curve law, phase by phase with an adaptive
+    diffrax solver; a subclass states which curve (`scaled_curve`)."""
 
     # XLA:CPU compiles a while loop into one kernel while the bytes it touches stay under a
-    # threshold (64 kB, `impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two
-    # round differently. A curve ride's step crosses it between 32 and 60 lanes (Maugis–Dugdale:
-    # restitutions up to 9e-7 apart, step counts up to 25), so its batches stay below on CPU
-    # devices: 16 lanes cost the same per impact as 512 (measured, 2 cores).
+    # threshold (`impact._core.runtime.SMALL_LOOP_OPTION`), and op by op above it; the two round
+    # differently. A curve ride's step crosses it between 32 and 60 lanes, so its batches stay
+    # below it on CPU devices (16 lanes cost the same per impact as 512: `impact bench speed`).
     most_lanes: ClassVar[int | None] = 16
 
-    def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
+    @abc.abstractmethod
+    def scaled_curve(
+        self, law: AbstractCurveLaw, physics: Physics, options: Options, scales: Scales, reach: Reach
+    ) -> tuple[CurveLaw, AbstractCurve]:
+        """The law in the units of `scales` and the curve it rides, up to `reach`."""
+
+    def build(self, physics: Physics, options: Options) -> CurveProblem:
+        """Scale (JKR units, or the impact energy's where it reaches further) and tabulate."""
+        law = physics.law
+        assert isinstance(law, AbstractCurveLaw), f"a curve is ridden on a curve law, not {type(law).__name__}"
+        speed = touch_velocity(physics, options)
+        scales = law.scales(physics.profile, physics.E_star, physics.mass, speed)
+        touch_speed = speed / scales.velocity
+        scaled, curve = self.scaled_curve(
+            law, physics, options, scales, functools.partial(top_of_reach, speed=touch_speed)
+        )
+        return CurveProblem(
+            law=scaled,
+            curve=curve,
+            motion=motion_of(physics, options, scales, law.start_indentation(scaled, physics.gap, scales), touch_speed),
+            bounded=jnp.asarray(True),
+        )
+
+    def flight(self, problem: CurveProblem, options: Options):
         # The interaction starts at the onset; the state snaps to the first rising one there
         # (the same for every bounce: found once, outside the loop over phases). A curve too
         # coarse for the law ends the run there.
         reach = problem.law.onset
         landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
-        unresolved = jnp.where(problem.curve.resolves(problem.law), -1, RESULT_CODE["unresolved_zone"])
-        stop = jnp.where(blocked, RESULT_CODE["radius_overflow"], unresolved)
-        touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stop=stop)
+        stops = blocked | ~problem.curve.resolves(problem.law)
+        stop = Status.where(blocked, Status.radius_overflow, Status.unresolved_zone)
+        touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stops=stops, stop=stop)
         landing_force = problem.curve.force(problem.law, landing)
+        return lambda c: land(problem, options, c, reach, touch, landing_force, samples=True)
 
-        def flight(c: Carry) -> Carry:
-            return land(problem, options, c, reach, touch, landing_force, samples=True)
+    def phase(self, problem: CurveProblem, options: Options, c: Carry) -> "_Args":
+        law = problem.law
+        curve = problem.curve.at(law, c.memory)
+        advancing = c.mode == ADVANCE
+        return _Args(
+            law=law,
+            curve=curve,
+            motion=problem.motion,
+            velocity_sign=jnp.where(advancing, -1.0, 1.0),
+            end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
+            segment=c.segment,
+            end_sign=jnp.where(advancing, 1.0, -1.0),
+            speed_scale=speed_scale(problem, c),
+        )
 
-        return run_phases(problem, options, flight, lambda c: _contact(self, problem, options, c))
+    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
+        return jnp.stack([c.radius, c.v, c.t])
+
+    def vector_field(self, options: Options):
+        return _vector_field
+
+    def conditions(self, y, args: "_Args"):
+        """Turnaround and segment end, each negative until its event, of relative size."""
+        return [
+            args.velocity_sign * y[1] / args.speed_scale,
+            args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
+        ]
+
+    def end(self, problem: CurveProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
+        law, curve = problem.law, args.curve
+        s_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+        s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
+        d_end = curve.depth(law, s_end)
+        rows = None
+        if options.samples_per_phase:
+            states = dense_states(ride.solution, options.samples_per_phase)
+            s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
+            depth, force, radius, _ = curve.state(law, s)
+            rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
+        work = _work(law, curve, c.radius, s_end)
+        low, high = extremes(lambda s: curve.force(law, s), c.radius, s_end)
+        advancing = c.mode == ADVANCE
+        nxt, memory = _after(problem, curve, advancing, ride.turned, c.segment, s_end, d_end, c.memory)
+        summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
+        return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
-class _Args(eqx.Module):
+class CurveIntegrator(AbstractCurveIntegrator):
+    """The continuum law's equilibrium curve (Maugis–Dugdale, Greenwood–Johnson); with
+    `hysteresis` (static) the path of a law with approach hysteresis (Δγa < Δγ)."""
+
+    hysteresis: bool = eqx.field(default=False, static=True)
+
+    def scaled_curve(
+        self, law: AbstractCurveLaw, physics: Physics, options: Options, scales: Scales, reach: Reach
+    ) -> tuple[CurveLaw, AbstractCurve]:
+        scaled = law.scaled(physics.profile, physics.E_star, scales, self.hysteresis)
+        return scaled, law.curve(scaled, reach, options.tabulation.max_turns)
+
+
+class _Args(AbstractPhaseArgs):
     law: CurveLaw
     curve: AbstractCurve
-    gravity: Parameter
+    motion: Motion
     velocity_sign: Parameter  # turnaround: sign·v crosses zero upwards
     end: Parameter  # the segment end in s the phase runs to
     segment: Parameter  # the segment ridden
     end_sign: Parameter
-    time_limit: Parameter
-    speed_scale: Parameter
+    speed_scale: jax.Array
 
 
 def _vector_field(pseudo_time, y, args: _Args):
     s, v = y[0], y[1]
     _, force, slope = args.curve.riding(args.law, s, args.segment)
     pace = 1.0 / jnp.sqrt(1.0 + slope**2)
-    return jnp.stack([v * pace, (args.gravity - force) * slope * pace, slope * pace])
-
-
-def _conditions(y, args: _Args):
-    """Turnaround, segment end, time limit: each negative until its event, of relative size."""
-    return jnp.stack(
-        [
-            args.velocity_sign * y[1] / args.speed_scale,
-            args.end_sign * (y[0] - args.end) / (1.0 + jnp.abs(args.end)),
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
-
-
-def _first_event(t, y, args: _Args, **kwargs):
-    return jnp.max(_conditions(y, args))
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
 
 
 def _work(law: CurveLaw, curve: AbstractCurve, start, end):
@@ -185,52 +246,7 @@ def _after(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segme
         event=event,
         separated=~advancing & ~turned & released,
         captured=~advancing & turned,
-        stop=jnp.where(advancing & ~turned & blocked, RESULT_CODE["radius_overflow"], -1),
+        stops=advancing & ~turned & blocked,
+        stop=Status.radius_overflow,
     )
     return nxt, memory
-
-
-def _contact(integrator: AbstractCurveIntegrator, problem: CurveProblem, options: Options, c: Carry) -> Carry:
-    """One ride along a rising segment with diffrax, ended by its located event."""
-    law = problem.law
-    curve = problem.curve.at(law, c.memory)
-    riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
-    advancing = c.mode == ADVANCE
-    args = _Args(
-        law=law,
-        curve=curve,
-        gravity=problem.gravity,
-        velocity_sign=jnp.where(advancing, -1.0, 1.0),
-        end=jnp.where(advancing, curve.nodes[c.segment + 1], curve.nodes[c.segment]),
-        segment=c.segment,
-        end_sign=jnp.where(advancing, 1.0, -1.0),
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
-    )
-    s_start = c.radius
-    solution = integrator.ride(
-        _vector_field,
-        _first_event,
-        jnp.stack([s_start, c.v, c.t]),
-        args,
-        horizon=jnp.where(riding, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
-    )
-    found, (s_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    s_end = jnp.clip(s_end, curve.nodes[c.segment], curve.nodes[c.segment + 1])
-    d_end = curve.depth(law, s_end)
-
-    if options.samples_per_phase:
-        states = dense_states(solution, options.samples_per_phase)
-        s = jnp.clip(states[:, 0], curve.nodes[c.segment], curve.nodes[c.segment + 1])
-        depth, force, radius, _ = curve.state(law, s)
-        rows = jnp.stack([states[:, 2], depth, states[:, 1], force, radius], axis=1)
-        c = where(riding, store_samples(c, options, rows), c)
-
-    work = _work(law, curve, s_start, s_end)
-    low, high = extremes(lambda s: curve.force(law, s), s_start, s_end)
-    nxt, memory = _after(problem, curve, advancing, turned, c.segment, s_end, d_end, c.memory)
-    summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
-    steps = ride_steps(solution)
-    closed = close_phase(c, riding, found, steps, (t_end, d_end, v_end), nxt, out_of_time, summary)
-    return replace(closed, memory=jnp.where(riding, memory, c.memory)) if curve.remembers else closed

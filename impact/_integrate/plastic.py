@@ -14,81 +14,126 @@ separation, x = 0, or — under gravity — at a turnaround, where the body can 
 next contact, which starts at the dent d_p.
 """
 
-import equinox as eqx
+import jax
 import jax.numpy as jnp
 
-from .._core.pytree import replace, where
+from .._core.pytree import where
 from .._core.types import Parameter
+from .._law.base import AbstractPlasticLaw
 from .._law.plastic import PlasticLaw, PlasticState
 from .._law.scales import Scales
-from .base import AbstractAdaptiveIntegrator, dense_states, located_end, ride_steps
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE
+from .._law.thornton import plastic_law, plastic_scales
+from .base import dense_states
+from .carry import Carry
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
-from .problem import Options, Physics, touch_velocity
+from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary
 
-# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
-_PHASE_HORIZON = 1.0e4
 
-
-class PlasticProblem(eqx.Module):
+class PlasticProblem(AbstractProblem):
     """The scaled impact: Thornton's law and the initial state."""
 
     law: PlasticLaw
-    scales: Scales
-    gravity: Parameter
-    start_indentation: Parameter
-    start_velocity: Parameter
-    touch_speed: Parameter
+    motion: Motion
     bounded: Parameter
-    time_limit: Parameter
+
+    @property
+    def scales(self) -> Scales:
+        return self.law.scales
 
     @property
     def overflow(self):
         return jnp.asarray(False)
 
 
-class Plastic(AbstractAdaptiveIntegrator):
+class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
     """Impacts of a paraboloid with Thornton's limiting contact pressure (no adhesion)."""
 
     def build(self, physics: Physics, options: Options) -> PlasticProblem:
         """Scale with the deepest indentation and the touch speed, and state Thornton's law."""
+        law = physics.law
+        assert isinstance(law, AbstractPlasticLaw), f"Thornton's law needs a yield pressure, not {type(law).__name__}"
         speed = touch_velocity(physics, options)
         radius = physics.profile.radius_scale()  # R: the scene takes paraboloids only
-        plasticity = physics.plasticity
-        scales = plasticity.scales(radius, physics.E_star, physics.mass, speed)
+        scales = plastic_scales(law, radius, physics.E_star, physics.mass, speed)
         return PlasticProblem(
-            law=plasticity.law(radius, physics.E_star, scales),
-            scales=scales,
-            gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
-            start_indentation=-physics.gap / scales.normal,
-            start_velocity=physics.velocity / scales.velocity,
-            touch_speed=speed / scales.velocity,
+            law=plastic_law(law, radius, physics.E_star, scales),
+            motion=motion_of(physics, options, scales, -physics.gap / scales.normal, speed / scales.velocity),
             bounded=jnp.asarray(True),
-            time_limit=physics.time_limit / scales.time,
         )
 
-    def integrate(self, problem: PlasticProblem, options: Options) -> Outcome:
+    def memory(self, problem: PlasticProblem) -> PlasticState:
+        return PlasticState.virgin()
+
+    def flight(self, problem: PlasticProblem, options: Options):
         def flight(c: Carry) -> Carry:
             touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
             return land(problem, options, c, c.memory.residual, touch, jnp.zeros(()), samples=True)
 
-        def contact(c: Carry) -> Carry:
-            return _contact(self, problem, options, c)
+        return flight
 
-        return run_phases(problem, options, flight, contact, memory=PlasticState.virgin())
+    def phase(self, problem: PlasticProblem, options: Options, c: Carry) -> "_Args":
+        law, state = problem.law, c.memory
+        onset = jnp.maximum(law.yield_depth, state.deepest)
+        x_onset = jnp.sqrt(jnp.maximum(onset - state.residual, 0.0))
+        return _Args(
+            law=law,
+            state=state,
+            motion=problem.motion,
+            advancing=c.mode == ADVANCE,
+            onset=onset,
+            flows=jnp.where(c.d < onset, x_onset, jnp.nan),
+            speed_scale=speed_scale(problem, c),
+        )
+
+    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
+        return jnp.stack([jnp.sqrt(jnp.maximum(c.d - args.state.residual, 0.0)), c.v, c.t])
+
+    def vector_field(self, options: Options):
+        return _vector_field
+
+    def conditions(self, y, args: "_Args"):
+        """Turnaround and the end of the branch (loading: the onset of flow, where the force's
+        second derivative jumps; unloading: separation at x = 0): each negative until its event."""
+        x, v = y[0], y[1]
+        onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
+        return [jnp.where(args.advancing, -v, v) / args.speed_scale, jnp.where(args.advancing, onset, -x)]
+
+    def end(self, problem: PlasticProblem, options: Options, c: Carry, args: "_Args", ride: Ride) -> PhaseEnd:
+        law, state, advancing = problem.law, args.state, args.advancing
+        x_end, v_end, t_end = ride.y_end[0], ride.y_end[1], ride.y_end[2]
+        # Branch ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
+        on_branch_end = ~ride.turned & ~ride.out_of_time
+        d_end = jnp.where(on_branch_end, jnp.where(advancing, args.onset, state.residual), _depth(x_end, state))
+        rows = None
+        if options.samples_per_phase:
+            x, v, t = dense_states(ride.solution, options.samples_per_phase).T
+            d = _depth(jnp.maximum(x, 0.0), state)
+            rows = jnp.stack([t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
+        forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
+        summary = ContactSummary(
+            work=law.work(d_end, state) - law.work(c.d, state),
+            lowest_force=jnp.min(forces),
+            highest_force=jnp.max(forces),
+            deepest=jnp.maximum(c.d, d_end),
+        )
+        memory = where(advancing, law.after_turn(d_end, state), state)
+        return PhaseEnd(
+            t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=_after(advancing, ride.turned), memory=memory
+        )
 
 
-class _Args(eqx.Module):
+class _Args(AbstractPhaseArgs):
     law: PlasticLaw
     state: PlasticState
-    gravity: Parameter
+    motion: Motion
     advancing: Parameter
+    onset: Parameter  # the depth where loading starts (or resumes) plastic flow
     flows: Parameter  # x where loading starts (or resumes) plastic flow; nan where it flows already
-    time_limit: Parameter
-    speed_scale: Parameter
+    speed_scale: jax.Array
 
 
 def _depth(x, state: PlasticState):
@@ -101,26 +146,7 @@ def _vector_field(s, y, args: _Args):
     pace = 1.0 / jnp.sqrt(1.0 + 4.0 * x**2)
     slope = 2.0 * x * pace  # dt/ds
     force = args.law.force(_depth(x, args.state), args.state)
-    return jnp.stack([v * pace, (args.gravity - force) * slope, slope])
-
-
-def _conditions(y, args: _Args):
-    """Turnaround, the end of the branch (loading: the onset of flow, where the force's second
-    derivative jumps; unloading: separation at x = 0), time limit: each negative until its event."""
-    x, v = y[0], y[1]
-    onset = jnp.where(jnp.isnan(args.flows), -1.0, (x - args.flows) / (1.0 + args.flows))
-    branch_end = jnp.where(args.advancing, onset, -x)
-    return jnp.stack(
-        [
-            jnp.where(args.advancing, -v, v) / args.speed_scale,
-            branch_end,
-            (y[2] - args.time_limit) / (1.0 + jnp.abs(y[2])),
-        ]
-    )
-
-
-def _first_event(t, y, args: _Args, **kwargs):
-    return jnp.max(_conditions(y, args))
+    return jnp.stack([v * pace, (args.motion.gravity - force) * slope, slope])
 
 
 def _after(advancing, turned) -> Next:
@@ -139,53 +165,6 @@ def _after(advancing, turned) -> Next:
         event=event,
         separated=~advancing & ~turned,
         captured=~advancing & turned,
-        stop=jnp.asarray(-1),
+        stops=jnp.asarray(False),
+        stop=Status.separated,
     )
-
-
-def _contact(integrator: Plastic, problem: PlasticProblem, options: Options, c: Carry) -> Carry:
-    """One loading or unloading phase with diffrax, ended by its located event."""
-    law, state = problem.law, c.memory
-    in_contact = (c.mode == ADVANCE) | (c.mode == RECEDE)
-    advancing = c.mode == ADVANCE
-    onset = jnp.maximum(law.yield_depth, state.deepest)
-    x_onset = jnp.sqrt(jnp.maximum(onset - state.residual, 0.0))
-    args = _Args(
-        law=law,
-        state=state,
-        gravity=problem.gravity,
-        advancing=advancing,
-        flows=jnp.where(c.d < onset, x_onset, jnp.nan),
-        time_limit=problem.time_limit,
-        speed_scale=1.0 + jnp.abs(c.v) + problem.touch_speed,
-    )
-    solution = integrator.ride(
-        _vector_field,
-        _first_event,
-        jnp.stack([jnp.sqrt(jnp.maximum(c.d - state.residual, 0.0)), c.v, c.t]),
-        args,
-        horizon=jnp.where(in_contact, _PHASE_HORIZON, 1e-9),
-        dense=options.samples_per_phase > 0,
-    )
-    found, (x_end, v_end, t_end), turned, out_of_time = located_end(solution, _conditions, args)
-    # Branch ends lie on the onset of flow or on the dent to round-off: the next phase starts there.
-    on_branch_end = ~turned & ~out_of_time
-    d_end = jnp.where(on_branch_end, jnp.where(advancing, onset, state.residual), _depth(x_end, state))
-
-    if options.samples_per_phase:
-        x, v, t = dense_states(solution, options.samples_per_phase).T
-        d = _depth(jnp.maximum(x, 0.0), state)
-        rows = jnp.stack([t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
-        c = where(in_contact, store_samples(c, options, rows), c)
-
-    forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
-    summary = ContactSummary(
-        work=law.work(d_end, state) - law.work(c.d, state),
-        lowest_force=jnp.min(forces),
-        highest_force=jnp.max(forces),
-        deepest=jnp.maximum(c.d, d_end),
-    )
-    steps = ride_steps(solution)
-    c = close_phase(c, in_contact, found, steps, (t_end, d_end, v_end), _after(advancing, turned), out_of_time, summary)
-    turned_over = in_contact & advancing
-    return replace(c, memory=where(turned_over, law.after_turn(d_end, state), state))

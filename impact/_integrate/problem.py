@@ -1,6 +1,7 @@
 """What an integrator is given: the SI parameters of an impact (`Physics`, traced), the static
 choices of the run (`Options`), and the scaled problem built from them (`Problem`)."""
 
+import abc
 from dataclasses import dataclass, field
 
 import equinox as eqx
@@ -8,14 +9,13 @@ import jax
 import jax.numpy as jnp
 
 from .._core.types import Parameter
-from .._effects.adhesion import Adhesion
 from .._effects.damping import Damping
 from .._effects.gravity import Gravity
-from .._effects.plasticity import Plasticity
+from .._law.base import AbstractContactLaw, AbstractEdgeLaw
 from .._law.branches import Branch, Tabulation, build_branch
 from .._law.law import ContactLaw
 from .._law.reach import radius_bound
-from .._law.scales import Scales, adhesive_scales, energy_scales
+from .._law.scales import Scales, energy_scales
 from ..profiles import Profile
 
 # The branch tables reach this many times the bound on the largest contact radius.
@@ -54,9 +54,8 @@ class Physics(eqx.Module):
     mass: Parameter  # kg
     velocity: Parameter  # approach speed at the start (m/s)
     gap: Parameter  # initial separation (m)
-    adhesion: Adhesion  # unused unless `Options.adhesive`
+    law: AbstractContactLaw  # the contact law the scene names, with its parameters
     gravity: Gravity  # unused unless `Options.gravity`
-    plasticity: Plasticity  # unused unless the scene names plasticity (the `Plastic` integrator)
     damping: Damping  # unused unless `Options.damped`
     time_limit: Parameter  # s
     spring_length: Parameter  # radius covered by a spring array (m); nan: the default
@@ -77,19 +76,55 @@ def scaled_time_limit(physics: Physics, scales: Scales) -> jax.Array:
     return jnp.where(jnp.isfinite(limit), limit / scales.time, jnp.inf)
 
 
-class Problem(eqx.Module):
+class Motion(eqx.Module):
+    """How the body moves besides the contact law (scaled): where and how fast it starts, its
+    speed at the first touch, the pull towards the surface and the time limit."""
+
+    start_indentation: Parameter  # where the body starts (−gap, or less where the interaction starts before the touch)
+    start_velocity: Parameter
+    touch_speed: Parameter  # speed at the first touch (where the interaction starts)
+    gravity: Parameter  # acceleration towards the surface
+    time_limit: Parameter
+
+
+def motion_of(physics: Physics, options: Options, scales: Scales, start_indentation, touch_speed) -> Motion:
+    """The scene's motion in the units of `scales`, from `start_indentation` (scaled) with the
+    scaled speed `touch_speed` at the first touch."""
+    return Motion(
+        start_indentation=start_indentation,
+        start_velocity=physics.velocity / scales.velocity,
+        touch_speed=touch_speed,
+        gravity=physics.gravity.scaled(scales) if options.gravity else jnp.zeros(()),
+        time_limit=scaled_time_limit(physics, scales),
+    )
+
+
+class AbstractProblem(eqx.Module):
+    """The scaled impact an integrator runs: its units, the body's motion and what bounds it."""
+
+    motion: eqx.AbstractVar[Motion]
+    bounded: eqx.AbstractVar[Parameter]  # loading stores the impact energy at a finite contact radius
+
+    @property
+    @abc.abstractmethod
+    def scales(self) -> Scales:
+        """The SI values of the units."""
+
+    @property
+    @abc.abstractmethod
+    def overflow(self) -> jax.Array:
+        """The law's tables cannot hold the impact: nothing can be trusted."""
+
+
+class Problem(AbstractProblem):
     """The scaled impact of the continuum (and spring-array) law: the law, its two branches and
     the initial state."""
 
     law: ContactLaw
     attach: Branch
     detach: Branch
-    gravity: Parameter  # scaled acceleration towards the surface
-    start_indentation: Parameter  # −gap (scaled)
-    start_velocity: Parameter  # scaled
-    touch_speed: Parameter  # scaled speed at the first touch
+    motion: Motion
     bounded: Parameter  # loading stores the impact energy at a finite contact radius (or a wall)
-    time_limit: Parameter  # scaled
     damping_per_radius: Parameter  # η_a of the scaled viscous force (η_a·â + η_0)·v̂ (`Damping.scaled`)
     damping_constant: Parameter  # η_0
 
@@ -109,40 +144,35 @@ class Problem(eqx.Module):
 
 def build_problem(physics: Physics, options: Options) -> Problem:
     """Scale the physics, tabulate the branches and state the initial condition."""
-    profile = physics.profile
+    profile, law = physics.profile, physics.law
+    assert isinstance(law, AbstractEdgeLaw), f"the continuum MDR rides an edge law, not {type(law).__name__}"
     speed = touch_velocity(physics, options)
     if options.adhesive:
-        adhesion = physics.adhesion
-        scales = adhesive_scales(profile, physics.E_star, adhesion.approach_work_of_adhesion, physics.mass, speed)
-        detach_coefficient, attach_coefficient = adhesion.hess_coefficients(scales, physics.E_star)
+        scales = law.scales(profile, physics.E_star, physics.mass, speed)
+        detach_coefficient, attach_coefficient = law.hess_coefficients(scales, physics.E_star)
     else:
         scales = energy_scales(profile, physics.E_star, physics.mass, speed)
         detach_coefficient = attach_coefficient = jnp.zeros(())
-    law = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
+    contact = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, options.adhesive)
 
-    gravity = physics.gravity.scaled(scales) if options.gravity else jnp.zeros(())
     per_radius, constant = physics.damping.scaled(scales) if options.damped else (jnp.zeros(()), jnp.zeros(()))
     touch_speed = speed / scales.velocity
-    reach, bounded = radius_bound(law, attach_coefficient, touch_speed)
-    top = jnp.minimum(law.extent(), _TOP_MARGIN * reach)
+    reach, bounded = radius_bound(contact, attach_coefficient, touch_speed)
+    top = jnp.minimum(contact.extent(), _TOP_MARGIN * reach)
     table = _TABLE_SIZE if options.timed_loading else 0
 
     def branch(coefficient):
-        return build_branch(law, coefficient, top, options.tabulation, table)
+        return build_branch(contact, coefficient, top, options.tabulation, table)
 
     both = jax.vmap(branch)(jnp.stack([attach_coefficient, detach_coefficient]))
     attach = jax.tree.map(lambda leaf: leaf[0], both)
     detach = jax.tree.map(lambda leaf: leaf[1], both)
     return Problem(
-        law=law,
+        law=contact,
         attach=attach,
         detach=detach,
-        gravity=gravity,
-        start_indentation=-physics.gap / scales.normal,
-        start_velocity=physics.velocity / scales.velocity,
-        touch_speed=touch_speed,
-        bounded=bounded | jnp.isfinite(law.extent()),
-        time_limit=scaled_time_limit(physics, scales),
+        motion=motion_of(physics, options, scales, -physics.gap / scales.normal, touch_speed),
+        bounded=bounded | jnp.isfinite(contact.extent()),
         damping_per_radius=per_radius,
         damping_constant=constant,
     )

@@ -14,9 +14,9 @@ the near-singular speed of a phase that only just reaches its end (an impact jus
 sticking velocity, a late bounce's slow touch).
 
 The restitution and the deepest indentation are exact to round-off, as with the energy's ends;
-the contact times agree with dopri8 at rtol 1e-13 to ≤ 7.4e-9 (10⁴ Thornton–Ning velocities,
-2026-11-27), the rule's error where a phase only just reaches its end. No step is taken: a phase
-costs about a hundred evaluations of the closed forms at any velocity.
+the contact times carry the rule's error, largest where a phase only just reaches its end
+(docs/src/accuracy.md, "Phases timed by quadrature"). No step is taken: a phase costs about a
+hundred evaluations of the closed forms at any velocity.
 """
 
 from collections.abc import Callable
@@ -32,7 +32,7 @@ from .._core.quadrature import ordered_sum
 from .._core.search import illinois_root
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
-from .codes import ADVANCE, DONE, HOLD, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, HOLD, RECEDE, Status
 from .flight import land_on_touch
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import after_phase
@@ -141,7 +141,7 @@ _RULE = _rule()
 
 def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     """One contact phase: its end from the energy balance, its duration by quadrature."""
-    law, gravity = problem.law, problem.gravity
+    law, gravity = problem.law, problem.motion.gravity
     in_contact = (c.mode == ADVANCE) | (c.mode == HOLD) | (c.mode == RECEDE)
     riding = (c.mode == ADVANCE) | (c.mode == RECEDE)
     branch = active_branch(c.mode, problem.attach, problem.detach)
@@ -189,6 +189,6 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     # turnaround whose search did not settle, or a hold that starts inwards; a ride that starts
     # off its edge function (`continuum`).
     unfollowed = in_contact & (~real | ~settled | (~riding & (c.v > 0.0)))
-    closed = replace_where(closed, unfollowed, status=RESULT_CODE["solver_failure"], mode=DONE)
+    closed = replace_where(closed, unfollowed, status=Status.solver_failure, mode=DONE)
     off_branch = in_contact & riding & branch.misses(law, c.radius, c.d)
-    return replace_where(closed, off_branch, status=RESULT_CODE["off_branch"], mode=DONE)
+    return replace_where(closed, off_branch, status=Status.off_branch, mode=DONE)

@@ -23,7 +23,7 @@ from .._law.scales import Scales
 from .._law.springs import Attached, ComputedSpringArray
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import Options, Physics, Problem, build_problem
 from .transitions import next_phase
@@ -66,7 +66,7 @@ def build_array(problem: Problem, count, length) -> ComputedSpringArray:
     """N = `count` midpoint springs on [0, L]; L is `length` (m) if given, else the default."""
     law = problem.law
     default = jnp.minimum(
-        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.touch_speed)[0]
+        law.extent(), _LENGTH_MARGIN * radius_bound(law, problem.attach.coefficient, problem.motion.touch_speed)[0]
     )
     scaled = jnp.where(jnp.isnan(length), default, length / problem.scales.radial)
     spacing = scaled / count
@@ -82,14 +82,21 @@ def build_array(problem: Problem, count, length) -> ComputedSpringArray:
     )
 
 
-def touch_down(problem: Problem, options: Options, array: ComputedSpringArray, c: Carry) -> tuple[Carry, Attached]:
+class ArrayCarry(eqx.Module):
+    """State of a spring array's loop: the phase loop's carry and the springs attached."""
+
+    carry: Carry
+    attached: Attached
+
+
+def touch_down(problem: Problem, options: Options, array: ComputedSpringArray, c: Carry) -> ArrayCarry:
     """Analytic flight to the next touch, whose jump-in attaches every spring with its threshold
     at or below d = 0; ends the run at a bound, or when the body flies off. Returns the carry and
     the springs attached (none unless it lands). The integrators store their own trajectory rows."""
     jump_in = array.cascade(Attached.none(), 0.0, True)
     touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
     c = land(problem, options, c, 0.0, touch, array.force(jump_in, 0.0), samples=False)
-    return c, where(c.mode == ADVANCE, jump_in, Attached.none())
+    return ArrayCarry(carry=c, attached=where(c.mode == ADVANCE, jump_in, Attached.none()))
 
 
 def _arc(attached: Attached, spacing, gravity, d, v, level, inward):
@@ -134,15 +141,16 @@ def _arc(attached: Attached, spacing, gravity, d, v, level, inward):
     )
 
 
-def _spring_event(problem: Problem, array: ComputedSpringArray, c: Carry, attached: Attached) -> tuple[Carry, Attached]:
+def _spring_event(problem: Problem, array: ComputedSpringArray, state: ArrayCarry) -> ArrayCarry:
     """Advance to the next spring event (or the turnaround) in closed form and apply it."""
+    c, attached = state.carry, state.attached
     k = attached.count
     inward = c.mode == ADVANCE
     beyond = k >= array.count
     level = jnp.where(inward & beyond, array.beyond_level, array.next_level(k, inward))
-    duration, d, v, turned = _arc(attached, array.spacing, problem.gravity, c.d, c.v, level, inward)
+    duration, d, v, turned = _arc(attached, array.spacing, problem.motion.gravity, c.d, c.v, level, inward)
     t = c.t + duration
-    out_of_time = t > problem.time_limit
+    out_of_time = t > problem.motion.time_limit
     # What the event does to the contact: unless it turned, d sits on the threshold of the
     # event's own spring, so that spring leads its cascade.
     now = where(turned, attached, array.cascade(attached, d, inward))
@@ -159,10 +167,10 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, c: Carry, attach
         ),
     )
     forces = jnp.stack([array.force(attached, d), array.force(now, d)])
-    status = jnp.where(
+    status = Status.where(
         out_of_time,
-        RESULT_CODE["time_limit"],
-        jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+        Status.time_limit,
+        Status.where(overflow, Status.radius_overflow, Status.where(captured, Status.captured, c.status)),
     )
     c = log_event(c, t, EVENT_CODE["max_indentation"], inward & turned)
     c = log_event(c, t, EVENT_CODE["separation"], separated)
@@ -170,7 +178,9 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, c: Carry, attach
     work = array.work(attached, c.d, d)
     summary = ContactSummary(work=work, lowest_force=jnp.min(forces), highest_force=jnp.max(forces), deepest=d)
     c = record_contact(c, (t, d, v), summary, separated, captured)
-    return replace(c, mode=mode, status=status, steps=c.steps + 1, accepted=c.accepted + 1), now
+    return ArrayCarry(
+        carry=replace(c, mode=mode, status=status, steps=c.steps + 1, accepted=c.accepted + 1), attached=now
+    )
 
 
 def _run_events(problem: Problem, options: Options, array: ComputedSpringArray) -> Outcome:
@@ -180,29 +190,30 @@ def _run_events(problem: Problem, options: Options, array: ComputedSpringArray) 
     rows = options.samples_per_phase * options.max_phases
     stride = jnp.maximum(1, -(-events_per_contact // max(rows, 1)))
 
-    def store(c: Carry, attached: Attached, valid) -> Carry:
+    def store(state: ArrayCarry, valid) -> ArrayCarry:
         if rows == 0:
-            return c
+            return state
+        c, attached = state.carry, state.attached
         index = c.steps // stride
         keep = valid & (c.steps % stride == 0) & (index < rows)
         row = jnp.stack([c.t, c.d, c.v, array.force(attached, c.d), attached.count * array.spacing])
         target = jnp.minimum(index, rows - 1)
-        return replace(c, trajectory=c.trajectory.at[target].set(jnp.where(keep, row, c.trajectory[target])))
+        trajectory = c.trajectory.at[target].set(jnp.where(keep, row, c.trajectory[target]))
+        return replace(state, carry=replace(c, trajectory=trajectory))
 
-    def running(state):
-        c, _ = state
-        return (c.mode != DONE) & (c.steps < max_events)
+    def running(state: ArrayCarry):
+        return (state.carry.mode != DONE) & (state.carry.steps < max_events)
 
-    def advance(state):
-        flying = state[0].mode == FLIGHT
-        c, attached = jax.lax.cond(
+    def advance(state: ArrayCarry) -> ArrayCarry:
+        flying = state.carry.mode == FLIGHT
+        state = jax.lax.cond(
             flying,
-            lambda s: touch_down(problem, options, array, s[0]),
-            lambda s: _spring_event(problem, array, *s),
+            lambda s: touch_down(problem, options, array, s.carry),
+            lambda s: _spring_event(problem, array, s),
             state,
         )
         # A flight stores the touch it lands with; every spring event is stored.
-        return store(c, attached, ~flying | (c.mode == ADVANCE)), attached
+        return store(state, ~flying | (state.carry.mode == ADVANCE))
 
-    c, _ = jax.lax.while_loop(running, advance, (initial_carry(problem, options), Attached.none()))
-    return finish(c)
+    start = ArrayCarry(carry=initial_carry(problem, options), attached=Attached.none())
+    return finish(jax.lax.while_loop(running, advance, start).carry)

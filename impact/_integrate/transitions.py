@@ -10,7 +10,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.pytree import where
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, RESULT_CODE
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, Status
 from .problem import Problem
 
 # Relative gap under which a turnaround that lands on the detach edge starts unloading at once
@@ -27,11 +27,12 @@ class Next(eqx.Module):
     event: jax.Array  # event code logged for this transition
     separated: jax.Array
     captured: jax.Array
-    stop: jax.Array  # a result code that ends the run, or −1
+    stops: jax.Array  # the run ends here with the status `stop`
+    stop: Status
 
 
-def next_phase(mode, segment, radius, event, separated=False, captured=False, stop=-1) -> Next:
-    """A `Next` from plain values (a stop code of −1: the run goes on)."""
+def next_phase(mode, segment, radius, event, separated=False, captured=False, stops=False, stop=None) -> Next:
+    """A `Next` from plain values; where it `stops`, the run ends with the status `stop`."""
     return Next(
         mode=jnp.asarray(mode, int),
         segment=jnp.asarray(segment, int),
@@ -39,7 +40,8 @@ def next_phase(mode, segment, radius, event, separated=False, captured=False, st
         event=jnp.asarray(event, int),
         separated=jnp.asarray(separated),
         captured=jnp.asarray(captured),
-        stop=jnp.asarray(stop, int),
+        stops=jnp.asarray(stops),
+        stop=Status.separated if stop is None else stop,
     )
 
 
@@ -64,8 +66,8 @@ def advance_from(problem: Problem, radius, indentation, event) -> Next:
     held = next_phase(HOLD, 0, wall, event)
     # No spring beyond holds: the attach edge falls for good (n ≤ 1/2), or the tables end.
     falling = ~attach.increasing[-1]
-    grows = next_phase(DONE, 0, wall, event, stop=RESULT_CODE["unbounded_contact"])
-    beyond = next_phase(DONE, 0, wall, event, stop=RESULT_CODE["radius_overflow"])
+    grows = next_phase(DONE, 0, wall, event, stops=True, stop=Status.unbounded_contact)
+    beyond = next_phase(DONE, 0, wall, event, stops=True, stop=Status.radius_overflow)
     return where(
         blocked,
         where(at_wall, held, where(falling & ~jnp.isfinite(law.extent()), grows, beyond)),

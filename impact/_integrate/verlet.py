@@ -32,12 +32,12 @@ import jax.numpy as jnp
 from .._core.pytree import replace
 from .._law.springs import Attached, ComputedSpringArray
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, RESULT_CODE
-from .problem import Options, Problem
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
+from .problem import Motion, Options, Problem
 from .springs import AbstractSpringArrayIntegrator, SpringArrayProblem, touch_down
 from .work import ContactSummary
 
-# Steps allowed in all (a guard against a runaway; about 20 s of stepping).
+# Steps allowed in all: a guard against a runaway, far above any scene's steps.
 _MAX_STEPS = 1_000_000_000
 
 
@@ -96,8 +96,19 @@ def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _S
     return replace(s, trajectory=trajectory, stored=s.stored + jnp.asarray(keep, int))
 
 
-def _verlet_step(array: ComputedSpringArray, gravity, time_limit, dt, inward, rows: int, s: _Stretch) -> _Stretch:
+class VerletCarry(eqx.Module):
+    """State of the stepping loop between phases: the phase loop's carry, the springs attached,
+    and the trajectory rows stored so far with their stride (`_store`)."""
+
+    carry: Carry
+    attached: Attached
+    stored: jax.Array
+    stride: jax.Array
+
+
+def _verlet_step(array: ComputedSpringArray, motion: Motion, dt, inward, rows: int, s: _Stretch) -> _Stretch:
     """One kick–drift–kick step; the springs attach (moving in) or detach (moving out) after the drift."""
+    gravity = motion.gravity
     old_force = array.force(s.attached, s.d)
     half = s.v + 0.5 * dt * (gravity - old_force)
     d = s.d + dt * half
@@ -121,14 +132,15 @@ def _verlet_step(array: ComputedSpringArray, gravity, time_limit, dt, inward, ro
         separated=~inward & (k == 0),
         captured=~inward & (k > 0) & (v > 0.0),
         overflow=inward & (k >= array.count) & (d >= array.beyond_level),
-        out_of_time=t > time_limit,
+        out_of_time=t > motion.time_limit,
     )
     return _store(s, array, rows)
 
 
-def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, c: Carry, attached: Attached, stored, stride):
+def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, state: VerletCarry) -> _Stretch:
     """Step until the phase ends: turnaround (loading), separation or capture (unloading), the
     contact outgrowing the array, or the time limit."""
+    c, attached = state.carry, state.attached
     inward = c.mode == ADVANCE
     start_force = array.force(attached, c.d)
     false = jnp.asarray(False)
@@ -148,15 +160,15 @@ def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, c: Car
         overflow=false,
         out_of_time=false,
         trajectory=c.trajectory,
-        stored=stored,
-        stride=stride,
+        stored=state.stored,
+        stride=state.stride,
     )
 
     def running(s: _Stretch):
         return ~s.stopped() & (s.steps < _MAX_STEPS)
 
     def step(s: _Stretch) -> _Stretch:
-        return _verlet_step(array, problem.gravity, problem.time_limit, dt, inward, rows, s)
+        return _verlet_step(array, problem.motion, dt, inward, rows, s)
 
     return jax.lax.while_loop(running, step, _store(start, array, rows))
 
@@ -169,13 +181,13 @@ def _book(c: Carry, s: _Stretch) -> Carry:
         flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
     )
     mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
-    status = jnp.where(
+    status = Status.where(
         s.out_of_time,
-        RESULT_CODE["time_limit"],
-        jnp.where(
+        Status.time_limit,
+        Status.where(
             capped,
-            RESULT_CODE["solver_failure"],
-            jnp.where(overflow, RESULT_CODE["radius_overflow"], jnp.where(captured, RESULT_CODE["captured"], c.status)),
+            Status.solver_failure,
+            Status.where(overflow, Status.radius_overflow, Status.where(captured, Status.captured, c.status)),
         ),
     )
     c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
@@ -199,20 +211,20 @@ def _run_steps(problem: Problem, options: Options, array: ComputedSpringArray, d
     """Run one impact (possibly several bounces) on the array with velocity Verlet."""
     rows = options.samples_per_phase * options.max_phases
 
-    def contact(c: Carry, attached: Attached, stored, stride):
-        s = _stretch(problem, array, dt, rows, c, attached, stored, stride)
-        return _book(c, s), s.attached, s.stored, s.stride
+    def contact(state: VerletCarry) -> VerletCarry:
+        s = _stretch(problem, array, dt, rows, state)
+        return VerletCarry(carry=_book(state.carry, s), attached=s.attached, stored=s.stored, stride=s.stride)
 
-    def flight(c: Carry, attached: Attached, stored, stride):
-        return *touch_down(problem, options, array, c), stored, stride
+    def flight(state: VerletCarry) -> VerletCarry:
+        landed = touch_down(problem, options, array, state.carry)
+        return replace(state, carry=landed.carry, attached=landed.attached)
 
-    def running(state):
-        return state[0].mode != DONE
+    def running(state: VerletCarry):
+        return state.carry.mode != DONE
 
-    def advance(state):
-        return jax.lax.cond(state[0].mode == FLIGHT, flight, contact, *state)
+    def advance(state: VerletCarry) -> VerletCarry:
+        return jax.lax.cond(state.carry.mode == FLIGHT, flight, contact, state)
 
     one = jnp.ones((), int)
-    start = (initial_carry(problem, options), Attached.none(), 0 * one, one)
-    c, _, _, _ = jax.lax.while_loop(running, advance, start)
-    return finish(c)
+    start = VerletCarry(carry=initial_carry(problem, options), attached=Attached.none(), stored=0 * one, stride=one)
+    return finish(jax.lax.while_loop(running, advance, start).carry)

@@ -59,10 +59,10 @@ class Tabulation:
         return Tabulation(max_turns=turns, turn_grid=grid, tip_search=tip_search)
 
 
-# A ride starts on its branch, d = h(a), to round-off: measured ≤ 2.6e-16 of 1 + |d| + |ĝ(a)| over
-# every example and hard-case scene (2026-11-27). A jump of the radius (jump-in, snap-in, snap-out)
-# that landed elsewhere would start the ride deeper or shallower at no cost in energy (the wavy
-# paraboloid's cascades before 828eadd landed 0.08–0.2 off and created energy: e = 1.77).
+# A ride starts on its branch, d = h(a), to round-off (a few 1e-16 of 1 + |d| + |ĝ(a)| on every
+# example and hard-case scene), far below this bound. A jump of the radius (jump-in, snap-in,
+# snap-out) that landed elsewhere would start the ride deeper or shallower at no cost in energy,
+# creating or destroying it: such a ride ends the run with `off_branch`.
 _ON_BRANCH = 1e-9
 _MANY_TURNS = {WavyParaboloid: (64, 8192), Tabulated: (32, 4096)}
 

@@ -4,7 +4,7 @@ the chapter has none), in the scaled units of `dugdale.DugdaleLaw` (E* = 1).
 - Approach: the Maugis–Dugdale curve with the same σ0 and the range ha = Δγa/σ0: a point starts
   to attract once its gap falls below ha.
 - Frozen zone: a point that has been within ha keeps attracting with σ0 until its gap reaches
-  h = Δγ/σ0. The zone radius b grows monotonically along the curve (measured on every search
+  h = Δγ/σ0. The zone radius b grows monotonically along the curve (checked on every search
   grid: paraboloid, cone, n = 1.5 and 3, σ0 = 1e6…1e9 Pa), so the zone's outer edge stays at b_f,
   its largest radius so far, while ha ≤ gap(b_f) ≤ h. The contact edge keeps K = 0: (3.154) and
   (3.156) with b = b_f fixed, d = g(a) − 2σ·√(b_f² − a²); the range condition (3.152) becomes the

@@ -24,8 +24,8 @@ class ContactLaw(eqx.Module):
     detach_coefficient: jax.Array  # λ: Δl̂(x̂) = λ·√x̂ (0 without adhesion)
     attach_coefficient: jax.Array  # λa = λ·√(Δγa/Δγ)
     # (Â, n) of a power-law body, ĝ = Â·x̂ⁿ, computed once: its g and G are then one log and
-    # one exp of the scaled radius (a power with a traced exponent and κ(n)'s two log-gammas
-    # in every evaluation cost a power-law impact 20× a paraboloid's, measured); None else.
+    # one exp of the scaled radius, not a power with a traced exponent and κ(n)'s two
+    # log-gammas in every evaluation (many times a paraboloid's cost); None else.
     power_law: tuple[jax.Array, jax.Array] | None
     adhesive: bool = eqx.field(static=True)
 

@@ -15,6 +15,8 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .scales import Scales
+
 
 class PlasticState(eqx.Module):
     """The memory of the contact, carried between contacts (scaled)."""
@@ -32,6 +34,7 @@ class PlasticState(eqx.Module):
 class PlasticLaw(eqx.Module):
     """F(d) of Thornton's law given the state; the contact radius â = c·√(R_p/R·(d̂ − d̂_p))."""
 
+    scales: Scales  # the units of its lengths and forces
     stiffness: jax.Array  # k of Hertz's F̂ = k·d̂^(3/2): (4/3)E*√R·ℓz^(3/2) over the force unit
     radius_unit: jax.Array  # c = √(R·ℓz)/ℓx
     yield_depth: jax.Array  # d̂_y = (πp_y/(2E*))²R/ℓz

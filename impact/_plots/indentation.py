@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .._law.double_hertz import tip_radius
 from .._run.indentation import IndentationResult
 from .figures import si_prefix, write_figures
 
@@ -61,28 +60,16 @@ def dmt_limit(result: IndentationResult, points: int = 800):
     run: the Hertz curve d = g(a), F = 2E*(a·d − G(a)) less the DMT pull-off; None for JKR."""
     scene = result.scene
     adhesion = scene.active_adhesion
-    if adhesion is None or adhesion.model == "jkr":
-        return None
     profile = scene.body.profile.build()
-    if adhesion.model == "greenwood_johnson":
-        pull_off = 2 * np.pi * float(tip_radius(profile)) * adhesion.work_of_adhesion  # (3.141)
-    else:
-        pull_off = np.pi * adhesion.adhesive_stress * _radius_at_height(profile, adhesion.adhesion_range) ** 2
+    pull_off = None if adhesion is None else adhesion.dmt_pull_off(profile)
+    if pull_off is None:
+        return None
     modulus = scene.material.effective_modulus
     radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
     d = np.asarray(profile.g(radius))
     force = 2 * modulus * (radius * d - np.asarray(profile.G(radius))) - pull_off
     shown = np.isfinite(d) & np.isfinite(force) & (d <= 1.02 * result.max_indentation)
     return radius[shown], d[shown], force[shown]
-
-
-def _radius_at_height(profile, height: float, steps: int = 200) -> float:
-    """b with f(b) = h (m), by bisection in log b (f rises from f(0) = 0)."""
-    lower, upper = 1e-30, 1e30
-    for _ in range(steps):
-        middle = np.sqrt(lower * upper)
-        lower, upper = (middle, upper) if float(profile.f(middle)) < height else (lower, middle)
-    return np.sqrt(lower * upper)
 
 
 def _limits(result: IndentationResult):

@@ -65,6 +65,7 @@ def hysteresis_figure(shares=(1.0, 0.5, 0.1), tabors=(1.0, 10.0, 100.0)) -> "Fig
     from .. import theory
     from .._run.impacts import simulate_impact
     from .._run.indentation import simulate_indentation
+    from .._scene.adhesion import MaugisDugdaleAdhesion
     from .._scene.scene import load_scene
 
     a_c = (9.0 * np.pi * _R**2 * _WORK / (8.0 * _E_STAR)) ** (1.0 / 3.0)  # (3.170)
@@ -74,11 +75,9 @@ def hysteresis_figure(shares=(1.0, 0.5, 0.1), tabors=(1.0, 10.0, 100.0)) -> "Fig
         law = {"work_of_adhesion": _WORK, "approach_work_of_adhesion": share * _WORK}
         if tabor is None:
             return law
-        return {
-            **law,
-            "model": "maugis_dugdale",
-            "stress": float(theory.maugis_adhesive_stress(tabor, _R, _WORK, _E_STAR)),
-        }
+        return MaugisDugdaleAdhesion.section(
+            **law, stress=float(theory.maugis_adhesive_stress(tabor, _R, _WORK, _E_STAR))
+        )
 
     body = {"profile": {"shape": "paraboloid", "R": _R}}
     figure = Figure(figsize=(11, 4.6), layout="constrained")

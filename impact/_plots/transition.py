@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import theory
+from .._scene.adhesion import AbstractAdhesion, GreenwoodJohnsonAdhesion, MaugisDugdaleAdhesion
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -36,7 +37,13 @@ def pull_off_figure(tabors=None) -> "Figure":
     factors = np.asarray(theory.double_hertz_factor(tabors))
     for xi, control, style in ((3, "force control", "-"), (1, "displacement control", "--")):
         force = np.asarray(theory.double_hertz_pull_off(factors, _R, _E_STAR, _WORK, xi)[2])
-        axes.plot(tabors, -force / unit, style, label=f"Greenwood–Johnson, {control}", gid="greenwood_johnson")
+        axes.plot(
+            tabors,
+            -force / unit,
+            style,
+            label=f"Greenwood–Johnson, {control}",
+            gid=GreenwoodJohnsonAdhesion.model_name(),
+        )
     limits = (
         (2.0, "DMT, Bradley: 2πRΔγ", "k:"),
         (1.5, "JKR: (3/2)πRΔγ", "k-."),
@@ -99,7 +106,7 @@ def _pull_off_panel(axes) -> None:
         axes.plot(lines, maugis, style, color="C0", label=f"Maugis–Dugdale, {control} control")
         double_hertz = -np.asarray(theory.double_hertz_pull_off(factors, _R, _E_STAR, _WORK, xi)[2]) / unit
         axes.plot(lines, double_hertz, style, color="C1", label=f"Greenwood–Johnson, {control} control")
-        for model, color in (("maugis_dugdale", "C0"), ("greenwood_johnson", "C1")):
+        for model, color in ((MaugisDugdaleAdhesion, "C0"), (GreenwoodJohnsonAdhesion, "C1")):
             forces = [_simulated_pull_off(model, tabor, control) / unit for tabor in _SIMULATED_TABORS]
             axes.plot(_SIMULATED_TABORS, np.abs(forces), "o" if xi == 3 else "s", color=color, mfc="none", ms=6)
     for value, name, style in (
@@ -113,14 +120,14 @@ def _pull_off_panel(axes) -> None:
     axes.legend(fontsize="x-small", loc="upper right", ncol=2)
 
 
-def _simulated_pull_off(model: str, tabor: float, control: str) -> float:
+def _simulated_pull_off(model: type[AbstractAdhesion], tabor: float, control: str) -> float:
     """Pull-off force (N) of a quasi-static test of the paraboloid at Λ (k(Λ) for the double Hertz)."""
     from .._run.simulate import simulate
 
-    if model == "maugis_dugdale":
-        adhesion = {"stress": float(theory.maugis_adhesive_stress(tabor, _R, _WORK, _E_STAR))}
+    if model is MaugisDugdaleAdhesion:
+        values = {"stress": float(theory.maugis_adhesive_stress(tabor, _R, _WORK, _E_STAR))}
     else:
-        adhesion = {"k": float(theory.double_hertz_factor(tabor))}
+        values = {"k": float(theory.double_hertz_factor(tabor))}
     peak = 2.0 * np.pi * _R * _WORK if control == "force" else 1e-8
     scene = {
         "name": "pull_off",
@@ -129,7 +136,7 @@ def _simulated_pull_off(model: str, tabor: float, control: str) -> float:
         "program": {"peak": peak},
         "body": {"profile": {"shape": "paraboloid", "R": _R}},
         "material": {"E_star": _E_STAR},
-        "effects": {"adhesion": {"model": model, "work_of_adhesion": _WORK, **adhesion}},
+        "effects": {"adhesion": model.section(work_of_adhesion=_WORK, **values)},
     }
     return simulate(scene).pull_off.force  # type: ignore[union-attr]
 
@@ -147,11 +154,11 @@ def _restitution_panel(axes, tabors, speeds) -> None:
     }
     stresses = theory.maugis_adhesive_stress(tabors, _R, _WORK, _E_STAR)
     maugis = sweep(
-        {**base, "effects": {"adhesion": {"model": "maugis_dugdale", "work_of_adhesion": _WORK, "stress": 1e7}}},
+        {**base, "effects": {"adhesion": MaugisDugdaleAdhesion.section(work_of_adhesion=_WORK, stress=1e7)}},
         {"initial.velocity": velocities, "effects.adhesion.stress": np.asarray(stresses)},
     )
     double_hertz = sweep(
-        {**base, "effects": {"adhesion": {"model": "greenwood_johnson", "work_of_adhesion": _WORK, "k": 1.0}}},
+        {**base, "effects": {"adhesion": GreenwoodJohnsonAdhesion.section(work_of_adhesion=_WORK, k=1.0)}},
         {"initial.velocity": velocities, "effects.adhesion.k": np.asarray(theory.double_hertz_factor(tabors))},
     )
     for row, (speed, velocity) in enumerate(zip(speeds, velocities, strict=True)):

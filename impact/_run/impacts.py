@@ -7,7 +7,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import theory
 from .._integrate.base import AbstractIntegrator
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
 from .._integrate.problem import Options, Physics
@@ -163,18 +162,10 @@ def solve_scene(scene: Scene, integrator: AbstractIntegrator, options: Options) 
 
 
 def tabor_parameter(scene: Scene) -> float:
-    """Λ = (3Rσ0²/(πhE*²))^(1/3) (3.172) of a Maugis–Dugdale scene on a paraboloid, or the
-    equivalent Λ(k) of a Greenwood–Johnson scene (`theory.double_hertz_tabor_parameter`); nan else."""
+    """Λ of the scene's adhesion model (3.172): Maugis–Dugdale on a paraboloid, Greenwood–Johnson's
+    Λ(k) (`theory.double_hertz_tabor_parameter`); nan else."""
     adhesion = scene.active_adhesion
-    if adhesion is not None and adhesion.model == "greenwood_johnson":
-        return float(theory.double_hertz_tabor_parameter(adhesion.double_hertz_factor))
-    if adhesion is None or adhesion.model != "maugis_dugdale" or scene.contact_profile.shape != "paraboloid":
-        return float("nan")
-    return float(
-        theory.tabor_parameter(
-            scene.contact_profile.R, adhesion.adhesive_stress, adhesion.adhesion_range, scene.material.effective_modulus
-        )
-    )
+    return float("nan") if adhesion is None else adhesion.tabor_parameter(scene)
 
 
 def velocities_after(scene: Scene, separation_velocity: "float | np.ndarray") -> tuple[Any, Any, Any]:

@@ -19,7 +19,7 @@ from .._integrate.codes import RESULT_CODES
 from .._integrate.quasistatic import EVENT_KINDS, Loading, QuasiStaticNumerics, march
 from .._law.branches import Tabulation
 from .._scene.scene import Scene
-from .parameters import adhesion_for, spring_capacity
+from .._scene.springs import spring_capacity
 
 if TYPE_CHECKING:
     import pandas
@@ -138,8 +138,7 @@ def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
     return QuasiStaticNumerics(
         adhesive=scene.adhesive,
         springs=None if springs == "continuum" else spring_capacity(springs),
-        model="jkr" if adhesion is None else adhesion.model,
-        hysteresis=adhesion is not None and adhesion.model == "maugis_dugdale" and adhesion.hysteretic,
+        hysteresis=adhesion is not None and adhesion.curve_hysteresis(),
         tabulation=Tabulation.for_profile(scene.body.profile.build()),
     )
 
@@ -151,7 +150,7 @@ def indentation_loading(scene: Scene) -> Loading:
     return Loading(
         profile=scene.body.profile.build(),
         E_star=jnp.asarray(scene.material.effective_modulus, jnp.float64),
-        adhesion=adhesion_for(scene),
+        law=scene.contact_law(jnp),
         force_control=jnp.asarray(scene.control == "force"),
         directions=jnp.asarray(directions),
         targets=jnp.asarray(targets, jnp.float64),

@@ -13,6 +13,7 @@ from .._integrate.adhesive_plastic import AdhesivePlastic
 from .._integrate.base import AbstractIntegrator
 from .._integrate.plastic import Plastic
 from .._integrate.problem import Physics
+from .._law.thornton import ThorntonNing
 from .._scene.scene import Scene
 
 # Each named loss, and whether a scene names the effect it belongs to (where it does not, the
@@ -31,12 +32,10 @@ def plastic_work(integrator: AbstractIntegrator, physics: Physics, max_indentati
     Ning's flow up to the deepest indentation (in closed form, `theory.adhesive_plastic_losses`:
     no later contact reaches that deep); 0 without plasticity."""
     if isinstance(integrator, AdhesivePlastic):
+        law = physics.law
+        assert isinstance(law, ThorntonNing), "the adhesive plastic integrator rides Thornton & Ning's law"
         return theory.adhesive_plastic_losses(
-            max_indentation,
-            physics.profile.radius_scale(),
-            physics.E_star,
-            physics.adhesion.work_of_adhesion,
-            physics.plasticity.yield_pressure,
+            max_indentation, physics.profile.radius_scale(), physics.E_star, law.work_of_adhesion, law.yield_pressure
         )[1]
     if isinstance(integrator, Plastic):
         return dissipated

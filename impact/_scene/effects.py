@@ -1,156 +1,26 @@
-"""The `effects` section of a scene file: adhesion (JKR, Maugis–Dugdale, Greenwood–Johnson),
-gravity, plasticity and damping, each a pydantic model in SI units forbidding unknown keys."""
+"""The `effects` section of a scene file: adhesion (one of the models of `adhesion`), gravity,
+plasticity and damping, each a pydantic model in SI units forbidding unknown keys."""
 
-from typing import Annotated, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
+import numpy as np
 from pydantic import Field, model_validator
 
+from .._integrate.adhesive_plastic import AdhesivePlastic
+from .._integrate.base import AbstractIntegrator
+from .._integrate.plastic import Plastic
+from .._law.jkr import JKR
+from .._law.thornton import Thornton, ThorntonNing
 from . import domains as d
+from .adhesion import AbstractAdhesion, AdhesionSpec
+from .adhesion.base import adaptive, value
 from .domains import within
 from .errors import FieldProblem
 from .profiles import Number
-from .sections import Length, Section, WorkOfAdhesion
+from .sections import Section
 
-# Profiles the Maugis–Dugdale zone is built for: smooth, unbounded, with a finite slope at the
-# tip (the zone's radius must grow from 0 where the tip comes within range).
-DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
-# Springs of a Maugis–Dugdale array: each spring event is a ride (and a quasi-static piece) of its own.
-DUGDALE_MAX_SPRINGS = 2048
-# The least Δγa/Δγ of Maugis–Dugdale approach hysteresis: its approach range ha = Δγa/σ0 must be
-# resolved by the approach curve (measured: Δγa/Δγ = 1e-13 at Λ = 100 and 1e-14 at Λ = 0.1…10 fail;
-# e at 1e-9 is within 2e-5 of its value at 1e-12).
-DUGDALE_LEAST_APPROACH = 1e-9
-
-
-# Profiles Greenwood and Johnson's double Hertz is built for: the paraboloid of §3.9 (and the
-# sphere's tip, its paraboloid r²/(2R)).
-DOUBLE_HERTZ_SHAPES = ("paraboloid", "sphere")
-
-
-class Adhesion(Section):
-    """Adhesion: JKR (zero range) by the rule of Heß, with hysteretic attachment; or
-    Maugis–Dugdale (a constant stress σ0 up to the range h, Δγ = σ0·h); or Greenwood–Johnson
-    (double Hertz with the factor k)."""
-
-    model: Literal["jkr", "maugis_dugdale", "greenwood_johnson"] = Field(
-        "jkr",
-        description=(
-            "'jkr' (zero range, rule of Heß), 'maugis_dugdale' (stress σ0 up to the range h) or "
-            "'greenwood_johnson' (double Hertz of factor k, §3.9)"
-        ),
-    )
-    work_of_adhesion: WorkOfAdhesion = Field(
-        description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
-    )
-    approach_work_of_adhesion: WorkOfAdhesion | None = Field(
-        None,
-        description=(
-            "jkr and maugis_dugdale: work of adhesion on approach Δγa (J/m²), Δγa ≤ Δγ; default Δγ "
-            "(no hysteresis); jkr: 0 attaches on touch; maugis_dugdale: ≥ 1e-9·Δγ, the stress attaches "
-            "over the range Δγa/σ0 and detaches over Δγ/σ0"
-        ),
-    )
-    stress: Annotated[Number, within(d.STRESS)] | None = Field(
-        None, description="maugis_dugdale only: adhesive stress σ0 (Pa); or give range"
-    )
-    range: Length | None = Field(
-        None, description="maugis_dugdale only: range h (m) of the adhesive stress; or give stress"
-    )
-    k: Annotated[Number, within(d.DOUBLE_HERTZ_FACTOR)] | None = Field(
-        None,
-        description=(
-            "greenwood_johnson only: the factor k of the double-Hertz stress (3.198); "
-            "large k is JKR-like, small k DMT-like (Tabor Λ = (36k²/(π³(1 + k)))^(1/3))"
-        ),
-    )
-
-    @model_validator(mode="after")
-    def _approach_not_above(self):
-        if self.approach_work_of_adhesion is not None and self.approach_work_of_adhesion > self.work_of_adhesion:
-            raise FieldProblem(
-                "approach_work_of_adhesion",
-                f"{self.approach_work_of_adhesion:g} J/m² is above work_of_adhesion ({self.work_of_adhesion:g} J/m²): "
-                "0 ≤ Δγa ≤ Δγ (attaching cannot gain more energy than detaching costs)",
-            )
-        return self
-
-    @model_validator(mode="after")
-    def _parameters_of_the_model(self):
-        if self.k is not None and self.model != "greenwood_johnson":
-            raise FieldProblem("k", f"only for model 'greenwood_johnson' ({self.model} has no double-Hertz factor)")
-        if self.model == "jkr":
-            for name in ("stress", "range"):
-                if getattr(self, name) is not None:
-                    raise FieldProblem(name, "only for model 'maugis_dugdale' (jkr has zero range)")
-            return self
-        if self.model == "greenwood_johnson":
-            return self._double_hertz_parameters()
-        approach = self.approach_work_of_adhesion
-        if approach is not None and approach < DUGDALE_LEAST_APPROACH * self.work_of_adhesion:
-            raise FieldProblem(
-                "approach_work_of_adhesion",
-                f"{approach:g} J/m² is below {DUGDALE_LEAST_APPROACH:g}·work_of_adhesion "
-                f"({DUGDALE_LEAST_APPROACH * self.work_of_adhesion:g} J/m²): model 'maugis_dugdale' takes "
-                f"{DUGDALE_LEAST_APPROACH:g}·Δγ ≤ Δγa ≤ Δγ (its approach range Δγa/σ0 must be resolved; "
-                "attach on touch, Δγa = 0, is model 'jkr')",
-            )
-        if (self.stress is None) == (self.range is None):
-            raise FieldProblem(
-                "stress", "model 'maugis_dugdale' needs exactly one of stress (Pa) and range (m): Δγ = σ0·h"
-            )
-        if self.work_of_adhesion == 0:
-            raise FieldProblem("work_of_adhesion", "must be > 0 for model 'maugis_dugdale' (drop adhesion for none)")
-        return self
-
-    def _double_hertz_parameters(self):
-        for name in ("stress", "range"):
-            if getattr(self, name) is not None:
-                raise FieldProblem(name, "only for model 'maugis_dugdale' (greenwood_johnson takes k)")
-        if self.approach_work_of_adhesion is not None:
-            raise FieldProblem(
-                "approach_work_of_adhesion",
-                f"{self.approach_work_of_adhesion:g} J/m² is not taken by model 'greenwood_johnson', which "
-                "loads and unloads on the stable branches of its equilibrium curve without approach "
-                "hysteresis: leave it out (approach hysteresis: model 'jkr' or 'maugis_dugdale')",
-            )
-        if self.k is None:
-            raise FieldProblem("k", "model 'greenwood_johnson' needs the double-Hertz factor k > 0")
-        if self.work_of_adhesion == 0:
-            raise FieldProblem("work_of_adhesion", "must be > 0 for model 'greenwood_johnson' (drop adhesion for none)")
-        return self
-
-    @property
-    def approach(self) -> float:
-        """Δγa (J/m²), defaulting to Δγ."""
-        return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
-
-    @property
-    def hysteretic(self) -> bool:
-        """Whether attaching takes less work than detaching, Δγa < Δγ: the JKR law's attach edge,
-        Maugis–Dugdale's frozen zone (`_law.dugdale_hysteresis`)."""
-        return self.approach < self.work_of_adhesion
-
-    @property
-    def adhesive_stress(self) -> float:
-        """σ0 (Pa) of the Maugis–Dugdale model: given, or Δγ/h."""
-        if self.stress is not None:
-            return self.stress
-        assert self.range is not None, "validated: maugis_dugdale takes stress or range"
-        return self.work_of_adhesion / self.range
-
-    @property
-    def double_hertz_factor(self) -> float:
-        """k of the Greenwood–Johnson model."""
-        assert self.k is not None, "validated: greenwood_johnson takes k"
-        return self.k
-
-    @property
-    def adhesion_range(self) -> float:
-        """h (m) of the Maugis–Dugdale model: given, or Δγ/σ0."""
-        if self.range is not None:
-            return self.range
-        assert self.stress is not None, "validated: maugis_dugdale takes stress or range"
-        return self.work_of_adhesion / self.stress
+if TYPE_CHECKING:
+    from .scene import Scene
 
 
 class Gravity(Section):
@@ -168,6 +38,22 @@ class Plasticity(Section):
     yield_pressure: Annotated[Number, within(d.STRESS)] = Field(
         description="limiting contact pressure p_y (Pa): the Hertzian peak pressure 2E*a/(πR) where the contact yields"
     )
+
+    def law(self, adhesion: AbstractAdhesion | None, xp: Any = np) -> Thornton | ThorntonNing:
+        """Thornton's law, or with (JKR) adhesion Thornton & Ning's (the scene validates it)."""
+        if adhesion is None:
+            return Thornton(yield_pressure=value(xp, self.yield_pressure))
+        jkr = adhesion.law(xp)
+        assert isinstance(jkr, JKR), "validated: Thornton & Ning's law is JKR's"
+        return ThorntonNing(
+            work_of_adhesion=jkr.work_of_adhesion,
+            approach_work_of_adhesion=jkr.approach_work_of_adhesion,
+            yield_pressure=value(xp, self.yield_pressure),
+        )
+
+    def integrator(self, scene: "Scene") -> AbstractIntegrator:
+        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's."""
+        return AdhesivePlastic(**adaptive(scene)) if scene.adhesive else Plastic(**adaptive(scene))
 
 
 class Damping(Section):
@@ -194,9 +80,20 @@ class Damping(Section):
         return self
 
     @property
+    def viscoelastic(self) -> bool:
+        """Whether the model is Brilliantov et al.'s viscoelastic one (else linear)."""
+        return self.model == "viscoelastic"
+
+    def describe(self) -> str:
+        """The damping and its value in words and SI units (`impact validate`)."""
+        if self.viscoelastic:
+            return f"viscoelastic damping (A = {self.viscoelastic_constant:.6g} s)"
+        return f"linear damping (c = {self.linear_coefficient:.6g} N·s/m)"
+
+    @property
     def viscoelastic_constant(self) -> float:
         """A (s); 0 for the linear model."""
-        if self.model != "viscoelastic":
+        if not self.viscoelastic:
             return 0.0
         assert self.dissipative_constant is not None, "validated: model 'viscoelastic' takes dissipative_constant"
         return self.dissipative_constant
@@ -204,7 +101,7 @@ class Damping(Section):
     @property
     def linear_coefficient(self) -> float:
         """c (N·s/m); 0 for the viscoelastic model."""
-        if self.model != "linear":
+        if self.viscoelastic:
             return 0.0
         assert self.coefficient is not None, "validated: model 'linear' takes coefficient"
         return self.coefficient
@@ -213,7 +110,7 @@ class Damping(Section):
 class Effects(Section):
     """The effects the scene names; those left out are not simulated at all."""
 
-    adhesion: Adhesion | None = None
+    adhesion: AdhesionSpec | None = None
     gravity: Gravity | None = None
     plasticity: Plasticity | None = None
     damping: Damping | None = None

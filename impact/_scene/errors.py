@@ -5,6 +5,7 @@ section's cross-field check names one of its fields; `problems_of` turns a pydan
 error into such pairs.
 """
 
+import functools
 from typing import get_args
 
 from pydantic import ValidationError
@@ -37,12 +38,20 @@ def _profile_shapes() -> tuple[str, ...]:
     return tuple(model.model_fields["shape"].default for model in get_args(union))
 
 
-# Tags pydantic inserts into error locations for unions; they are not scene keys.
-_UNION_TAGS = set(_profile_shapes()) | {"int", "literal['continuum']"}
+def _adhesion_models() -> tuple[str, ...]:
+    from .adhesion import MODEL_NAMES  # the models import this module for `FieldProblem`
+
+    return MODEL_NAMES
+
+
+@functools.cache
+def _union_tags() -> frozenset[str]:
+    """Tags pydantic inserts into error locations for unions; they are not scene keys."""
+    return frozenset(_profile_shapes()) | frozenset(_adhesion_models()) | {"int", "literal['continuum']"}
 
 
 def _dotted(location: tuple) -> str:
-    return ".".join(str(part) for part in location if not (isinstance(part, str) and part in _UNION_TAGS))
+    return ".".join(str(part) for part in location if not (isinstance(part, str) and part in _union_tags()))
 
 
 def _path_and_message(error) -> tuple[str, str]:
@@ -57,6 +66,9 @@ def _path_and_message(error) -> tuple[str, str]:
         text = "unknown key"
     elif error["type"] == "missing":
         text = "missing (required)"
+    elif error["type"] == "union_tag_invalid" and error["ctx"]["discriminator"] != "'shape'":
+        text = f"unknown model {error['ctx']['tag']!r}; known models: {', '.join(_adhesion_models())}"
+        path = ".".join(part for part in (path, "model") if part)
     elif error["type"] == "union_tag_invalid":
         text = f"unknown shape {error['ctx']['tag']!r}; known shapes: {', '.join(_profile_shapes())}"
         path = ".".join(part for part in (path, "shape") if part)

@@ -70,14 +70,10 @@ class Units(NamedTuple):
 
 
 def _approach(scene) -> float:
-    """The work of adhesion (J/m²) that sets the adhesive units: JKR's approach work, Maugis–Dugdale's
-    and Greenwood–Johnson's work of adhesion, 0 without adhesion."""
+    """The work of adhesion (J/m²) that sets the adhesive units (`unit_work_of_adhesion`: JKR's
+    approach work, the finite-range laws' work of adhesion), 0 without adhesion."""
     adhesion = scene.active_adhesion
-    if adhesion is None:
-        return 0.0
-    if adhesion.model in ("maugis_dugdale", "greenwood_johnson"):
-        return adhesion.work_of_adhesion
-    return adhesion.approach if adhesion.model == "jkr" else 0.0
+    return 0.0 if adhesion is None else adhesion.unit_work_of_adhesion
 
 
 def _speed(scene) -> float:
@@ -181,7 +177,7 @@ class Limits(NamedTuple):
 def limits_of(scene) -> Limits:
     """The numbers `passes` checks the scene's units against."""
     adhesion = scene.active_adhesion
-    work = adhesion.work_of_adhesion if adhesion is not None and adhesion.model == "jkr" else math.nan
+    work = adhesion.work_of_adhesion if adhesion is not None and adhesion.zero_range else math.nan
     profile = scene.contact_profile
     if scene.effects.plasticity is not None:
         size = math.nan
@@ -228,7 +224,7 @@ def check_units(scene, units: Units) -> None:
     """Raise FieldProblem where the scene's units (`unit_columns`, `units_at`) cannot represent its impact."""
     _check_units(units.values)
     adhesion = scene.active_adhesion
-    if adhesion is not None and adhesion.model == "jkr":
+    if adhesion is not None and adhesion.zero_range:
         _check_adhesion_resolved(adhesion, scene.material.effective_modulus, units.values)
     if scene.effects.plasticity is not None:
         _check_plastic_depth(scene, _speed(scene), _fall(scene))

@@ -6,13 +6,19 @@ bad field by its dotted path; `scene_yaml` writes a scene back, defaults filled 
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
+import numpy as np
 import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from .. import theory
-from .effects import DOUBLE_HERTZ_SHAPES, DUGDALE_MAX_SPRINGS, DUGDALE_SHAPES, Adhesion, Effects
+from .._integrate.base import AbstractIntegrator
+from .._law.base import AbstractContactLaw
+from .._law.jkr import Elastic
+from .adhesion import AbstractAdhesion
+from .adhesion.base import edge_integrator
+from .effects import Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, PowerLawSpec, ProfileSpec
 from .representable import check_representable
@@ -31,7 +37,6 @@ from .sections import (
     Section,
     Solver,
 )
-from .springs import unresolved_zone
 
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
 _IMPACT_ONLY = {
@@ -126,64 +131,9 @@ class Scene(Section):
         return self
 
     @model_validator(mode="after")
-    def _dugdale_supported(self):
-        adhesion = self.effects.adhesion
-        if adhesion is None or adhesion.model != "maugis_dugdale":
-            return self
-        profile = self.body.profile
-        if profile.shape not in DUGDALE_SHAPES:
-            raise FieldProblem(
-                "effects.adhesion.model",
-                f"maugis_dugdale needs a smooth unbounded profile ({', '.join(DUGDALE_SHAPES)}), not {profile.shape!r}",
-            )
-        if profile.shape == "power_law" and profile.n < 1:
-            raise FieldProblem(
-                "body.profile.n",
-                "maugis_dugdale needs n >= 1: for n < 1 the tip's slope is infinite where the zone starts",
-            )
-        springs = self.contact.springs
-        if springs != "continuum" and springs > DUGDALE_MAX_SPRINGS:
-            raise FieldProblem(
-                "contact.springs",
-                f"maugis_dugdale takes at most {DUGDALE_MAX_SPRINGS} springs, not {springs}: every spring event is "
-                "a ride of its own (use 'continuum' for the limit N → ∞)",
-            )
-        if springs != "continuum" and self.solver.method == "verlet":
-            raise FieldProblem(
-                "solver.method",
-                "'verlet' steps the JKR spring array only; a maugis_dugdale spring array is ridden by an adaptive "
-                "method (" + ", ".join(SOLVER_METHODS) + ")",
-            )
-        if springs != "continuum" and adhesion.hysteretic:
-            raise FieldProblem(
-                "effects.adhesion.approach_work_of_adhesion",
-                f"{adhesion.approach:g} J/m² is below work_of_adhesion ({adhesion.work_of_adhesion:g} J/m²): a "
-                "maugis_dugdale spring array has no approach hysteresis (its curve is built spring by spring for one "
-                "range; the frozen zone is derived for the continuum law only): leave it out, or set it to "
-                "work_of_adhesion, or use contact.springs: continuum",
-            )
-        why = None
-        if springs != "continuum":
-            modulus = self.material.effective_modulus
-            why = unresolved_zone(self.contact_profile, modulus, adhesion, self.contact.length, springs)
-        if why is not None:
-            raise FieldProblem("contact.springs", why)
-        return self
-
-    @model_validator(mode="after")
-    def _double_hertz_supported(self):
-        adhesion = self.effects.adhesion
-        if adhesion is None or adhesion.model != "greenwood_johnson":
-            return self
-        shape = self.body.profile.shape
-        if shape not in DOUBLE_HERTZ_SHAPES:
-            raise FieldProblem(
-                "effects.adhesion.model",
-                f"greenwood_johnson needs a paraboloid ({', '.join(DOUBLE_HERTZ_SHAPES)}): the double-Hertz "
-                f"stress of §3.9 holds for f = r²/(2R) only, not {shape!r}",
-            )
-        if self.contact.springs != "continuum":
-            raise FieldProblem("contact.springs", "greenwood_johnson runs on the continuum law only ('continuum')")
+    def _adhesion_supported(self):
+        if self.effects.adhesion is not None:
+            self.effects.adhesion.check(self)
         return self
 
     @model_validator(mode="after")
@@ -210,8 +160,8 @@ class Scene(Section):
         """Why Thornton & Ning's adhesive elastic–plastic law cannot run this scene, or None."""
         adhesion, plasticity = self.effects.adhesion, self.effects.plasticity
         assert adhesion is not None and plasticity is not None, "called with both named"
-        if adhesion.model != "jkr":
-            return f"with adhesion the law of Thornton & Ning (1998) is JKR's, not {adhesion.model!r}"
+        if not adhesion.zero_range:
+            return f"with adhesion the law of Thornton & Ning (1998) is JKR's, not {adhesion.name!r}"
         if adhesion.approach != adhesion.work_of_adhesion:
             return (
                 "with adhesion the law of Thornton & Ning (1998) is the reversible JKR law: "
@@ -242,8 +192,8 @@ class Scene(Section):
             why = "simulated in impacts only (kind 'impact')"
         elif self.effects.plasticity is not None:
             why = "not with effects.plasticity: Thornton's plastic law is simulated undamped only"
-        elif adhesion is not None and adhesion.model != "jkr":
-            why = f"not with adhesion model {adhesion.model!r}: damping acts on the JKR (zero-range) law only"
+        elif adhesion is not None and not adhesion.zero_range:
+            why = f"not with adhesion model {adhesion.name!r}: damping acts on the JKR (zero-range) law only"
         elif self.contact.springs != "continuum":
             why = "runs on the continuum law only (contact.springs: continuum)"
         if why is not None:
@@ -262,8 +212,8 @@ class Scene(Section):
         adhesion = self.active_adhesion
         if self.contact.springs != "continuum":
             return "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
-        if adhesion is not None and adhesion.model != "jkr":
-            return f"not with adhesion model {adhesion.model!r}: its phases end where the solver locates them"
+        if adhesion is not None and not adhesion.zero_range:
+            return f"not with adhesion model {adhesion.name!r}: its phases end where the solver locates them"
         if self.effects.plasticity is not None:
             return "not with effects.plasticity: its phases end where the solver locates them"
         if self.effects.damping is not None:
@@ -352,10 +302,27 @@ class Scene(Section):
         return "integrated" if self._energy_ends_refusal() is not None else "energy"
 
     @property
-    def active_adhesion(self) -> Adhesion | None:
+    def active_adhesion(self) -> AbstractAdhesion | None:
         """The adhesion section where adhesion is simulated (named, with Δγ > 0), else None."""
         adhesion = self.effects.adhesion
         return adhesion if adhesion is not None and adhesion.work_of_adhesion > 0 else None
+
+    def contact_law(self, xp: Any = np) -> AbstractContactLaw:
+        """The contact law the scene names, with its values (arrays of a sweep's points with
+        `xp` numpy): its adhesion model's, Thornton's where it names plasticity (with adhesion
+        Thornton & Ning's), the MDR without adhesion where it names neither."""
+        adhesion, plasticity = self.effects.adhesion, self.effects.plasticity
+        if plasticity is not None:
+            return plasticity.law(adhesion, xp)
+        return Elastic() if adhesion is None else adhesion.law(xp)
+
+    def integrator(self) -> AbstractIntegrator:
+        """The integrator that runs the scene's impact: the one of its plasticity or of its
+        adhesion model where adhesion is simulated (Δγ > 0), else the MDR's without adhesion."""
+        adhesion = self.active_adhesion
+        if self.effects.plasticity is not None:
+            return self.effects.plasticity.integrator(self)
+        return edge_integrator(self) if adhesion is None else adhesion.integrator(self)
 
     @property
     def adhesive(self) -> bool:

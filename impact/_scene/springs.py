@@ -1,18 +1,33 @@
-"""Whether a Maugis–Dugdale spring array can resolve its adhesive zone, decided from a scene's
-values before it runs (`_law.dugdale_springs.ZONE_SPRINGS` springs across the zone's width)."""
+"""Spring arrays of a scene: the compiled size of an array, and whether a Maugis–Dugdale array
+can resolve its adhesive zone, decided from a scene's values before it runs
+(`_law.dugdale_springs.ZONE_SPRINGS` springs across the zone's width)."""
 
 import math
+from typing import TYPE_CHECKING
 
 import jax
 import numpy as np
 
 from .. import theory
 from .._law.dugdale_springs import LENGTH_MARGIN, ZONE_SPRINGS
-from .effects import DUGDALE_MAX_SPRINGS, Adhesion
 from .profiles import ProfileSpec
 
+if TYPE_CHECKING:
+    from .adhesion.maugis_dugdale import MaugisDugdaleAdhesion
 
-def unresolved_zone(profile: ProfileSpec, E_star: float, adhesion: Adhesion, length: float | None, springs: int):
+# Springs of a Maugis–Dugdale array: each spring event is a ride (and a quasi-static piece) of its own.
+DUGDALE_MAX_SPRINGS = 2048
+
+
+def spring_capacity(count: int) -> int:
+    """Slots of the compiled spring array: the next power of two (at least 64), so that arrays
+    of similar size share one compilation (the count itself is traced)."""
+    return max(64, 1 << (int(count) - 1).bit_length())
+
+
+def unresolved_zone(
+    profile: ProfileSpec, E_star: float, adhesion: "MaugisDugdaleAdhesion", length: float | None, springs: int
+):
     """Why `springs` Maugis–Dugdale springs over `length` (m; None: the default) cannot resolve
     the adhesive zone, or None: the array needs `ZONE_SPRINGS` springs across the zone's width
     s = (π/4)E*Δγ/σ0² (`theory.dugdale_zone_width`) over the length, or over the least default

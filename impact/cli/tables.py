@@ -130,32 +130,14 @@ def _effects(scene: Scene) -> str:
     """The adhesion and gravity a scene names, with their parameters in SI units."""
     adhesion, gravity = scene.active_adhesion, scene.effects.gravity
     effects = []
-    if adhesion is not None and adhesion.model == "maugis_dugdale":
-        approach = adhesion.approach
-        hysteresis = (
-            f", Δγa = {approach:g} J/m², ha = {approach / adhesion.adhesive_stress:.6g} m"
-            if adhesion.hysteretic
-            else ""
-        )
-        effects.append(
-            f"Maugis–Dugdale adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², "
-            f"σ0 = {adhesion.adhesive_stress:.6g} Pa, h = {adhesion.adhesion_range:.6g} m{hysteresis})"
-        )
-    elif adhesion is not None and adhesion.model == "greenwood_johnson":
-        effects.append(
-            f"Greenwood–Johnson double-Hertz adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², k = {adhesion.k:g})"
-        )
-    elif adhesion is not None:
-        effects.append(f"adhesion (Δγ = {adhesion.work_of_adhesion:g} J/m², Δγa = {adhesion.approach:g} J/m²)")
+    if adhesion is not None:
+        effects.append(adhesion.describe())
     if gravity is not None:
         effects.append(f"gravity (g = {gravity.g:g} m/s²)")
     if scene.effects.plasticity is not None:
         effects.append(f"plasticity (p_y = {scene.effects.plasticity.yield_pressure:.6g} Pa)")
-    damping = scene.effects.damping
-    if damping is not None and damping.model == "viscoelastic":
-        effects.append(f"viscoelastic damping (A = {damping.viscoelastic_constant:.6g} s)")
-    elif damping is not None:
-        effects.append(f"linear damping (c = {damping.linear_coefficient:.6g} N·s/m)")
+    if scene.effects.damping is not None:
+        effects.append(scene.effects.damping.describe())
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
 
 

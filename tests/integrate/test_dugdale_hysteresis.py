@@ -17,7 +17,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from impact import load_scene, simulate, theory
-from impact._integrate.dugdale import MaugisDugdale
+from impact._integrate.curve import CurveIntegrator
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep.closed_forms import closed_form_name
@@ -172,7 +172,7 @@ def hysteretic_of(reversible):
     """The integrator of a hysteretic scene for a reversible one (Δγa = Δγ): the program its
     scenes with Δγa < Δγ run."""
     integrator = integrator_for(reversible)
-    assert isinstance(integrator, MaugisDugdale) and not integrator.hysteresis
+    assert isinstance(integrator, CurveIntegrator) and not integrator.hysteresis
     return dataclasses.replace(integrator, hysteresis=True)
 
 
@@ -287,7 +287,7 @@ def test_sweeps_pass_the_approach_work_and_run_the_hysteretic_program():
     base = load_scene(scene(share=0.5))
     values = np.array([0.9, 0.3, 1.0]) * WORK
     physics = physics_with(base, {"effects.adhesion.approach_work_of_adhesion": values})
-    np.testing.assert_array_equal(physics.adhesion.approach_work_of_adhesion, values)
+    np.testing.assert_array_equal(physics.law.approach_work_of_adhesion, values)
     for value, hysteretic in zip(values, (True, True, False), strict=True):
         point = load_scene(scene(share=value / WORK))
         assert static_choices(point).integrator.hysteresis == hysteretic

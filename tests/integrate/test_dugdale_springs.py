@@ -14,7 +14,7 @@ import pytest
 
 from impact import SceneError, load_scene, simulate, theory
 from impact._integrate.codes import RESULT_CODE
-from impact._integrate.dugdale import MaugisDugdaleSprings
+from impact._integrate.dugdale import DugdaleSpringIntegrator
 from impact._integrate.quasistatic import QuasiStaticNumerics, march
 from impact._law.dugdale import DugdaleLaw
 from impact._law.dugdale_springs import contact_margin, piece_state
@@ -133,7 +133,7 @@ def test_impact_restitution_converges_at_second_order_with_energy_balance():
         return load_scene({**continuum, "contact": {"springs": count}})
 
     largest = scene(COUNTS[-1])
-    integrator = MaugisDugdaleSprings(rtol=1e-10, atol=1e-12, capacity=COUNTS[-1])
+    integrator = DugdaleSpringIntegrator(rtol=1e-10, atol=1e-12, capacity=COUNTS[-1])
     options = options_for(largest, trajectory=False)
     values = []
     for count in COUNTS:

@@ -6,7 +6,7 @@ import equinox as eqx
 import jax.numpy as jnp
 
 from ..._core.pytree import replace_where
-from ..codes import RESULT_CODE
+from ..codes import Status
 from .continuum_cascade import after_cascade, cascade_bracket, cascade_outcome
 from .continuum_pieces import move, plan
 from .continuum_state import Carry, ContinuumMarch
@@ -52,7 +52,7 @@ def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
     )
     attach, detach = built.problem.attach, built.problem.detach
     overflow = attach.overflow | detach.overflow | built.attach3.overflow | built.detach3.overflow
-    return replace_where(carry, overflow, status=RESULT_CODE["branch_overflow"], done=True)
+    return replace_where(carry, overflow, status=Status.branch_overflow, done=True)
 
 
 def step(march: ContinuumMarch, c: Carry) -> Carry:

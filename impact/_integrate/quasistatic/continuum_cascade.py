@@ -10,7 +10,7 @@ import jax.numpy as jnp
 
 from ..._core.pytree import replace_where
 from ..._law.branches import Branch
-from ..codes import RESULT_CODE
+from ..codes import Status
 from .continuum_state import Carry, ContinuumMarch, complete, instability
 from .events import EventLog
 from .loading import EVENT, FREE, HOLD, RIDE, SAME_RADIUS
@@ -39,7 +39,7 @@ class Outcome(eqx.Module):
     gone: jax.Array  # inward with no crossing: the contact is lost
     wall: jax.Array  # outward to the body's wall
     stop: jax.Array  # outward with no end: the march stops with `code`
-    code: jax.Array
+    code: Status
 
 
 def cascade_bracket(march: ContinuumMarch, c: Carry, up) -> Bracket:
@@ -63,7 +63,7 @@ def cascade_outcome(march: ContinuumMarch, bracket: Bracket, root, a, up) -> Out
     wall = up & none & (branch.nodes[-1] >= march.extent)
     stop = up & none & ~wall
     unbounded = (~branch.increasing[-1] & ~jnp.isfinite(march.extent)) | ~march.built.bounded
-    code = jnp.where(unbounded, RESULT_CODE["unbounded_contact"], RESULT_CODE["radius_overflow"])
+    code = Status.where(unbounded, Status.unbounded_contact, Status.radius_overflow)
     radius = jnp.where(wall, branch.nodes[-1], jnp.where(none, 0.0, radius))
     return Outcome(radius=radius, gone=~up & none, wall=wall, stop=stop, code=code)
 

@@ -7,6 +7,7 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.branches import Branch
 from ..._law.law import ContactLaw
+from ..codes import Status
 from .events import EventLog
 from .loading import EVENT, FREE, HOLD
 from .setup import Built
@@ -23,7 +24,7 @@ class Carry(eqx.Module):
     d: jax.Array
     pre: jax.Array  # [2] a, d where the current instability began
     pull_off: jax.Array  # [3]
-    status: jax.Array
+    status: Status
     done: jax.Array
     steps: jax.Array
     rows: jax.Array

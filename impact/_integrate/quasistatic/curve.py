@@ -33,7 +33,7 @@ from ..._core.pytree import replace, replace_where
 from ..._core.search import bisect
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve, CurveLaw
-from ..codes import RESULT_CODE
+from ..codes import Status
 from .events import EventLog, empty_record, run_march
 from .loading import BISECTION_STEPS, EVENT, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
 
@@ -84,7 +84,7 @@ class CurveCarry(eqx.Module):
     d: jax.Array
     pre: jax.Array  # [2] s, d where the current instability began
     pull_off: jax.Array  # [3] a, d, F
-    status: jax.Array
+    status: Status
     done: jax.Array
     steps: jax.Array
     rows: jax.Array
@@ -121,8 +121,8 @@ def march_curve(
     )
     steps = numerics.steps(targets.shape[0])
     start = initial(march, numerics, steps)
-    start = replace_where(start, overflow | curve.overflow, status=RESULT_CODE["branch_overflow"], done=True)
-    start = replace_where(start, ~curve.resolves(law), status=RESULT_CODE["unresolved_zone"], done=True)
+    start = replace_where(start, overflow | curve.overflow, status=Status.branch_overflow, done=True)
+    start = replace_where(start, ~curve.resolves(law), status=Status.unresolved_zone, done=True)
     return run_march(functools.partial(step, march), start, steps, march.state(curve.nodes[-1])[0])
 
 
@@ -279,7 +279,7 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     c = replace_where(c, begins, landing=True, target=start_force, pre=jnp.stack([p.start, p.level]))
 
     blocked = p.jumping & up & p.lost
-    c = replace_where(c, blocked, status=RESULT_CODE["radius_overflow"], done=True)
+    c = replace_where(c, blocked, status=Status.radius_overflow, done=True)
     c = separate(march, c, log, p.jumping & ~up & p.lost, before, p.level)
 
     moves = p.jumping & ~p.lost

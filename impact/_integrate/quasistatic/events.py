@@ -2,16 +2,17 @@
 step's points and events reach the carry, and the loop that steps a march to its outcome."""
 
 from collections.abc import Callable
+from typing import Any
 
 import jax
 import jax.numpy as jnp
 
 from ..._core.pytree import replace
-from ..codes import RESULT_CODE
+from ..codes import Status, status_code
 from .loading import QuasiStaticOutcome
 
 
-def empty_record(rows: int, events: int) -> dict[str, jax.Array]:
+def empty_record(rows: int, events: int) -> dict[str, Any]:
     """The record fields every march carry shares, before the first step: no instability begun
     (`pre`), no pull-off, separated, not done, no step, and empty buffers for `rows` points
     (a, d, F, leg) and `events` events (row, kind)."""
@@ -19,7 +20,7 @@ def empty_record(rows: int, events: int) -> dict[str, jax.Array]:
     return {
         "pre": jnp.zeros(2),
         "pull_off": jnp.full(3, nan),
-        "status": jnp.asarray(RESULT_CODE["separated"]),
+        "status": Status.separated,
         "done": jnp.asarray(False),
         "steps": jnp.zeros((), int),
         "rows": jnp.full((rows, 4), nan),
@@ -37,7 +38,7 @@ def run_march(step: Callable, start, steps: int, top) -> QuasiStaticOutcome:
         return ~c.done & (c.steps < steps)
 
     end = jax.lax.while_loop(running, step, start)
-    status = jnp.where(end.done, end.status, RESULT_CODE["phase_limit"])
+    status = status_code(Status.where(end.done, end.status, Status.phase_limit))
     return QuasiStaticOutcome(
         status=status, pull_off=end.pull_off, rows=end.rows, events=end.events, steps=end.steps, top=top
     )

@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 import equinox as eqx
 import jax
 
-from ..._effects.adhesion import Adhesion
+from ..._law.base import AbstractContactLaw
 from ..._law.branches import Tabulation
 from ...profiles import Profile
 
@@ -31,7 +31,9 @@ class Loading(eqx.Module):
 
     profile: Profile
     E_star: jax.Array  # Pa
-    adhesion: Adhesion  # Δγ and Δγa ≤ Δγ (J/m²); unused unless `QuasiStaticNumerics.adhesive`
+    law: (
+        AbstractContactLaw  # the contact law and its parameters (adhesion unused unless `QuasiStaticNumerics.adhesive`)
+    )
     force_control: jax.Array  # bool: the program is in N (force) or m (displacement)
     directions: jax.Array  # [L] +1 load, −1 unload (padded: see `legs`)
     targets: jax.Array  # [L] where each leg ends (N or m); −inf: unload to pull-off
@@ -47,7 +49,6 @@ class QuasiStaticNumerics:
 
     adhesive: bool
     springs: int | None = None  # capacity of the spring array (None: continuum law)
-    model: str = "jkr"  # the adhesion law: "jkr", or a finite range: "maugis_dugdale", "greenwood_johnson"
     hysteresis: bool = False  # Maugis–Dugdale with approach hysteresis, Δγa < Δγ (`_law.dugdale_hysteresis`)
     tabulation: Tabulation = field(default_factory=Tabulation)  # turning points per edge function and their search
     samples: int = 33  # points per piece of an edge ridden

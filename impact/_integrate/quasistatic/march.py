@@ -8,10 +8,10 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from ..._law.base import AbstractCurveLaw
 from ..._law.curve import AbstractCurve, CurveLaw, Reach, top_of_peak
-from ..._law.double_hertz import DoubleHertzLaw, build_double_hertz_curve
-from ..._law.dugdale import DugdaleLaw, build_curve
-from ..._law.dugdale_hysteresis import HystereticLaw, with_force_turns
+from ..._law.dugdale import DugdaleLaw
+from ..._law.dugdale_hysteresis import HysteresisCurve, HystereticLaw, with_force_turns
 from ..._law.dugdale_springs import build_spring_curve, default_length, spring_turns
 from ..._law.scales import Scales
 from .continuum import march_continuum
@@ -24,7 +24,7 @@ from .springs import march_springs
 @eqx.filter_jit
 def march(loading: Loading, numerics: QuasiStaticNumerics):
     """Build and march one quasi-static program; returns (scales, scaled outcome)."""
-    if numerics.model != "jkr":
+    if isinstance(loading.law, AbstractCurveLaw):
         return march_finite_range(loading, numerics)
     built = build(loading, numerics)
     if numerics.springs is None:
@@ -33,8 +33,8 @@ def march(loading: Loading, numerics: QuasiStaticNumerics):
 
 
 def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
-    """Maugis–Dugdale or Greenwood–Johnson: the law in the units of the JKR jump-in, its curve up
-    to beyond the program's peak, and the march along it."""
+    """A finite-range law (Maugis–Dugdale, Greenwood–Johnson): the law in the units of the JKR
+    jump-in, its curve up to beyond the program's peak, and the march along it."""
     if numerics.springs is not None:  # every piece of the spring curve may turn, and takes steps of its own
         turns = spring_turns(numerics.tabulation.max_turns, numerics.springs)
         numerics = dataclasses.replace(
@@ -42,33 +42,35 @@ def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
             tabulation=dataclasses.replace(numerics.tabulation, max_turns=turns),
             steps_per_leg=numerics.steps_per_leg or 8 * numerics.springs + 64,
         )
-    scales, unit, law, curve = finite_range_curve(loading, numerics)
+    scales, unit, scaled, curve = finite_range_curve(loading, numerics)
     program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
-    return scales, march_curve(law, curve, program, numerics)
+    return scales, march_curve(scaled, curve, program, numerics)
 
 
 def finite_range_curve(
     loading: Loading, numerics: QuasiStaticNumerics
 ) -> tuple[Scales, jax.Array, CurveLaw, AbstractCurve]:
-    """(scales, unit of the controlled value, law, curve) of a Maugis–Dugdale or Greenwood–Johnson
-    test: the law in the units of the JKR jump-in and its equilibrium curve up to beyond the
-    program's peak (the unit: of the force under force control, else of the indentation)."""
+    """(scales, unit of the controlled value, scaled law, curve) of a finite-range test: the law in
+    the units of the JKR jump-in and its equilibrium curve up to beyond the program's peak (the
+    unit: of the force under force control, else of the indentation); with `numerics.hysteresis`
+    the path of Maugis–Dugdale's approach hysteresis, with the turning points of its force."""
     scales = loading_scales(loading, adhesive=True)
     unit = jnp.where(loading.force_control, scales.force, scales.normal)
     reach = functools.partial(top_of_peak, peak=loading.peak / unit, force_control=loading.force_control)
-    law = finite_range_law(loading, numerics, scales)
+    law = loading.law
+    assert isinstance(law, AbstractCurveLaw), f"a finite-range test rides a curve law, not {type(law).__name__}"
+    scaled = finite_range_law(loading, numerics, scales)
+    turns = numerics.tabulation.max_turns
     curve: AbstractCurve
-    if isinstance(law, HystereticLaw):
-        approach = build_curve(law.approach, numerics.tabulation.max_turns, reach)
-        detach = build_curve(law.detach, numerics.tabulation.max_turns, reach)
-        curve = with_force_turns(law, approach, detach, numerics.tabulation.max_turns)
-    elif isinstance(law, DugdaleLaw) and numerics.springs is not None:
-        curve = spring_curve(law, reach, loading, numerics.springs, numerics.tabulation.max_turns)
-    elif isinstance(law, DugdaleLaw):
-        curve = build_curve(law, numerics.tabulation.max_turns, reach)
+    if numerics.springs is not None:
+        assert isinstance(scaled, DugdaleLaw), "validated: spring arrays of finite range are Maugis–Dugdale's"
+        curve = spring_curve(scaled, reach, loading, numerics.springs, turns)
     else:
-        curve = build_double_hertz_curve(law, reach)
-    return scales, unit, law, curve
+        curve = law.curve(scaled, reach, turns)
+        if isinstance(curve, HysteresisCurve):
+            assert isinstance(scaled, HystereticLaw)
+            curve = with_force_turns(scaled, curve.approach, curve.detach, turns)
+    return scales, unit, scaled, curve
 
 
 def spring_curve(law: DugdaleLaw, reach: Reach, loading: Loading, capacity: int, max_turns: int):
@@ -80,17 +82,9 @@ def spring_curve(law: DugdaleLaw, reach: Reach, loading: Loading, capacity: int,
     return build_spring_curve(law, loading.spring_count, capacity, length, max_turns)
 
 
-def finite_range_law(
-    loading: Loading, numerics: QuasiStaticNumerics, scales: Scales
-) -> DugdaleLaw | HystereticLaw | DoubleHertzLaw:
-    """The Maugis–Dugdale (with `numerics.hysteresis`: its hysteretic law, Δγa ≤ Δγ) or
-    Greenwood–Johnson law of the loading in the units `scales`."""
-    adhesion = loading.adhesion
-    if numerics.model == "maugis_dugdale":
-        law = DugdaleLaw.scaled(
-            loading.profile, scales, loading.E_star, adhesion.adhesive_stress, adhesion.adhesion_range
-        )
-        return HystereticLaw(law, jnp.asarray(adhesion.approach_range / scales.normal)) if numerics.hysteresis else law
-    return DoubleHertzLaw.scaled(
-        loading.profile, scales, loading.E_star, adhesion.work_of_adhesion, adhesion.double_hertz_factor
-    )
+def finite_range_law(loading: Loading, numerics: QuasiStaticNumerics, scales: Scales) -> CurveLaw:
+    """The finite-range law of the loading in the units `scales` (with `numerics.hysteresis`:
+    Maugis–Dugdale's approach path)."""
+    law = loading.law
+    assert isinstance(law, AbstractCurveLaw), f"a finite-range test rides a curve law, not {type(law).__name__}"
+    return law.scaled(loading.profile, loading.E_star, scales, numerics.hysteresis)

@@ -9,10 +9,11 @@ import jax
 import jax.numpy as jnp
 
 from ..._core.search import log_sign_change
+from ..._law.base import AbstractAdhesiveLaw, AbstractEdgeLaw
 from ..._law.branches import Branch, build_branch
 from ..._law.law import ContactLaw
 from ..._law.scales import Scales
-from ..problem import Problem
+from ..problem import Motion, Problem
 from .loading import BISECTION_STEPS, OCTAVES, SCALE_DECADES, SCALE_STEPS, TOP_MARGIN, Loading, QuasiStaticNumerics
 
 
@@ -32,8 +33,11 @@ def loading_scales(loading: Loading, adhesive: bool) -> Scales:
     lower = jnp.maximum(reference * 10.0**-SCALE_DECADES, 1e-300)
     upper = jnp.minimum(profile.extent(), jnp.minimum(reference * 10.0**SCALE_DECADES, 1e300))
 
+    law = loading.law
+    work_of_adhesion = law.work_of_adhesion if isinstance(law, AbstractAdhesiveLaw) else jnp.zeros(())
+
     def hess(x):
-        return jnp.sqrt(2.0 * jnp.pi * x * loading.adhesion.work_of_adhesion / E_star)
+        return jnp.sqrt(2.0 * jnp.pi * x * work_of_adhesion / E_star)
 
     def reach(x):  # the non-adhesive indentation or force at radius x, less the peak
         g = profile.g(x)
@@ -58,8 +62,9 @@ def loading_scales(loading: Loading, adhesive: bool) -> Scales:
 
 def branch_problem(law: ContactLaw, attach, detach) -> Problem:
     """A `Problem` holding the law and its two branches (the impact-only fields are zero)."""
-    given = {"law": law, "attach": attach, "detach": detach}
     zero = jnp.zeros(())
+    still = Motion(start_indentation=zero, start_velocity=zero, touch_speed=zero, gravity=zero, time_limit=zero)
+    given = {"law": law, "attach": attach, "detach": detach, "motion": still}
     return Problem(**{f.name: given.get(f.name, zero) for f in dataclasses.fields(Problem) if f.init})
 
 
@@ -86,7 +91,8 @@ def build(loading: Loading, numerics: QuasiStaticNumerics) -> Built:
     profile = loading.profile
     scales = loading_scales(loading, numerics.adhesive)
     if numerics.adhesive:
-        detach_coefficient, attach_coefficient = loading.adhesion.hess_coefficients(scales, loading.E_star)
+        assert isinstance(loading.law, AbstractEdgeLaw), "a branch march is of an edge law"
+        detach_coefficient, attach_coefficient = loading.law.hess_coefficients(scales, loading.E_star)
     else:
         detach_coefficient = attach_coefficient = jnp.zeros(())
     law = ContactLaw(profile, scales, detach_coefficient, attach_coefficient, numerics.adhesive)

@@ -8,7 +8,7 @@ import jax.numpy as jnp
 
 from ..._core.pytree import replace_where
 from ..._law.springs import TabulatedSpringArray
-from ..codes import RESULT_CODE
+from ..codes import Status
 from .events import EventLog, empty_record, run_march
 from .loading import EVENT, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built
@@ -24,7 +24,7 @@ class SpringCarry(eqx.Module):
     d: jax.Array
     pre: jax.Array  # [2] k, d where the current instability began
     pull_off: jax.Array
-    status: jax.Array
+    status: Status
     done: jax.Array
     steps: jax.Array
     rows: jax.Array
@@ -227,7 +227,7 @@ def cross(march: SpringMarch, c: SpringCarry, log: EventLog, up, passes, k, beyo
     gone = moves & ~up & (k_new == 0)
     c = separate(march, c, log, gone, k, d_now)
     c = snap(march, c, log, moves & ~gone, up, k, k_new, d_now)
-    code = jnp.where(march.built.bounded, RESULT_CODE["radius_overflow"], RESULT_CODE["unbounded_contact"])
+    code = Status.where(march.built.bounded, Status.radius_overflow, Status.unbounded_contact)
     return replace_where(c, overflow, status=code, done=True)
 
 

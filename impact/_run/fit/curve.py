@@ -41,6 +41,7 @@ import yaml
 from ..._core import derivatives
 from ..._core.search import log_sign_change
 from ..._integrate.quasistatic.loading import SCALE_DECADES, SCALE_STEPS
+from ..._scene.adhesion import AbstractAdhesion
 from ..._scene.fit_spec import FitSpec
 from ..._scene.paths import with_values
 from ..._scene.scene import Scene, load_scene, scene_yaml
@@ -50,13 +51,6 @@ from .range_curve import finite_range_state
 SHAPES = ("paraboloid", "sphere", "ellipsoid", "cone", "power_law")
 # The scene values the curve depends on: the modulus, the profile, the adhesion's parameters.
 CURVE_PATHS = ("material.", "body.profile.", "effects.adhesion.")
-FINITE_RANGE = ("maugis_dugdale", "greenwood_johnson")
-# The adhesion fields each law's curve depends on.
-ADHESION_FIELDS = {
-    "jkr": ("work_of_adhesion", "approach_work_of_adhesion"),
-    "maugis_dugdale": ("work_of_adhesion", "stress", "range"),
-    "greenwood_johnson": ("work_of_adhesion", "k"),
-}
 # A contact radius never reaches the end of a walled or bounded profile (the sphere's equator).
 EDGE_MARGIN = 1e-9
 
@@ -97,7 +91,7 @@ class IndentationCurve:
         batch = with_values(scene, {path: values[index] for index, path in enumerate(self.varied)})
         adhesion = batch.effects.adhesion
         assert adhesion is not None, "checked: model 'theory' needs adhesion"
-        if adhesion.model in FINITE_RANGE:
+        if not adhesion.zero_range:
 
             def state(control, retract):
                 return finite_range_state(scene, batch, control, retract)
@@ -132,16 +126,16 @@ def curve_problems(spec: FitSpec) -> list[tuple[str, str]]:
     if adhesion is None:
         return [("scene.effects.adhesion", "model 'theory' of an indentation curve needs adhesion")]
     problems = []
-    if adhesion.model in FINITE_RANGE:
+    if not adhesion.zero_range:
         if scene.control != "displacement":
             problems.append(
-                ("scene.control", f"model 'theory' of a {adhesion.model} curve takes displacement control only")
+                ("scene.control", f"model 'theory' of a {adhesion.name} curve takes displacement control only")
             )
         if adhesion.hysteretic:
             problems.append(
                 (
                     "scene.effects.adhesion.approach_work_of_adhesion",
-                    f"{adhesion.approach:g} J/m²: model 'theory' of a maugis_dugdale curve is the reversible one "
+                    f"{adhesion.approach:g} J/m²: model 'theory' of a {adhesion.name} curve is the reversible one "
                     f"(approach_work_of_adhesion = work_of_adhesion, {adhesion.work_of_adhesion:g} J/m²)",
                 )
             )
@@ -155,14 +149,14 @@ def curve_problems(spec: FitSpec) -> list[tuple[str, str]]:
     return problems
 
 
-def _path_problem(path: str, adhesion) -> str | None:
+def _path_problem(path: str, adhesion: AbstractAdhesion) -> str | None:
     """Why the curve cannot vary the scene value at `path` (None where it can)."""
     if not path.startswith(CURVE_PATHS):
         return "the curve of model 'theory' depends only on material.*, body.profile.* and effects.adhesion.*"
     if not path.startswith("effects.adhesion."):
         return None
-    name, fields = path.rsplit(".", 1)[1], ADHESION_FIELDS[adhesion.model]
-    return None if name in fields else f"a {adhesion.model} curve depends on {', '.join(fields)}"
+    name, fields = path.rsplit(".", 1)[1], adhesion.curve_fields
+    return None if name in fields else f"a {adhesion.name} curve depends on {', '.join(fields)}"
 
 
 class Edge:

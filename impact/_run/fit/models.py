@@ -123,7 +123,7 @@ def _check_theory(spec: FitSpec) -> None:
     problems = []
     if scene.kind != "impact" or scene.body.profile.shape != "paraboloid":
         problems.append(("scene.body.profile.shape", "model 'theory' describes the impact of a paraboloid"))
-    if adhesion is None or adhesion.model != "jkr" or adhesion.approach != adhesion.work_of_adhesion:
+    if adhesion is None or not adhesion.zero_range or adhesion.approach != adhesion.work_of_adhesion:
         problems.append(("scene.effects.adhesion", "model 'theory' needs reversible JKR adhesion (Δγa = Δγ)"))
     if scene.effects.gravity is not None:
         problems.append(("scene.effects.gravity", "model 'theory' has no gravity"))

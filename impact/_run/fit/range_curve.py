@@ -34,7 +34,6 @@ from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve
 from ..._scene.scene import Scene
 from ..indentation import indentation_loading, indentation_numerics
-from ..parameters import adhesion_of
 
 
 def finite_range_state(scene: Scene, values: Scene, depth, retract) -> dict[str, jax.Array]:
@@ -44,12 +43,12 @@ def finite_range_state(scene: Scene, values: Scene, depth, retract) -> dict[str,
     adhesion = values.effects.adhesion
     assert adhesion is not None, "checked: a finite-range curve has adhesion"
     loading = eqx.tree_at(
-        lambda test: (test.profile, test.E_star, test.adhesion),
+        lambda test: (test.profile, test.E_star, test.law),
         indentation_loading(scene),
         (
             values.body.profile.build(),
             jnp.asarray(values.material.effective_modulus, jnp.float64),
-            adhesion_of(adhesion),
+            adhesion.law(jnp),
         ),
     )
     # The curve and its segments only place the state: built without derivatives (the state of

@@ -10,10 +10,11 @@ import numpy as np
 
 from ... import profiles, theory
 from ..._integrate.adhesive_plastic import AdhesivePlastic
-from ..._integrate.curve import AbstractCurveIntegrator
-from ..._integrate.dugdale import MaugisDugdale
+from ..._integrate.curve import AbstractCurveIntegrator, CurveIntegrator
 from ..._integrate.plastic import Plastic
 from ..._integrate.problem import Physics, touch_velocity
+from ..._law.base import AbstractAdhesiveLaw, AbstractPlasticLaw
+from ..._law.thornton import ThorntonNing
 from ..._scene.scene import Scene
 
 if TYPE_CHECKING:
@@ -28,25 +29,20 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     k → ∞): no closed form has a finite range (nor Maugis–Dugdale's approach hysteresis).
     Thornton's (1997) closed form for plastic paraboloids without gravity, and Thornton & Ning's
     (1998) with adhesion (`theory.adhesive_plastic_restitution`)."""
-    options = choices.options
+    options, law = choices.options, physics.law
     if isinstance(choices.integrator, AdhesivePlastic):
         profile, v = physics.profile, touch_velocity(physics, options)
         assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
+        assert isinstance(law, ThorntonNing)
         adhesive = theory.adhesive_plastic_restitution(
-            v,
-            physics.mass,
-            profile.R,
-            physics.E_star,
-            physics.adhesion.work_of_adhesion,
-            physics.plasticity.yield_pressure,
+            v, physics.mass, profile.R, physics.E_star, law.work_of_adhesion, law.yield_pressure
         )
         return jnp.where(options.gravity, jnp.nan, adhesive)
     if isinstance(choices.integrator, Plastic):
         profile, v = physics.profile, touch_velocity(physics, options)
         assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
-        yield_velocity = theory.thornton_yield_velocity(
-            physics.mass, profile.R, physics.E_star, physics.plasticity.yield_pressure
-        )
+        assert isinstance(law, AbstractPlasticLaw)
+        yield_velocity = theory.thornton_yield_velocity(physics.mass, profile.R, physics.E_star, law.yield_pressure)
         return jnp.where(options.gravity, jnp.nan, theory.thornton_restitution(v, yield_velocity))
     nan = jnp.full((), jnp.nan)
     if options.damped:
@@ -57,8 +53,11 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
         return nan
     profile = physics.profile
     v, m, modulus = touch_velocity(physics, options), physics.mass, physics.E_star
-    work, approach = physics.adhesion.work_of_adhesion, physics.adhesion.approach_work_of_adhesion
-    hysteretic = isinstance(choices.integrator, MaugisDugdale) and choices.integrator.hysteresis
+    assert isinstance(law, AbstractAdhesiveLaw), "simulated adhesion has a work of adhesion"
+    work = law.work_of_adhesion
+    # A curve law without approach hysteresis is reversible: its JKR limit is the closed form.
+    approach = getattr(law, "approach_work_of_adhesion", work)
+    hysteretic = isinstance(choices.integrator, CurveIntegrator) and choices.integrator.hysteresis
     reversible = (approach == work) | (isinstance(choices.integrator, AbstractCurveIntegrator) and not hysteretic)
     if type(profile) is profiles.Paraboloid:
         jkr = theory.thornton_ning_restitution(v, m, profile.R, modulus, work)
@@ -99,7 +98,7 @@ def _damped_name(scene: Scene) -> str:
     shape = scene.contact_profile.shape
     if shape == "flat_punch":
         return "linear spring–dashpot (theory.dashpot_restitution)"
-    if shape == "paraboloid" and damping.model == "viscoelastic":
+    if shape == "paraboloid" and damping.viscoelastic:
         return "Schwager–Pöschel first order 1 − 1.1534βv₀^(1/5) (small A)"
     return "no closed form (damping)"
 
@@ -117,32 +116,14 @@ def closed_form_name(scene: Scene) -> str:
         return "no adhesion: e = 1"
     if scene.effects.gravity is not None:
         return "no closed form (gravity)"
-    shape = scene.contact_profile.shape
-    if adhesion.model == "maugis_dugdale" and adhesion.hysteretic:
-        return "no closed form (Maugis–Dugdale with approach hysteresis)"
-    if adhesion.model == "maugis_dugdale":
-        limit = {
-            "paraboloid": "Thornton–Ning (3.50–51)",
-            "power_law": "power law (3.81–82)",
-            "cone": "power law (3.81–82)",
-        }
-        return f"{limit[shape]}: the JKR limit Λ → ∞ of Maugis–Dugdale"
-    if adhesion.model == "greenwood_johnson":
-        return "Thornton–Ning (3.50–51): the JKR limit k → ∞ of Greenwood–Johnson"
-    if shape == "paraboloid":
-        if adhesion.approach == adhesion.work_of_adhesion:
-            return "Thornton–Ning (3.50–51)"
-        if adhesion.approach == 0:
-            return "attach on touch (theory.attach_on_touch_restitution)"
-    if shape in ("power_law", "cone") and adhesion.approach == adhesion.work_of_adhesion:
-        return "power law (3.81–82)"
-    return "closed form"
+    return adhesion.closed_form_name(scene)
 
 
 def sticking_velocity(scene: Scene, physics: Physics) -> np.ndarray:
     """Closed-form sticking velocity (m/s) of each point of a batched Physics, numpy; NaN where
     the chapter gives none (the same formulas as `theory.*_sticking_velocity`)."""
-    profile, mass, modulus, work = physics.profile, physics.mass, physics.E_star, physics.adhesion.work_of_adhesion
+    profile, mass, modulus, law = physics.profile, physics.mass, physics.E_star, physics.law
+    work = law.work_of_adhesion if isinstance(law, AbstractAdhesiveLaw) else np.zeros_like(mass)
     nan = np.full(np.shape(mass), np.nan)
     with np.errstate(all="ignore"):
         if isinstance(profile, profiles.Paraboloid):

@@ -9,10 +9,6 @@ from typing import NamedTuple
 import jax
 import numpy as np
 
-from ..._effects.adhesion import Adhesion
-from ..._effects.damping import Damping
-from ..._effects.gravity import Gravity
-from ..._effects.plasticity import Plasticity
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.problem import Options, Physics
 from ..._scene.paths import with_values
@@ -85,55 +81,10 @@ def physics_with(scene: Scene, params: Mapping, xp=np) -> Physics:
     The base scene is copied with the values (no validation: they are validated already, or
     traced), so derived values (E* from E and ν, mass from density) follow the scene's own
     formulas elementwise."""
-    template = physics_for(scene)
     batch = with_values(scene, params)
-    profile = (
-        batch.contact_profile.build()
-        if any(path.startswith(("body.profile.", "counterpart.profile.")) for path in params)
-        else template.profile
-    )
-    adhesion, gravity, plasticity = batch.effects.adhesion, batch.effects.gravity, batch.effects.plasticity
-    damping = batch.effects.damping
-    stress = factor = xp.full((), xp.nan)
-    if adhesion is None:
-        work = approach = xp.zeros(())
-    else:
-        adhesive = xp.asarray(adhesion.work_of_adhesion) > 0
-        work = xp.where(adhesive, adhesion.work_of_adhesion, 0.0)
-        if adhesion.model == "greenwood_johnson":
-            factor = xp.where(adhesive, adhesion.double_hertz_factor, xp.nan)
-            approach = xp.zeros(())
-        else:
-            approach = xp.where(adhesive, adhesion.approach, 0.0)
-        if adhesion.model == "maugis_dugdale":
-            stress = xp.where(adhesive, adhesion.adhesive_stress, xp.nan)
-    duration, length, springs = batch.limits.duration, batch.contact.length, batch.contact.springs
-
-    def value(number):
-        return xp.asarray(number, dtype=xp.float64)
-
-    return Physics(
-        profile=jax.tree.map(value, profile),
-        E_star=value(batch.material.effective_modulus),
-        mass=value(batch.reduced_mass),
-        velocity=value(batch.approach_velocity),
-        gap=value(batch.start.gap),
-        adhesion=Adhesion(
-            work_of_adhesion=value(work),
-            approach_work_of_adhesion=value(approach),
-            adhesive_stress=value(stress),
-            double_hertz_factor=value(factor),
-        ),
-        gravity=Gravity(value(0.0 if gravity is None else gravity.g)),
-        plasticity=Plasticity(value(xp.nan if plasticity is None else plasticity.yield_pressure)),
-        damping=Damping(
-            value(0.0 if damping is None else damping.viscoelastic_constant),
-            value(0.0 if damping is None else damping.linear_coefficient),
-        ),
-        time_limit=value(xp.inf if duration is None else duration),
-        spring_length=value(xp.nan if length is None else length),
-        spring_count=value(xp.nan if isinstance(springs, str) else springs),
-    )
+    swept = any(path.startswith(("body.profile.", "counterpart.profile.")) for path in params)
+    profile = (batch if swept else scene).contact_profile.build()
+    return physics_for(batch, xp, profile=jax.tree.map(lambda leaf: xp.asarray(leaf, dtype=xp.float64), profile))
 
 
 def _batched(value, shape: tuple, size: int) -> np.ndarray:
