@@ -221,11 +221,11 @@ def _adhesion_refusals(scene: Scene, model: str) -> list[tuple[str, str]]:
             why = f"{model} needs adhesion (effects.adhesion with work_of_adhesion > 0); without it use hertz/material"
             return [("--model", why)]
         return []
-    if adhesion.model != "jkr":
+    if not adhesion.zero_range:
         return [
             (
                 "effects.adhesion.model",
-                f"LAMMPS's granular adhesion has zero range (jkr, dmt, mdr): {adhesion.model!r} has no equivalent "
+                f"LAMMPS's granular adhesion has zero range (jkr, dmt, mdr): {adhesion.name!r} has no equivalent "
                 "there",
             )
         ]
@@ -312,7 +312,7 @@ def _scene_damping(scene: Scene, model: str) -> tuple[Damping, str]:
     lammps_name = "mdr" if model == "mdr" else "velocity"
     if damping is None:
         return Damping(lammps_name, 0.0, "scene"), f"damping: none ({lammps_name} with η₀ = 0)"
-    if damping.model == "linear":
+    if not damping.viscoelastic:
         c = damping.linear_coefficient
         return Damping("velocity", c, "scene"), f"damping: velocity η₀ = c = {c:g} N·s/m, the scene's linear damping"
     eta = 2.0 * scene.material.effective_modulus * damping.viscoelastic_constant / scene.reduced_mass
