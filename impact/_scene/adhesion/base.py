@@ -28,6 +28,7 @@ if TYPE_CHECKING:
 class AbstractAdhesion(Section):
     """Adhesion of the interface; `model` names the law."""
 
+    model: str  # each model narrows it to its own name (the union's tag)
     work_of_adhesion: WorkOfAdhesion = Field(
         description="work of adhesion Δγ (J/m²), the Dupré energy of separation, not a surface energy γ"
     )
