@@ -129,8 +129,13 @@ def _summary(model: type[BaseModel]) -> str:
     return _cell(doc.strip().split("\n\n")[0]) if doc.strip() else ""
 
 
+def _tag(model: type[BaseModel]) -> str:
+    """The key that selects a member of a tagged union: `shape` (profiles) or `model` (adhesion)."""
+    return "shape" if "shape" in model.model_fields else "model"
+
+
 def _shape(model: type[BaseModel]) -> str:
-    options, _ = _unwrap(model.model_fields["shape"].annotation)
+    options, _ = _unwrap(model.model_fields[_tag(model)].annotation)
     return typing.get_args(options[0])[0]
 
 
@@ -159,10 +164,12 @@ def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[s
 
 def _section(path: str, models: list[type[BaseModel]], level: int) -> list[str]:
     hashes = "#" * min(level, 6)
-    if len(models) > 1:  # a union tagged by `shape`: one table per shape
-        out = [f"{hashes} `{path}`", "", f"A mapping whose `shape` selects one of {len(models)} profiles.", ""]
+    if len(models) > 1:  # a union tagged by `shape` (or `model`): one table per member
+        tag = _tag(models[0])
+        kinds = "profiles" if tag == "shape" else "models"
+        out = [f"{hashes} `{path}`", "", f"A mapping whose `{tag}` selects one of {len(models)} {kinds}.", ""]
         for model in models:
-            out += [f"{hashes}# `shape: {_shape(model)}`", "", _summary(model), ""]
+            out += [f"{hashes}# `{tag}: {_shape(model)}`", "", _summary(model), ""]
             lines, nested = _table(model, f"{path}.")
             out += [*lines, ""]
             for inner_path, inner in nested:

@@ -37,6 +37,7 @@ from .sections import (
     Section,
     Solver,
 )
+from .shear import Shear
 
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
 _IMPACT_ONLY = {
@@ -65,6 +66,9 @@ class Scene(Section):
         None, description="a second free body that the body hits; default: a rigid flat at rest"
     )
     initial: Initial | None = None
+    shear: Shear | None = Field(
+        None, description="indentation only: a tangential program at the held load of program.peak (needs friction)"
+    )
     effects: Effects = Effects()
     contact: Contact = Contact()
     solver: Solver = Solver()
@@ -134,6 +138,14 @@ class Scene(Section):
     def _adhesion_supported(self):
         if self.effects.adhesion is not None:
             self.effects.adhesion.check(self)
+        return self
+
+    @model_validator(mode="after")
+    def _friction_supported(self):
+        if self.shear is not None:
+            self.shear.check(self)
+        if self.effects.friction is not None:
+            self.effects.friction.check(self)
         return self
 
     @model_validator(mode="after")
@@ -288,9 +300,9 @@ class Scene(Section):
 
     @property
     def approach_velocity(self) -> float:
-        """Speed (m/s) at which the two surfaces approach at the start: the body's, plus the
-        counterpart's towards it."""
-        speed = self.start.velocity
+        """Speed (m/s) at which the two surfaces approach at the start: the body's along the
+        normal (`Initial.normal_velocity`), plus the counterpart's towards it."""
+        speed = self.start.normal_velocity
         return speed if self.counterpart is None else speed + self.counterpart.velocity
 
     @property
@@ -317,9 +329,12 @@ class Scene(Section):
         return Elastic() if adhesion is None else adhesion.law(xp)
 
     def integrator(self) -> AbstractIntegrator:
-        """The integrator that runs the scene's impact: the one of its plasticity or of its
-        adhesion model where adhesion is simulated (Δγ > 0), else the MDR's without adhesion."""
+        """The integrator that runs the scene's impact: the spring array with tangential springs
+        where it names friction, the one of its plasticity or of its adhesion model where
+        adhesion is simulated (Δγ > 0), else the MDR's without adhesion."""
         adhesion = self.active_adhesion
+        if self.effects.friction is not None:
+            return self.effects.friction.integrator(self)
         if self.effects.plasticity is not None:
             return self.effects.plasticity.integrator(self)
         return edge_integrator(self) if adhesion is None else adhesion.integrator(self)
