@@ -202,13 +202,14 @@ def _event(problem: ObliqueProblem, s: _State, rows: int) -> _State:
 
 def _land(problem: ObliqueProblem, options: Options, s: _State, rows: int) -> _State:
     """Analytic flight to the next touch (`springs.touch_down`); a new contact starts with no
-    friction work."""
+    friction work and nothing slipping."""
     landed = touch_down(problem.springs.problem, options, problem.springs.array, s.carry)
     c = landed.carry
-    tangential = replace(s.tangential, work=jnp.where(c.mode == DONE, s.tangential.work, 0.0))
+    radius = landed.attached.count * problem.springs.array.spacing
+    # No spring has slipped yet: the stick zone is the whole contact (of the jump-in).
+    tangential = replace(s.tangential, work=jnp.where(c.mode == DONE, s.tangential.work, 0.0), stick_radius=radius)
     s = replace(s, carry=c, attached=landed.attached, tangential=tangential)
     force = problem.springs.array.force(landed.attached, c.d)
-    radius = landed.attached.count * problem.springs.array.spacing
     return _store(s, _row(c.t, c.d, c.v, force, radius, tangential), rows)
 
 
