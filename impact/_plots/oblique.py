@@ -54,7 +54,7 @@ def tangential_figure(results: Sequence[SweepResult], labels: Sequence[str] | No
             for axes, column, scale in zip(panels, columns, (1.0, 180.0 / np.pi, 1.0), strict=True):
                 assert column is not None, "a sweep with friction holds the tangential columns"
                 axes.plot(shown, column.reshape(-1)[members] * scale, "o-", ms=3, color=color, label=label)
-            _sliding_limit(panels, result, path, x[members], members, color)
+            _sliding_limit(panels, result, path, x[members], members)
     panels[0].set_ylabel("tangential restitution |v_t′|/v_t")
     panels[1].set_ylabel("rebound angle (°)")
     panels[2].set_ylabel("spin after ω′ (rad/s)")
@@ -73,7 +73,7 @@ def _shown(path: str, x: np.ndarray) -> np.ndarray:
     return np.degrees(x) if path == ANGLE else x
 
 
-def _sliding_limit(panels, result: SweepResult, path: str, x: np.ndarray, members: np.ndarray, color: str) -> None:
+def _sliding_limit(panels, result: SweepResult, path: str, x: np.ndarray, members: np.ndarray) -> None:
     """The rigid-body sliding limit (`theory.sliding_impact`) of each point with per-spring
     friction and no adhesion, dashed where tan θ passes `theory.gross_sliding_tangent`."""
     scene = result.scene
@@ -95,5 +95,6 @@ def _sliding_limit(panels, result: SweepResult, path: str, x: np.ndarray, member
     )
     values = (np.abs(velocity) / tangential, np.degrees(np.arctan2(velocity, e * normal)), spin)
     for axes, value in zip(panels, values, strict=True):
-        axes.plot(_shown(path, x)[slides], np.broadcast_to(value, e.shape)[slides], "--", color=color, lw=1.0,
-                  label="rigid sliding (Maw et al.)" if axes is panels[0] else None)  # fmt: skip
+        label = "rigid sliding (Maw et al. 1976)" if axes is panels[0] else None
+        shown = np.broadcast_to(value, e.shape)[slides]
+        axes.plot(_shown(path, x)[slides], shown, "k--", lw=1.2, label=label, zorder=3)

@@ -66,13 +66,14 @@ class Result:
         tangential_velocity_after: Velocity of the body's centre along the surface after the
             first contact [m/s], along its sliding before (`initial.angle`); nan unless it
             separated. Without `effects.friction` the body slides on unchanged.
-        spin_after: The body's spin after the first contact [rad/s], > 0 rolling it along its
-            sliding; nan unless it separated.
+        spin_after: The body's spin after the first contact in radians per second [s⁻¹], > 0
+            rolling it along its sliding; nan unless it separated.
         tangential_restitution: |v_t′|/v_t of the centre, dimensionless (as Kharaz et al. and
             DEM codes define it); nan without sliding before.
         contact_point_tangential_restitution: −w′/w of the contact point, w = v_t − Rω,
             dimensionless: −1 slides on unchanged, +1 reversed (Maw, Barber & Fawcett's β).
-        rebound_angle: Angle of the rebound from the surface normal, atan(v_t′/v_n′) [rad].
+        rebound_angle: Angle of the rebound from the surface normal, atan(v_t′/v_n′), in radians
+            (dimensionless).
         friction_work: Energy lost to friction in the first contact [J] (0 without friction):
             the kinetic energy in, translational and rotational, is the energy out plus
             `dissipated_energy` plus this.

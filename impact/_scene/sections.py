@@ -161,8 +161,8 @@ class Material(Section):
     G_star: Modulus | None = Field(
         None,
         description=(
-            "effective shear modulus G* (Pa) of effects.friction, beside E_star; with E and nu it follows from them, "
-            "1/G* = (2 − ν)/(4G) + (2 − ν_body)/(4G_body)"
+            "effective shear modulus `G*` (Pa) of effects.friction, beside E_star; with E and nu it follows from "
+            "them, `1/G* = (2 − ν)/(4G) + (2 − ν_body)/(4G_body)`"
         ),
     )
 

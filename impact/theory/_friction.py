@@ -27,9 +27,9 @@ from ..profiles import Scalars
 
 @float64
 def effective_shear_modulus(E: Scalars, nu: Scalars, E_body: Scalars = math.inf, nu_body: Scalars = 0.0):
-    """G* [Pa]: 1/G* = (2 − ν)/(4G) + (2 − ν_b)/(4G_b), G = E/(2(1 + ν)) (Johnson (7.43));
-    a rigid body (E_body = inf, the default) adds nothing. For elastically similar bodies
-    G*/E* = 2(1 − ν)/(2 − ν)."""
+    """The effective shear modulus `G*` [Pa], `1/G* = (2 − ν)/(4G) + (2 − ν_b)/(4G_b)` with
+    G = E/(2(1 + ν)) (Johnson (7.43)); a rigid body (E_body = inf, the default) adds nothing.
+    For elastically similar bodies `G*/E* = 2(1 − ν)/(2 − ν)`."""
     compliance = (2.0 - nu) * (1.0 + nu) / (2.0 * E)
     body = jnp.where(jnp.isinf(E_body), 0.0, (2.0 - nu_body) * (1.0 + nu_body) / (2.0 * E_body))
     return 1.0 / (compliance + body)
@@ -37,7 +37,7 @@ def effective_shear_modulus(E: Scalars, nu: Scalars, E_body: Scalars = math.inf,
 
 @float64
 def full_slip_displacement(normal_force: Scalars, contact_radius: Scalars, coefficient: Scalars, G_star: Scalars):
-    """δ_s = 3μF_n/(4G*a) [m]: the tangential displacement at which the whole contact of a
+    """`δ_s = 3μF_n/(4G*a)` [m]: the tangential displacement at which the whole contact of a
     paraboloid slides (Cattaneo–Mindlin, Johnson (7.43) at Q = μF_n)."""
     return 3.0 * coefficient * normal_force / (4.0 * G_star * contact_radius)
 

@@ -152,10 +152,10 @@ class SweepResult:
         tangential_velocity_after: Velocity of the centre along the surface after the first
             contact [m/s]; only where the base scene names `effects.friction`, else None (as the
             five below; each as in `impact.Result`).
-        spin_after: Spin after the first contact [rad/s].
+        spin_after: Spin after the first contact in radians per second [s⁻¹].
         tangential_restitution: |v_t′|/v_t of the centre, dimensionless.
         contact_point_tangential_restitution: −w′/w of the contact point, dimensionless.
-        rebound_angle: Angle of the rebound from the surface normal [rad].
+        rebound_angle: Angle of the rebound from the surface normal in radians (dimensionless).
         friction_work: Energy lost to friction in the first contact [J].
     """
 
