@@ -203,8 +203,7 @@ class Material(Section):
             return None
         assert self.nu is not None, "validated: E comes with nu"
         values = (self.E, self.nu) if self.E_body is None else (self.E, self.nu, self.E_body, self.nu_body)
-        modulus = theory.effective_shear_modulus(*values)
-        return float(modulus) if all(isinstance(value, (int, float)) for value in values) else modulus
+        return theory.effective_shear_modulus(*values)
 
 
 def _trigonometric(angle: Any, name: str) -> Any:

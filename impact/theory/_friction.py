@@ -30,9 +30,8 @@ def effective_shear_modulus(E: Scalars, nu: Scalars, E_body: Scalars = math.inf,
     """The effective shear modulus `G*` [Pa], `1/G* = (2 − ν)/(4G) + (2 − ν_b)/(4G_b)` with
     G = E/(2(1 + ν)) (Johnson (7.43)); a rigid body (E_body = inf, the default) adds nothing.
     For elastically similar bodies `G*/E* = 2(1 − ν)/(2 − ν)`."""
-    compliance = (2.0 - nu) * (1.0 + nu) / (2.0 * E)
-    body = jnp.where(jnp.isinf(E_body), 0.0, (2.0 - nu_body) * (1.0 + nu_body) / (2.0 * E_body))
-    return 1.0 / (compliance + body)
+    # Arithmetic only: numbers stay numbers (a scene's), arrays arrays (a sweep's, traced values).
+    return 1.0 / ((2.0 - nu) * (1.0 + nu) / (2.0 * E) + (2.0 - nu_body) * (1.0 + nu_body) / (2.0 * E_body))
 
 
 @float64
