@@ -93,18 +93,15 @@ def shear_curve(
     start, position, value = jnp.zeros_like(heights), jnp.zeros(()), jnp.zeros(())
     for leg, end in enumerate(turning):
         targets = value + jnp.linspace(0.0, 1.0, samples) * (end - value)
-        if force_control:
-            shifts = jax.vmap(shift_for, in_axes=(None, 0))(start, targets)
-        else:
-            shifts = targets - position
-        points = jax.vmap(shifted, in_axes=(None, 0))(start, shifts)
-        pieces.append(
-            ShearCurve(
-                displacement=position + shifts,
-                force=jax.vmap(limit.force)(points.displacement),
-                stick_radius=jax.vmap(lambda projection: stick_radius(projection, attached, spacing))(points),
-                leg=jnp.full(samples, leg),
-            )
-        )
-        start, position, value = points.displacement[-1], position + shifts[-1], jnp.asarray(end)
+
+        def point(target, start=start, position=position):
+            """(shift, force, stick radius) of one point of the leg: one at a time, O(N) memory."""
+            shift = shift_for(start, target) if force_control else target - position
+            projection = shifted(start, shift)
+            return shift, limit.force(projection.displacement), stick_radius(projection, attached, spacing)
+
+        shifts, forces, radii = jax.lax.map(point, targets)
+        pieces.append(ShearCurve(position + shifts, forces, radii, jnp.full(samples, leg)))
+        start = shifted(start, shifts[-1]).displacement
+        position, value = position + shifts[-1], jnp.asarray(end)
     return jax.tree.map(lambda *parts: jnp.concatenate(parts), *pieces)

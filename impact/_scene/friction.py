@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal
 import numpy as np
 from pydantic import Field
 
+from .. import theory
 from .._effects.friction import Friction
 from .._integrate.oblique import ObliqueSpringArray
 from .domains import TIME_STEP, Domain, within
@@ -22,6 +23,11 @@ if TYPE_CHECKING:
 COEFFICIENT = Domain(0.0, 100.0, "", reason="0 is frictionless; measured coefficients of solids lie below 10")
 # Shapes with a lever arm R from the centre to the contact (and the default inertia (2/5)mR²).
 LEVER_SHAPES = ("paraboloid", "sphere")
+# Springs of an oblique impact at most: each tangential step costs O(N), and the steps of a
+# contact grow with N (one at least between two spring events): O(N²) per impact.
+MAX_SPRINGS = 16384
+# Tangential steps per (Hertzian) contact at most, from `time_step`.
+MAX_STEPS = 1e7
 
 
 def lever_arm(profile: ProfileSpec) -> Any:
@@ -88,6 +94,28 @@ class FrictionSection(Section):
         if scene.solver.method == "verlet":
             return (
                 "rides the exact event stepper of the spring array, not 'verlet': leave solver.method and solver.dt out"
+            )
+        if scene.contact.springs > MAX_SPRINGS:
+            return (
+                f"takes at most {MAX_SPRINGS} springs, not {scene.contact.springs}: an impact's tangential steps "
+                "cost O(N) each and grow with N"
+            )
+        return self._step_refusal(scene)
+
+    def _step_refusal(self, scene: "Scene") -> str | None:
+        """Why `time_step` cannot run (more than `MAX_STEPS` a Hertzian contact), or None."""
+        radius = lever_arm(scene.body.profile)
+        if self.time_step is None or radius is None:
+            return None
+        contact = float(
+            theory.hertz_contact_time(
+                scene.approach_velocity, scene.body.resolved_mass, radius, scene.material.effective_modulus
+            )
+        )
+        if contact / self.time_step > MAX_STEPS:
+            return (
+                f"time_step {self.time_step:g} s would take {contact / self.time_step:.3g} steps over the Hertzian "
+                f"contact time {contact:.3g} s, more than {MAX_STEPS:.0e}"
             )
         return None
 

@@ -16,6 +16,7 @@ if TYPE_CHECKING:
 SHIFT = Domain(-1e6, 1e6, "m or N", reason="a shift of at most a kilometre or a force of at most a meganewton")
 SAMPLES = Domain(2, 100_000, "", reason="each leg's points are computed at once")
 MOST_LEGS = 16
+MAX_SPRINGS = 1_000_000  # each point of the program costs O(N)
 
 
 class Shear(Section):
@@ -53,6 +54,8 @@ class Shear(Section):
             why = "needs effects.friction (the coefficient μ of the tangential springs)"
         elif scene.contact.springs == "continuum":
             why = "runs on a spring array (contact.springs: N): the tangential state is one displacement per spring"
+        elif scene.contact.springs > MAX_SPRINGS:
+            why = f"takes at most {MAX_SPRINGS} springs, not {scene.contact.springs}: each point costs O(N)"
         elif scene.loading.cycles != 1 or scene.loading.unload_to is not None:
             why = "holds the normal load at program.peak: give one cycle and no unload_to"
         elif scene.active_adhesion is not None:

@@ -114,3 +114,22 @@ def test_validate_describes_the_friction_and_the_incidence(tmp_path):
     bad.write_text(yaml.safe_dump(change("contact.springs", "continuum")))
     refused = CliRunner().invoke(app, ["validate", str(bad)])
     assert refused.exit_code == 2 and "effects.friction" in refused.output and "Traceback" not in refused.output
+
+
+@pytest.mark.parametrize(
+    "data, message",
+    [
+        (change("contact.springs", 20000), "takes at most 16384 springs, not 20000"),
+        (change("effects.friction.time_step", 1e-13), "time_step 1e-13 s would take 1.32e+08 steps"),
+    ],
+)
+def test_what_would_not_end_is_refused(data, message):
+    """An impact's cost grows as N² and as 1/Δt: more than 16384 springs or 10⁷ steps a Hertzian
+    contact are refused."""
+    assert message in refusal(data)["effects.friction"]
+
+
+def test_a_shear_test_takes_at_most_a_million_springs():
+    data = yaml.safe_load(open("configs/shear_paraboloid.yaml"))
+    data["contact"]["springs"] = 2_000_000
+    assert refusal(data)["shear"] == "takes at most 1000000 springs, not 2000000: each point costs O(N)"
