@@ -122,6 +122,10 @@ def write_outputs(
 
             write_run(result, folder / "run.h5", wall_time=wall_time)
             save_figures(result, folder)
+            if result.scene.effects.friction is not None:
+                from .._plots.oblique import save_run_tangential_figure
+
+                save_run_tangential_figure(result, folder)
         elif isinstance(result, ShearResult):
             from .._io.shear import write_shear
             from .._plots.shear import save_shear_figures

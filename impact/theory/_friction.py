@@ -90,11 +90,25 @@ def mindlin_deresiewicz_force(
 
 
 @float64
-def gross_sliding_tangent(restitution: Scalars, coefficient: Scalars, mass: Scalars, radius: Scalars, inertia: Scalars):
+def gross_sliding_tangent(
+    restitution: Scalars,
+    coefficient: Scalars,
+    mass: Scalars,
+    radius: Scalars,
+    inertia: Scalars,
+    modulus_ratio: Scalars = 0.0,
+):
     """tan θ above which a sphere (radius R [m], mass m [kg], inertia I [kg·m²] about its centre)
     hitting without spin at the angle θ from the normal slides through the whole impact:
-    (1 + mR²/I)·μ·(1 + e_n) (Maw, Barber & Fawcett 1976; 7μ(1 + e_n)/2 for a solid sphere)."""
-    return (1.0 + mass * radius**2 / inertia) * coefficient * (1.0 + restitution)
+    `μ[(1 + mR²/I)(1 + e_n) − e_n·E*/G*]`, `modulus_ratio` = `E*/G*` (dimensionless).
+
+    A rigid contact (`modulus_ratio` 0, the default) slides while the contact point does,
+    w = v_t − Rω ≥ 0, to the end: (1 + mR²/I)μ(1 + e_n), 7μ(1 + e_n)/2 for a solid sphere. A
+    compliant one slides on after w has reversed, as long as the friction limit λu_z of its
+    springs (`λ = μE*/G*`) falls faster than the springs follow the contact point, |w| < λ|ḋ|:
+    that binds at the end, where ḋ = −e_n·v_n, and takes `e_n·μE*/G*` off. For e_n = 1 and
+    similar materials this is the limit ψ₁ = 4χ − 1 of Maw, Barber & Fawcett (1976)."""
+    return coefficient * ((1.0 + mass * radius**2 / inertia) * (1.0 + restitution) - restitution * modulus_ratio)
 
 
 @float64

@@ -96,11 +96,34 @@ def test_large_angles_slide_as_a_rigid_body():
     )
 
 
-def rigid_sliding(result, angle):
+def test_gross_sliding_begins_at_the_compliant_threshold():
+    """The springs slide on after the contact point has reversed while their limit falls faster
+    than they follow it: gross sliding holds for tan θ ≥ μ[(7/2)(1 + e) − e·E*/G*] (Maw, Barber &
+    Fawcett's ψ₁ = 4χ − 1), here 28.2°, not only above the rigid (7/2)μ(1 + e) = 32.8°. 0.3° above
+    it the impact is rigid sliding to 1e-6 (measured 1.5e-7); 1° below it misses by more than 1e-3
+    (measured 7e-3 in ω′)."""
+    loaded = impact.load_scene(scene())
+    ratio = loaded.material.effective_modulus / loaded.material.tangential_modulus
+    threshold = np.arctan(float(theory.gross_sliding_tangent(1.0, MU, MASS, R, INERTIA, ratio)))
+    assert np.degrees(threshold) == pytest.approx(28.23, abs=0.01)
+    above = impact.simulate(scene(threshold + np.radians(0.3)))
+    velocity, spin = rigid_sliding(above, threshold + np.radians(0.3), ratio)
+    assert above.spin_after == pytest.approx(spin, rel=1e-6)
+    below = impact.simulate(scene(threshold - np.radians(1.0)))
+    spin_below = theory.sliding_impact(*speeds(threshold - np.radians(1.0)), 0.0, 1.0, MU, MASS, R, INERTIA)[1]
+    assert abs(below.spin_after / float(spin_below) - 1.0) > 1e-3
+
+
+def speeds(angle):
+    """(v_n, v_t) before the impact."""
+    return SPEED * np.cos(angle), SPEED * np.sin(angle)
+
+
+def rigid_sliding(result, angle, modulus_ratio=0.0):
     """(v_t′, ω′) of rigid-body sliding with the result's normal restitution."""
     e = result.restitution
-    normal, tangential = SPEED * np.cos(angle), SPEED * np.sin(angle)
-    assert np.tan(angle) >= float(theory.gross_sliding_tangent(e, MU, MASS, R, INERTIA))
+    normal, tangential = speeds(angle)
+    assert np.tan(angle) >= float(theory.gross_sliding_tangent(e, MU, MASS, R, INERTIA, modulus_ratio))
     return (float(v) for v in theory.sliding_impact(normal, tangential, 0.0, e, MU, MASS, R, INERTIA))
 
 

@@ -75,3 +75,13 @@ def test_rigid_sliding_of_a_solid_sphere(restitution):
     assert spin == pytest.approx(MU * (1 + restitution) * normal / (0.4 * R), rel=1e-14)
     threshold = float(theory.gross_sliding_tangent(restitution, MU, mass, R, inertia))
     assert threshold == pytest.approx(3.5 * MU * (1 + restitution), rel=1e-14)
+
+
+def test_the_compliant_gross_sliding_limit_is_maw_barber_fawcetts():
+    """With e = 1 and similar materials, tan θ = μ[(1 + 1/k²)·2 − E*/G*] is Maw, Barber & Fawcett's
+    ψ₁ = 4χ − 1, ψ₁ = (G*/E*)·tan θ/μ and χ = (1 − ν)/(2 − ν)·(1 + 1/k²) (1e-14)."""
+    mass, inertia = 1e-3, 0.4 * 1e-3 * R**2
+    ratio = E_STAR / G_STAR
+    tangent = float(theory.gross_sliding_tangent(1.0, MU, mass, R, inertia, ratio))
+    chi = (1.0 - NU) / (2.0 - NU) * (1.0 + mass * R**2 / inertia)
+    assert tangent / (MU * ratio) == pytest.approx(4.0 * chi - 1.0, rel=1e-14)
