@@ -95,7 +95,7 @@ class ObliqueSpringArray(AbstractSpringArrayIntegrator):
         return ObliqueProblem(springs, motion, friction.scaled_start(scales), step)
 
     def integrate(self, problem: ObliqueProblem, options: Options) -> Outcome:
-        return _run(problem, options, self.capacity)
+        return _run(problem, options)
 
 
 class _State(eqx.Module):
@@ -213,7 +213,7 @@ def _land(problem: ObliqueProblem, options: Options, s: _State, rows: int) -> _S
     return _store(s, _row(c.t, c.d, c.v, force, radius, tangential), rows)
 
 
-def _run(problem: ObliqueProblem, options: Options, capacity: int) -> Outcome:
+def _run(problem: ObliqueProblem, options: Options) -> Outcome:
     """Run one oblique impact (possibly several bounces) on the spring array."""
     array = problem.springs.array
     rows = options.samples_per_phase * options.max_phases
