@@ -41,6 +41,8 @@ class Outcome(eqx.Module):
     event_times: jax.Array  # [E], nan where unused
     event_kinds: jax.Array  # [E], −1 where unused
     trajectory: jax.Array  # [T, 5]: t, d, v, F, a (nan where unused); T = 0 without samples
+    # (an oblique impact's [T, 7] adds Q and c: `oblique`)
+    tangential: Any = None  # an oblique impact's tangential results (`oblique.TangentialOutcome`)
 
 
 class Carry(eqx.Module):

@@ -16,6 +16,7 @@ from .adhesion import AbstractAdhesion, AdhesionSpec
 from .adhesion.base import adaptive, value
 from .domains import within
 from .errors import FieldProblem
+from .friction import FrictionSection
 from .profiles import Number
 from .sections import Section
 
@@ -114,3 +115,4 @@ class Effects(Section):
     gravity: Gravity | None = None
     plasticity: Plasticity | None = None
     damping: Damping | None = None
+    friction: FrictionSection | None = None

@@ -186,6 +186,29 @@ def viscoelastic_first_order(result):
     assert first_order < result.restitution < first_order + (1 - first_order) ** 2
 
 
+def oblique_balance(result):
+    """Kharaz et al.'s alumina sphere at 30°: the Hertz array rebounds with e = 1 (1e-12); the
+    kinetic energy in (translational and rotational) is the energy out plus the friction work
+    (1e-12); it leaves sliding slower and spinning forward."""
+    scene = result.scene
+    mass, radius = scene.body.resolved_mass, scene.body.profile.R
+    inertia = 0.4 * mass * radius**2
+    before = 0.5 * mass * scene.start.velocity**2
+    after = 0.5 * mass * (result.separation_velocity**2 + result.tangential_velocity_after**2)
+    after += 0.5 * inertia * result.spin_after**2
+    assert result.restitution == pytest.approx(1.0, abs=1e-12)
+    assert abs(before - after - result.dissipated_energy - result.friction_work) <= 1e-12 * before
+    assert 0.0 < result.tangential_restitution < 1.0 and result.spin_after > 0.0
+
+
+def cattaneo_mindlin_and_masing(result):
+    """The shear test: Q(δ) within 1e-8·μF_n of Cattaneo–Mindlin and Masing's branches."""
+    from impact._plots.shear import closed_form
+
+    most = result.scene.effects.friction.coefficient * result.normal_force
+    assert max(abs(result.force - closed_form(result))) <= 1e-8 * most
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -205,6 +228,8 @@ CHECKS = {
     "plastic_steel": thornton_plastic,
     "wall_particle": thornton_ning_plastic,
     "rubber_ball_viscoelastic": viscoelastic_first_order,
+    "oblique_kharaz": oblique_balance,
+    "shear_paraboloid": cattaneo_mindlin_and_masing,
 }
 
 
