@@ -34,8 +34,9 @@ from ..._core.search import bisect
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve, CurveLaw
 from ..codes import Status
-from .events import EventLog, empty_record, run_march
+from .events import AbstractMarchCarry, EventLog, MarchRecord, pull_off, run_march, stop
 from .loading import BISECTION_STEPS, EVENT, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
+from .program import Program, back_on_leg, next_leg
 
 
 class CurveMarch(eqx.Module):
@@ -46,10 +47,7 @@ class CurveMarch(eqx.Module):
     curve: AbstractCurve
     pieces: jax.Array  # [P+1] sorted: the curve's nodes and the turning points of F(s)
     force_rising: jax.Array  # [P] F rises with s on the piece
-    force_control: jax.Array
-    directions: jax.Array
-    targets: jax.Array  # scaled (N or m units of the law)
-    legs: jax.Array
+    program: Program  # its targets in the units of the law
     grid: jax.Array  # u ∈ [0, 1]: where a ride is sampled
 
     def at(self, memory) -> "CurveMarch":
@@ -72,7 +70,7 @@ class CurveMarch(eqx.Module):
         return jnp.where(force, force_value, depth)
 
 
-class CurveCarry(eqx.Module):
+class CurveCarry(AbstractMarchCarry):
     leg: jax.Array
     direction: jax.Array  # +1 loading (d or F rising), −1 unloading
     target: jax.Array  # the leg's target, or the constant force of a landing
@@ -83,14 +81,7 @@ class CurveCarry(eqx.Module):
     memory: jax.Array  # what a curve that remembers keeps of the path (`AbstractCurve.at`); else 0
     d: jax.Array
     pre: jax.Array  # [2] s, d where the current instability began
-    pull_off: jax.Array  # [3] a, d, F
-    status: Status
-    done: jax.Array
-    steps: jax.Array
-    rows: jax.Array
-    count: jax.Array
-    events: jax.Array
-    event_count: jax.Array
+    record: MarchRecord
 
 
 def path_pieces(law: CurveLaw, curve: AbstractCurve, max_turns: int):
@@ -103,26 +94,22 @@ def path_pieces(law: CurveLaw, curve: AbstractCurve, max_turns: int):
 
 
 def march_curve(
-    law: CurveLaw, curve: AbstractCurve, loading_program, numerics: QuasiStaticNumerics
+    law: CurveLaw, curve: AbstractCurve, program: Program, numerics: QuasiStaticNumerics
 ) -> QuasiStaticOutcome:
-    """March the program (force control, directions, scaled targets, legs) along the curve."""
-    force_control, directions, targets, legs = loading_program
+    """March the program along the curve."""
     pieces, force_rising, overflow = path_pieces(law, curve, numerics.tabulation.max_turns)
     march = CurveMarch(
         law=law,
         curve=curve,
         pieces=pieces,
         force_rising=force_rising,
-        force_control=force_control,
-        directions=directions,
-        targets=targets,
-        legs=legs,
+        program=program,
         grid=jnp.linspace(0.0, 1.0, numerics.samples),
     )
-    steps = numerics.steps(targets.shape[0])
+    steps = numerics.steps(program.targets.shape[0])
     start = initial(march, numerics, steps)
-    start = replace_where(start, overflow | curve.overflow, status=Status.branch_overflow, done=True)
-    start = replace_where(start, ~curve.resolves(law), status=Status.unresolved_zone, done=True)
+    start = stop(start, overflow | curve.overflow, Status.branch_overflow)
+    start = stop(start, ~curve.resolves(law), Status.unresolved_zone)
     return run_march(functools.partial(step, march), start, steps, march.state(curve.nodes[-1])[0])
 
 
@@ -130,15 +117,16 @@ def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> Cur
     """Apart, at the depth where the interaction starts, on the first leg; empty buffers."""
     return CurveCarry(
         leg=jnp.zeros((), int),
-        direction=jnp.asarray(march.directions[0], int),
-        target=march.targets[0],
+        direction=jnp.asarray(march.program.directions[0], int),
+        target=march.program.targets[0],
         landing=jnp.asarray(False),
         attached=jnp.asarray(False),
         s=jnp.zeros(()),
         segment=jnp.zeros((), int),
         memory=jnp.zeros(()),
         d=jnp.asarray(march.law.onset, float),
-        **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
+        pre=jnp.zeros(2),
+        record=MarchRecord.empty(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
 
 
@@ -167,7 +155,7 @@ def plan(march: CurveMarch, c: CurveCarry) -> Piece:
     """The piece a step moves over, and the bracket of its bisection."""
     curve, law = march.curve, march.law
     up = c.direction > 0
-    touching = ~c.attached & up & (march.force_control | (c.target >= law.onset))
+    touching = ~c.attached & up & (march.program.force_control | (c.target >= law.onset))
     at_end = c.attached & jnp.where(up, c.s >= curve.nodes[c.segment + 1], c.s <= curve.nodes[c.segment])
     jumping = touching | at_end
     riding = c.attached & ~at_end
@@ -185,9 +173,9 @@ def plan(march: CurveMarch, c: CurveCarry) -> Piece:
     )
     index = jnp.clip(index, 0, pieces.shape[0] - 2)
     far = jnp.where(up, pieces[index + 1], pieces[index])
-    follows = ~march.force_control | march.force_rising[index]
+    follows = ~march.program.force_control | march.force_rising[index]
     unstable = riding & ~follows & ~c.landing
-    far_value = march.controlled(far, march.force_control)
+    far_value = march.controlled(far, march.program.force_control)
     crossed = riding & follows & jnp.where(up, c.target <= far_value, c.target >= far_value)
     return Piece(
         away=~c.attached & ~touching,
@@ -204,7 +192,7 @@ def plan(march: CurveMarch, c: CurveCarry) -> Piece:
         lower=jnp.where(jumping, curve.nodes[segment], jnp.minimum(c.s, far)),
         upper=jnp.where(jumping, curve.nodes[segment + 1], jnp.maximum(c.s, far)),
         goal=jnp.where(jumping, level, c.target),
-        force=riding & march.force_control,
+        force=riding & march.program.force_control,
     )
 
 
@@ -241,7 +229,6 @@ def evaluate(march: CurveMarch, c: CurveCarry, p: Piece, root) -> tuple[jax.Arra
 def step(march: CurveMarch, c: CurveCarry) -> CurveCarry:
     """One piece: planned from the state, its one bisection, the states it reads (one batched
     evaluation of the curve), then applied."""
-    c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
     march = march.at(c.memory)
     log = EventLog()
     p = plan(march, c)
@@ -257,7 +244,7 @@ def approach(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece) -> Curve
     """Apart: d moves to the target out of range (displacement control; shown), or the leg ends."""
     up = c.direction > 0
     end = jnp.where(up, c.target, jnp.where(jnp.isfinite(c.target), jnp.minimum(c.target, c.d), c.d))
-    shown = p.away & ~march.force_control
+    shown = p.away & ~march.program.force_control
     zeros = jnp.zeros_like(march.grid)
     log.emit(zeros, c.d + (end - c.d) * march.grid, zeros, shown, c.leg)
     c = replace_where(c, shown, d=end)
@@ -273,13 +260,13 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     log.event(EVENT["touch"], p.touching)
     # Force control: the touch starts a landing at F = 0 (the applied force out of range); a
     # segment's end, one at the force there.
-    begins = p.jumping & march.force_control & ~c.landing
+    begins = p.jumping & march.program.force_control & ~c.landing
     start_force = jnp.where(p.touching, 0.0, states.start[2])
     before = tuple(jnp.where(c.landing, b, s) for b, s in zip(states.before, states.start, strict=True))
     c = replace_where(c, begins, landing=True, target=start_force, pre=jnp.stack([p.start, p.level]))
 
     blocked = p.jumping & up & p.lost
-    c = replace_where(c, blocked, status=Status.radius_overflow, done=True)
+    c = stop(c, blocked, Status.radius_overflow)
     c = separate(march, c, log, p.jumping & ~up & p.lost, before, p.level)
 
     moves = p.jumping & ~p.lost
@@ -319,21 +306,9 @@ def complete(march: CurveMarch, c: CurveCarry, log: EventLog, keep, here=(0.0, 0
     landed = keep & c.landing
     log.emit(here[0], here[1], here[2], landed, c.leg)
     log.event(jnp.where(c.s >= c.pre[0], EVENT["snap_in"], EVENT["snap_out"]), landed & (c.s != c.pre[0]))
-    c = replace_where(
-        c, landed, landing=False, target=march.targets[c.leg], direction=march.directions[c.leg].astype(int)
-    )
+    c = back_on_leg(c, march.program, landed)
     finished = keep & ~landed
-    more = c.leg + 1 < march.legs
-    following = jnp.minimum(c.leg + 1, march.legs - 1)
-    log.event(EVENT["reversal"], finished & more & c.attached)
-    c = replace_where(
-        c,
-        finished,
-        leg=following,
-        done=~more,
-        direction=march.directions[following].astype(int),
-        target=march.targets[following],
-    )
+    c = next_leg(c, march.program, log, finished, c.attached)
     return anchor(march, c, finished & c.attached) if march.curve.remembers else c
 
 
@@ -350,20 +325,18 @@ def separate(march: CurveMarch, c: CurveCarry, log: EventLog, released, before, 
     (a, d, F) where the instability began (force control) or the last state. Under displacement
     control the force then drops to 0 at this d; under force control the body leaves at constant
     force (no state follows)."""
-    c = replace_where(c, released, pull_off=jnp.stack(before))
+    c = pull_off(c, released, jnp.stack(before))
     log.emit(before[0], before[1], before[2], released, c.leg)
     log.event(EVENT["pull_off"], released)
-    log.emit(0.0, d, 0.0, released & ~march.force_control, c.leg)
+    log.emit(0.0, d, 0.0, released & ~march.program.force_control, c.leg)
     c = replace_where(
         c,
         released,
         attached=False,
-        landing=False,
         s=0.0,
         segment=0,
         memory=0.0,
         d=d,
-        target=march.targets[c.leg],
-        direction=march.directions[c.leg].astype(int),
     )
-    return complete(march, c, log, released & ~jnp.isfinite(march.targets[c.leg]))
+    c = back_on_leg(c, march.program, released)
+    return complete(march, c, log, released & ~jnp.isfinite(march.program.targets[c.leg]))
