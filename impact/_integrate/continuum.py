@@ -49,7 +49,7 @@ from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, Status
 from .flight import land_on_touch
 from .problem import Motion, Options, Physics, Problem, build_problem
-from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, in_contact, speed_scale
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, branch_rates, in_contact, speed_scale
 from .transitions import Next
 from .work import (
     ContactSummary,
@@ -158,14 +158,14 @@ def _make_vector_field(damped: bool):
         law, branch = args.law, args.branch
         radius = jnp.maximum(x, 0.0)  # a stage may step a hair past a = 0
         slope = law.edge_slope(radius, branch.coefficient)
-        pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         force = law.force(radius, branch.level(law, radius))
         held_radius = timed_radius(x, args)
         held = law.force(held_radius, x)
         if not damped:
-            riding = jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
+            riding = branch_rates(v, force, slope, args.motion.gravity)
             timed = jnp.stack([v, args.motion.gravity - held, jnp.ones_like(v)])
             return jnp.where(args.riding, riding, timed)
+        pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         viscous = viscous_force(radius, v, args)
         held_viscous = viscous_force(held_radius, v, args)
         riding = jnp.stack(
