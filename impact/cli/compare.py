@@ -12,7 +12,6 @@ traceback and before anything is written.
 """
 
 import math
-import shutil
 from datetime import datetime
 from pathlib import Path
 
@@ -30,7 +29,7 @@ from .._plots.figures import import_ahead
 from .._scene.errors import SceneError
 from .._scene.scene import scene_yaml
 from .console import out, refuse, say
-from .folders import check_output
+from .folders import check_output, make_folder, removed_on_failure
 from .run import scene_of
 
 MOST_SPEEDS = 100_000
@@ -96,22 +95,14 @@ def run_compare_lammps(
 def _write(comparison, folder: Path, overwrite: bool) -> None:
     """comparison.csv, comparison.png, summary.txt, in.lammps and config.yaml, each atomically; a
     folder created here is removed again if a write fails."""
-    created = not folder.exists()
-    try:
-        folder.mkdir(parents=True, exist_ok=overwrite)
-    except OSError as error:
-        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
-    try:
+    with removed_on_failure(folder):
+        make_folder(folder, exist_ok=overwrite, holds="comparison")
         write_text(folder / "config.yaml", scene_yaml(comparison.scene))
         write_text(folder / "comparison.csv", table_csv(comparison))
         write_text(folder / "summary.txt", "\n".join(summary_lines(comparison)) + "\n")
         write_text(folder / "in.lammps", lammps_input(comparison))
         title = f"{comparison.scene.name}: impact against LAMMPS {comparison.model.model}"
         save_comparison_figure(comparison.columns(), title, comparison.model.model, folder / FIGURE)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise
 
 
 def _speeds_table(columns: dict[str, np.ndarray]) -> Table:
