@@ -88,7 +88,7 @@ def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> lis
     commands = [
         "units si",
         "newton off",  # mdr requires it; the other models do not care
-        f"atom_style sphere{' 1' if model.model == 'mdr' else ''}",
+        f"atom_style {model.model.traits.atom_style}",
         "atom_modify map array sort 0 0",
         "comm_modify vel yes",
         "boundary f f m",

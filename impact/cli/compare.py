@@ -20,6 +20,7 @@ from rich.table import Table
 from rich.text import Text
 
 from .._compare.comparison import compare_lammps
+from .._compare.granular import NormalModel
 from .._compare.lammps_batch import LammpsFailed
 from .._compare.lammps_library import LammpsMissing
 from .._compare.report import lammps_input, summary_lines, table_csv
@@ -78,12 +79,13 @@ def run_compare_lammps(
     check_output(folder, overwrite, holds="comparison")
     import_ahead()
     try:
-        comparison = compare_lammps(scene, model, damping, speeds, dt)
+        normal = None if model is None else NormalModel.named(model)
+        comparison = compare_lammps(scene, normal, damping, speeds, dt)
     except LammpsMissing as error:
         refuse("LAMMPS is not installed", [("", str(error))])
     except LammpsFailed as error:
         refuse("LAMMPS stopped with an error", [("", str(error))])
-    except SceneError as error:  # CompareError (LAMMPS cannot represent it) or SweepError (impact cannot run it)
+    except SceneError as error:  # CompareError (LAMMPS cannot represent it or the option) or SweepError
         refuse(f"cannot compare {scene_file} with LAMMPS", error.problems)
     _write(comparison, folder, overwrite)
     out.print(_speeds_table(comparison.columns()))
@@ -101,8 +103,9 @@ def _write(comparison, folder: Path, overwrite: bool) -> None:
         write_text(folder / "comparison.csv", table_csv(comparison))
         write_text(folder / "summary.txt", "\n".join(summary_lines(comparison)) + "\n")
         write_text(folder / "in.lammps", lammps_input(comparison))
-        title = f"{comparison.scene.name}: impact against LAMMPS {comparison.model.model}"
-        save_comparison_figure(comparison.columns(), title, comparison.model.model, folder / FIGURE)
+        keyword = comparison.model.model.keyword
+        title = f"{comparison.scene.name}: impact against LAMMPS {keyword}"
+        save_comparison_figure(comparison.columns(), title, keyword, folder / FIGURE)
 
 
 def _speeds_table(columns: dict[str, np.ndarray]) -> Table:
