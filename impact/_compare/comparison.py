@@ -106,7 +106,7 @@ def default_velocities(scene: Scene) -> np.ndarray:
 
 def hertz_time(scene: Scene, model: LammpsModel, speed: float) -> float:
     """Hertz's contact time (s) of the scene's contact at a body speed (m/s)."""
-    approach = speed + model.counterpart_velocity
+    approach = speed + model.particles.counterpart_velocity
     return float(theory.hertz_contact_time(approach, scene.reduced_mass, effective_radius(scene), model.E_star))
 
 

@@ -79,6 +79,19 @@ class NormalTraits:
     atom_style: str = "sphere"
 
 
+def _adhesive_hertz(adhesion: str, pull_off_factor: float, left_out: str) -> NormalTraits:
+    """A Hertz model with zero-range adhesion of LAMMPS's γ (jkr, dmt): its coefficients, the
+    viscous dampings, and the adhesion it needs."""
+    return NormalTraits(
+        coefficients="{E} {damping} {nu} {gamma}",
+        dampings=_VISCOUS,
+        adhesion=adhesion,
+        pull_off_factor=pull_off_factor,
+        needs_adhesion=True,
+        left_out=left_out,
+    )
+
+
 class NormalModel(enum.Enum):
     """LAMMPS's granular normal models; the member's name is its keyword (hertz/material's with
     its slash). Conventions: hertz/material, jkr, dmt: F = (4/3)E_mix√R δ^(3/2) (+ adhesion),
@@ -89,12 +102,9 @@ class NormalModel(enum.Enum):
     Δl = √(2πaγ(1 − ν²)/E), yielding where the mean Hertz pressure 4E_eff a/(3πR) reaches
     Y(1.75 e^(−4.4δ/R) + 1)."""
 
-    jkr = NormalTraits(
-        coefficients="{E} {damping} {nu} {gamma}",
-        dampings=_VISCOUS,
+    jkr = _adhesive_hertz(
         adhesion="LAMMPS's pull-off 3πγR = (3/2)πRΔγ = {pull_off:.6g} N, JKR's",
         pull_off_factor=3.0,
-        needs_adhesion=True,
         left_out=(
             "LAMMPS's jkr attaches at the touch with the JKR jump-in (no approach hysteresis, Δγa = Δγ) and "
             "releases the contact at the force-controlled pull-off δ_f, where F = −(3/2)πRΔγ: it cuts the JKR "
@@ -104,12 +114,9 @@ class NormalModel(enum.Enum):
             "sticking velocity is √0.4939 = 0.7028 of theirs."
         ),
     )
-    dmt = NormalTraits(
-        coefficients="{E} {damping} {nu} {gamma}",
-        dampings=_VISCOUS,
+    dmt = _adhesive_hertz(
         adhesion="LAMMPS's pull-off 4πγR = 2πRΔγ = {pull_off:.6g} N, DMT's",
         pull_off_factor=4.0,
-        needs_adhesion=True,
         left_out=(
             "LAMMPS's dmt adds a constant attraction 2πRΔγ (the DMT pull-off) while the spheres overlap and none "
             "outside: no range, no jump-in, no snap-off; undamped it returns all the energy (e = 1)."

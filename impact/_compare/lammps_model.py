@@ -41,17 +41,40 @@ class Damping:
 
 
 @dataclass(frozen=True)
+class Particles:
+    """The particles of one speed: the body (type 1) on a wall, or against a counterpart (type 2)
+    when `pair`; SI units."""
+
+    body_radius: float  # m
+    body_mass: float  # kg
+    counterpart_radius: float  # m; inf: a wall
+    counterpart_mass: float  # kg; inf: a wall
+    counterpart_velocity: float  # towards the body (m/s)
+
+    @property
+    def pair(self) -> bool:
+        """Whether the body meets a counterpart particle (pair_style granular), not a wall."""
+        return math.isfinite(self.counterpart_radius)
+
+    def describe(self) -> str:
+        """The particles in words (the mapping's first note)."""
+        body = f"a sphere of radius {self.body_radius:.6g} m and mass {self.body_mass:.6g} kg"
+        partner = (
+            f"against a sphere of radius {self.counterpart_radius:.6g} m and mass {self.counterpart_mass:.6g} kg "
+            f"moving at {self.counterpart_velocity:.6g} m/s towards it (pair_style granular)"
+            if self.pair
+            else "on a wall at rest (fix wall/gran granular, zplane)"
+        )
+        return f"particles: the body {body} {partner}"
+
+
+@dataclass(frozen=True)
 class LammpsModel:
-    """The granular model of one scene: the body (type 1) on a wall, or against a counterpart
-    (type 2) when `pair`; SI units."""
+    """The granular model of one scene: its normal model, particles, materials, adhesion, damping
+    and yield stress; SI units."""
 
     model: NormalModel
-    pair: bool
-    body_radius: float
-    body_mass: float
-    counterpart_radius: float
-    counterpart_mass: float
-    counterpart_velocity: float  # towards the body (m/s)
+    particles: Particles
     materials: tuple[Material, Material]  # body, counterpart (a wall takes the body's)
     surface_energy: float  # γ (J/m²), 0 for hertz/material
     damping: Damping
@@ -80,10 +103,6 @@ def lammps_model(scene: Scene, model: NormalModel | None = None, damping: str | 
         problems += problem
     if problems:
         raise CompareError(problems)
-    counterpart = scene.counterpart
-    pair = counterpart is not None
-    body_radius = sphere_radius(scene)
-    counterpart_radius = math.inf if counterpart is None or counterpart.radius is None else counterpart.radius
     materials, material_note = _materials(scene, name)
     gamma, adhesion_note = _surface_energy(scene, name)
     mapped, damping_note = _scene_damping(scene, name)
@@ -94,31 +113,30 @@ def lammps_model(scene: Scene, model: NormalModel | None = None, damping: str | 
             f"damping: {chosen.model.keyword} {chosen.coefficient:g} (--damping; the scene's: {replaced})",
         )
     yield_stress, yield_note = _yield_stress(scene, name, materials[0])
-    counterpart_mass = counterpart.resolved_mass if counterpart is not None else math.inf
-    counterpart_velocity = counterpart.velocity if counterpart is not None else 0.0
-    partner = (
-        f"against a sphere of radius {counterpart_radius:.6g} m and mass {counterpart_mass:.6g} kg moving at "
-        f"{counterpart_velocity:.6g} m/s towards it (pair_style granular)"
-        if pair
-        else "on a wall at rest (fix wall/gran granular, zplane)"
-    )
-    body = f"a sphere of radius {body_radius:.6g} m and mass {scene.body.resolved_mass:.6g} kg"
-    geometry = f"particles: the body {body} {partner}"
+    particles = _particles(scene)
+    notes = (particles.describe(), material_note, adhesion_note, damping_note, yield_note)
     return LammpsModel(
         model=name,
-        pair=pair,
-        body_radius=body_radius,
-        body_mass=scene.body.resolved_mass,
-        counterpart_radius=counterpart_radius,
-        counterpart_mass=counterpart_mass,
-        counterpart_velocity=counterpart_velocity,
+        particles=particles,
         materials=materials,
         surface_energy=gamma,
         damping=mapped,
         yield_stress=yield_stress,
         E_star=scene.material.effective_modulus,
-        notes=tuple(note for note in (geometry, material_note, adhesion_note, damping_note, yield_note) if note),
+        notes=tuple(note for note in notes if note),
         left_out=left_out(scene, name, mapped),
+    )
+
+
+def _particles(scene: Scene) -> Particles:
+    """The body and its counterpart (a wall at rest where the scene has none)."""
+    counterpart = scene.counterpart
+    return Particles(
+        body_radius=sphere_radius(scene),
+        body_mass=scene.body.resolved_mass,
+        counterpart_radius=math.inf if counterpart is None or counterpart.radius is None else counterpart.radius,
+        counterpart_mass=math.inf if counterpart is None else counterpart.resolved_mass,
+        counterpart_velocity=0.0 if counterpart is None else counterpart.velocity,
     )
 
 

@@ -51,14 +51,14 @@ def test_jkr_on_a_wall_gives_the_scenes_E_star_and_the_jkr_pull_off():
     """γ = Δγ/2, so LAMMPS's pull-off 3πγR is (3/2)πRΔγ; E = 2(1 − ν²)E* (ν = 0.3 for a scene with
     E* alone) makes LAMMPS's wall modulus E/(2(1 − ν²)) the scene's E*; no damping."""
     model = lammps_model(load_scene(THORNTON_NING))
-    assert model.model is NormalModel.jkr and not model.pair
+    assert model.model is NormalModel.jkr and not model.particles.pair
     assert model.surface_energy == 0.05 / 2
     R, dgamma = 1e-6, 0.05
     assert math.isclose(3 * math.pi * model.surface_energy * R, 1.5 * math.pi * R * dgamma, rel_tol=ROUND_OFF)
     body, wall = model.materials
     assert body == wall and body.nu == 0.3
     assert math.isclose(lammps_E_star(body), 1e9, rel_tol=ROUND_OFF)
-    assert (model.body_radius, model.body_mass) == (1e-6, 1.0472e-14)
+    assert (model.particles.body_radius, model.particles.body_mass) == (1e-6, 1.0472e-14)
     assert (model.damping.model, model.damping.coefficient) == (DampingModel.velocity, 0.0)
     assert model.normal_model(body).startswith("jkr 1820000000 0 0.29999999999999999 0.025000000000000001 damping")
 
@@ -78,8 +78,9 @@ def test_two_spheres_keep_both_materials_and_lammps_mixes_them_into_E_star():
     assert (body.E, body.nu, other.E, other.nu) == (63e9, 0.2, 63e9, 0.2)
     mixed = 1 / ((1 - body.nu**2) / body.E + (1 - other.nu**2) / other.E)
     assert math.isclose(mixed, scene.material.effective_modulus, rel_tol=ROUND_OFF)
-    assert model.pair and (model.counterpart_radius, model.counterpart_velocity) == (20e-6, 0.05)
-    assert math.isclose(model.counterpart_mass, 2500 * 4 / 3 * math.pi * (20e-6) ** 3, rel_tol=ROUND_OFF)
+    particles = model.particles
+    assert particles.pair and (particles.counterpart_radius, particles.counterpart_velocity) == (20e-6, 0.05)
+    assert math.isclose(particles.counterpart_mass, 2500 * 4 / 3 * math.pi * (20e-6) ** 3, rel_tol=ROUND_OFF)
 
 
 def test_damping_maps_the_force_law():

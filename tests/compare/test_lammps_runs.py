@@ -87,7 +87,7 @@ def test_lammps_jkr_loses_the_energy_of_the_branch_cut_at_the_force_controlled_p
         )
     )
     approach = np.array([0.75, 2.0, 4.0]) * v_s  # the relative speeds; the counterpart adds its own
-    velocities = approach - model.counterpart_velocity
+    velocities = approach - model.particles.counterpart_velocity
     dt = hertz_time(scene, model, float(velocities.max())) / STEPS_PER_CONTACT
     duration = 20 * hertz_time(scene, model, float(velocities.min()))
     runs = [run_batch(model, velocities, step, duration) for step in (dt, dt / 2)]
