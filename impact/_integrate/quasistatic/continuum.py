@@ -8,7 +8,7 @@ from ..codes import Status
 from .continuum_cascade import after_cascade, cascade_bracket, cascade_outcome
 from .continuum_pieces import move, plan
 from .continuum_state import Carry, ContinuumMarch
-from .events import EventLog, MarchRecord, run_march, stop
+from .events import EventLog, MarchRecord, end_march, run_march
 from .loading import FREE, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built, bracketed_root, edge_path
 
@@ -47,7 +47,7 @@ def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
     )
     attach, detach = built.problem.attach, built.problem.detach
     overflow = attach.overflow | detach.overflow | built.attach3.overflow | built.detach3.overflow
-    return stop(carry, overflow, Status.branch_overflow)
+    return end_march(carry, overflow, Status.branch_overflow)
 
 
 def step(march: ContinuumMarch, c: Carry) -> Carry:

@@ -12,7 +12,7 @@ from ..._core.pytree import replace_where
 from ..._law.branches import Branch
 from ..codes import Status
 from .continuum_state import Carry, ContinuumMarch, complete, instability
-from .events import EventLog, pull_off, stop
+from .events import EventLog, end_march, record_pull_off
 from .loading import EVENT, FREE, HOLD, RIDE, SAME_RADIUS
 from .program import back_on_leg
 
@@ -77,14 +77,14 @@ def after_cascade(march: ContinuumMarch, c: Carry, log: EventLog, keep, a, d, ou
     c = separate(march, c, log, keep & outcome.gone, a, d)
     jumped = keep & ~outcome.gone & ~outcome.stop
     c = jump(march, c, log, jumped, moved, a, d, outcome, up)
-    return stop(c, keep & outcome.stop, outcome.code)
+    return end_march(c, keep & outcome.stop, outcome.code)
 
 
 def separate(march: ContinuumMarch, c: Carry, log: EventLog, pulled, a, d) -> Carry:
     """Separation: the pull-off is where the instability began (force) or this point (a, d)."""
     before = jnp.where(c.landing, c.pre, jnp.stack([a, d]))
     F_before = march.force(before[0], before[1])
-    c = pull_off(c, pulled, jnp.concatenate([before, F_before[None]]))
+    c = record_pull_off(c, pulled, jnp.concatenate([before, F_before[None]]))
     # The curve ends at the pull-off; under displacement control the force then drops to 0 at
     # constant d (under force control the body leaves at constant force: no state follows).
     log.emit(before[0], before[1], F_before, pulled, c.leg)

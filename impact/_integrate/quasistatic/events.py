@@ -57,12 +57,12 @@ class AbstractMarchCarry(eqx.Module):
 Carried = TypeVar("Carried", bound=AbstractMarchCarry)
 
 
-def stop(c: Carried, condition: Any, status: Status) -> Carried:
+def end_march(c: Carried, condition: Any, status: Status) -> Carried:
     """The carry with its march done where `condition` holds, ended with `status`."""
     return replace(c, record=replace_where(c.record, condition, status=status, done=True))
 
 
-def pull_off(c: Carried, condition: Any, state: jax.Array) -> Carried:
+def record_pull_off(c: Carried, condition: Any, state: jax.Array) -> Carried:
     """The carry with the pull-off (a, d, F) `state` recorded where `condition` holds."""
     return replace(c, record=replace_where(c.record, condition, pull_off=state))
 

@@ -9,7 +9,7 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.springs import TabulatedSpringArray
 from ..codes import Status
-from .events import AbstractMarchCarry, EventLog, MarchRecord, pull_off, run_march, stop
+from .events import AbstractMarchCarry, EventLog, MarchRecord, end_march, record_pull_off, run_march
 from .loading import EVENT, QuasiStaticNumerics, QuasiStaticOutcome
 from .program import Program, back_on_leg, next_leg
 from .setup import Built
@@ -209,14 +209,14 @@ def cross(march: SpringMarch, c: SpringCarry, log: EventLog, up, passes, k, beyo
     c = separate(march, c, log, gone, k, d_now)
     c = snap(march, c, log, moves & ~gone, up, k, k_new, d_now)
     code = Status.where(march.built.bounded, Status.radius_overflow, Status.unbounded_contact)
-    return stop(c, overflow, code)
+    return end_march(c, overflow, code)
 
 
 def separate(march: SpringMarch, c: SpringCarry, log: EventLog, gone, k, d_now) -> SpringCarry:
     """The last spring let go: the pull-off is where the instability began (force) or here."""
     before_k = jnp.where(c.landing, c.pre[0], k).astype(int)
     before_d = jnp.where(c.landing, c.pre[1], d_now)
-    c = pull_off(c, gone, jnp.stack([before_k * march.array.spacing, before_d, march.force(before_k, before_d)]))
+    c = record_pull_off(c, gone, jnp.stack([before_k * march.array.spacing, before_d, march.force(before_k, before_d)]))
     march.emit(log, before_k, before_d, gone, c.leg)
     log.event(EVENT["pull_off"], gone)
     march.emit(log, jnp.zeros((), int), d_now, gone & ~march.program.force_control, c.leg)
