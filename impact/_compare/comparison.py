@@ -16,6 +16,7 @@ from .. import theory
 from .._integrate.codes import RESULT_CODES
 from .._run.sweep import SweepResult, sweep
 from .._scene.scene import Scene
+from .granular import NormalModel
 from .lammps_batch import BatchResult, run_batch
 from .lammps_model import CompareError, LammpsModel, effective_radius, lammps_model
 
@@ -105,7 +106,7 @@ def default_velocities(scene: Scene) -> np.ndarray:
 
 def hertz_time(scene: Scene, model: LammpsModel, speed: float) -> float:
     """Hertz's contact time (s) of the scene's contact at a body speed (m/s)."""
-    approach = speed + model.counterpart_velocity
+    approach = speed + model.particles.counterpart_velocity
     return float(theory.hertz_contact_time(approach, scene.reduced_mass, effective_radius(scene), model.E_star))
 
 
@@ -142,7 +143,7 @@ def time_step(scene: Scene, model: LammpsModel, velocities: np.ndarray, dt: floa
 
 def compare_lammps(
     scene: Scene,
-    model: str | None = None,
+    model: NormalModel | None = None,
     damping: str | None = None,
     velocities: np.ndarray | None = None,
     dt: float | None = None,

@@ -81,31 +81,32 @@ def setup_commands(model: LammpsModel, velocities: np.ndarray, dt: float) -> lis
     """The LAMMPS input of the batch up to its run: SI units, the particles just touching their
     surface (the gap adds only flight without gravity), the contact model, the integrator and
     the per-particle measurements."""
-    n, r1, r2 = len(velocities), model.body_radius, model.counterpart_radius
-    width = 2 * (r1 + (r2 if model.pair else 0.0))
+    particles = model.particles
+    n, r1, r2 = len(velocities), particles.body_radius, particles.counterpart_radius
+    width = 2 * (r1 + (r2 if particles.pair else 0.0))
     spacing = _SPACING * width
-    lowest = -2 * r2 if model.pair else 0.0
+    lowest = -2 * r2 if particles.pair else 0.0
     commands = [
         "units si",
         "newton off",  # mdr requires it; the other models do not care
-        f"atom_style sphere{' 1' if model.model == 'mdr' else ''}",
+        f"atom_style {model.model.traits.atom_style}",
         "atom_modify map array sort 0 0",
         "comm_modify vel yes",
         "boundary f f m",
         f"region box block 0 {n * spacing:.17g} {-spacing:.17g} {spacing:.17g} {lowest:.17g} {4 * r1:.17g} units box",
-        f"create_box {2 if model.pair else 1} box",
+        f"create_box {2 if particles.pair else 1} box",
     ]
-    body_z = (r1 + (r2 if model.pair else 0.0)) * (1 - _START_OVERLAP)
+    body_z = (r1 + (r2 if particles.pair else 0.0)) * (1 - _START_OVERLAP)
     commands += [f"create_atoms 1 single {(i + 0.5) * spacing:.17g} 0 {body_z:.17g} units box" for i in range(n)]
-    commands += [f"set type 1 diameter {2 * r1:.17g}", f"set type 1 mass {model.body_mass:.17g}"]
+    commands += [f"set type 1 diameter {2 * r1:.17g}", f"set type 1 mass {particles.body_mass:.17g}"]
     commands += [f"set atom {i + 1} vz {-v:.17g}" for i, v in enumerate(velocities)]
     body, counterpart = (model.normal_model(material) for material in model.materials)
-    if model.pair:
+    if particles.pair:
         commands += [f"create_atoms 2 single {(i + 0.5) * spacing:.17g} 0 0 units box" for i in range(n)]
         commands += [
             f"set type 2 diameter {2 * r2:.17g}",
-            f"set type 2 mass {model.counterpart_mass:.17g}",
-            f"set type 2 vz {model.counterpart_velocity:.17g}",
+            f"set type 2 mass {particles.counterpart_mass:.17g}",
+            f"set type 2 vz {particles.counterpart_velocity:.17g}",
             "pair_style granular",
             *(
                 [f"pair_coeff * * {body}"]  # one material (mdr takes one normal model only)
@@ -172,8 +173,8 @@ def _read(instance, model: LammpsModel, velocities: np.ndarray, dt: float) -> di
     force = np.array(instance.numpy.extract_atom("f"))[order, 2][:n]
     history = np.array(instance.numpy.extract_fix("history", _PER_ATOM, _ARRAY))[order][:n]
     captured = force != 0
-    if model.pair:
-        separation = (speed[:n] - speed[n:]) / (velocities + model.counterpart_velocity)
+    if model.particles.pair:
+        separation = (speed[:n] - speed[n:]) / (velocities + model.particles.counterpart_velocity)
     else:
         separation = speed[:n] / velocities
     return {

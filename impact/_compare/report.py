@@ -36,11 +36,11 @@ def summary_lines(comparison: Comparison) -> list[str]:
     speeds = comparison.velocities
     count = len(speeds)
     lines = [
-        f"{comparison.scene.name}: LAMMPS {lammps.version} granular {model.model} against impact, {count} speeds "
-        f"from {speeds.min():g} to {speeds.max():g} m/s",
+        f"{comparison.scene.name}: LAMMPS {lammps.version} granular {model.model.keyword} against impact, "
+        f"{count} speeds from {speeds.min():g} to {speeds.max():g} m/s",
         "mapping:",
         *(f"  {note}" for note in model.notes),
-        f"what LAMMPS's {model.model} leaves out: {model.left_out}",
+        f"what LAMMPS's {model.model.keyword} leaves out: {model.left_out}",
         f"time step: dt = {lammps.dt:.4g} s ({lammps.steps} steps), and dt/2 ({half.steps} steps); a particle still "
         "in contact when the run stops is captured",
         f"largest |relative difference| (LAMMPS − impact)/impact beside LAMMPS's step error |X(dt) − X(dt/2)|/impact "

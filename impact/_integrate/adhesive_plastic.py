@@ -25,19 +25,19 @@ from .._law.scales import Scales
 from .._law.thornton import ThorntonNing
 from .base import dense_states
 from .carry import Carry, Outcome
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
+from .codes import ADVANCE, EVENT_CODE
 from .continuum import Continuum
 from .flight import land
-from .problem import AbstractProblem, Motion, Options, Physics, Problem, build_problem
-from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
-from .transitions import Next, next_phase
+from .problem import AbstractClosedFormProblem, Motion, Options, Physics, Problem, build_problem
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, branch_rates, speed_scale
+from .transitions import after_plastic_phase, next_phase
 from .work import ContactSummary
 
 # Plastic loading rides segment 1 of ADVANCE; the dent's elastic branch segment 0.
 _ELASTIC, _FLOWING = 0, 1
 
 
-class AdhesivePlasticProblem(AbstractProblem):
+class AdhesivePlasticProblem(AbstractClosedFormProblem):
     """The elastic adhesive problem (`Continuum`) and the plastic law in its units."""
 
     elastic: Problem
@@ -48,10 +48,6 @@ class AdhesivePlasticProblem(AbstractProblem):
     @property
     def scales(self) -> Scales:
         return self.elastic.scales
-
-    @property
-    def overflow(self):
-        return jnp.asarray(False)
 
 
 class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"]):
@@ -112,9 +108,6 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
             speed_scale=speed_scale(problem, c),
         )
 
-    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
-        return jnp.stack([c.radius, c.v, c.t])
-
     def vector_field(self, options: Options):
         return _vector_field
 
@@ -144,7 +137,7 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
             highest_force=highest,
             deepest=jnp.maximum(d_start, d_end),
         )
-        nxt = replace(_after(advancing, ride.turned), radius=a_end)
+        nxt = replace(after_plastic_phase(advancing, ride.turned, flowing=_FLOWING), radius=a_end)
         memory = where(advancing & ride.turned, law.after_turn(a_end, state), state)
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
@@ -162,29 +155,8 @@ class _Args(AbstractPhaseArgs):
 def _vector_field(s, y, args: _Args):
     radius, v = jnp.maximum(y[0], 1e-300), y[1]
     slope = args.law.slope(radius, args.state, args.flowing)
-    pace = 1.0 / jnp.sqrt(1.0 + slope**2)
     force = args.law.force(radius, args.state, args.flowing)
-    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
-
-
-def _after(advancing, turned) -> Next:
-    """Loading turns into unloading or flows on; unloading separates, or is captured where it turns."""
-    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
-    event = jnp.where(
-        advancing,
-        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
-        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
-    )
-    return Next(
-        mode=mode,
-        segment=jnp.where(advancing & ~turned, _FLOWING, _ELASTIC),
-        radius=jnp.zeros(()),
-        event=event,
-        separated=~advancing & ~turned,
-        captured=~advancing & turned,
-        stops=jnp.asarray(False),
-        stop=Status.separated,
-    )
+    return branch_rates(v, force, slope, args.motion.gravity)
 
 
 def _force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):

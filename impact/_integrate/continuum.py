@@ -38,43 +38,24 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .._core import derivatives
 from .._core.pytree import replace, replace_where, where
-from .._core.types import Parameter
-from .._law.branches import Branch
-from .._law.law import ContactLaw
 from . import transitions
 from .base import PHASE_ENDS, dense_states
 from .carry import Carry
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, HOLD, RECEDE, Status
+from .codes import DONE, EVENT_CODE, FLIGHT, HOLD, Status
+from .continuum_args import PhaseArgs, phase_args, timed_radius, total_force, viscous_force
+from .energy_end import energy_end
 from .flight import land_on_touch
-from .problem import Motion, Options, Physics, Problem, build_problem
-from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, in_contact, speed_scale
+from .problem import Options, Physics, Problem, build_problem
+from .ride import AbstractRidingIntegrator, PhaseEnd, Ride, branch_rates, in_contact
 from .transitions import Next
-from .work import (
-    ContactSummary,
-    active_branch,
-    branch_work,
-    drifts,
-    extremes,
-    hold_work,
-    phase_summary,
-    segment_end,
-    squared_speed,
-)
+from .work import ContactSummary, drifts, extremes, phase_summary
 
-# Radii (scaled) at which the edge slope is compared to tell a steep tip.
-_TIP_NEAR, _TIP_FAR = 1e-9, 1e-6
 # A damped phase that ends without an event (max_steps, or the horizon) at a speed below this
 # fraction of the phase's speed scale creeps towards rest (overdamped): a named outcome, not a
 # solver failure. Such a creep is stiff: tsit5 uses up max_steps near 1e-4 of the touch speed,
 # an implicit method (kvaerno5) gets to rest.
 _CREEP = 1e-3
-# Newton steps from the located turnaround radius (within ~rtol of the root) to round-off.
-_TURNAROUND_NEWTON = 3
-# |v²| after Newton's steps, relative to v₀² + |v²| at the segment's end + 1 (the phase's
-# energies), below which they found a root of v² (a turnaround), above which there is none near.
-_CONVERGED = 1e-9
 
 
 class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
@@ -93,7 +74,7 @@ class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
         return lambda c: land_on_touch(problem, options, c)
 
     def phase(self, problem: Problem, options: Options, c: Carry) -> "PhaseArgs":
-        return _phase_args(problem, options, c)
+        return phase_args(problem, options, c)
 
     def start(self, options: Options, args: "PhaseArgs", c: Carry) -> jax.Array:
         damped = [jnp.zeros(())] if options.damped else []
@@ -117,55 +98,20 @@ class Continuum(AbstractRidingIntegrator[Problem, "PhaseArgs"]):
         return _amend(self, problem, options, c, args, ride, end, booked)
 
 
-class PhaseArgs(AbstractPhaseArgs):
-    """What the vector field and the event conditions of one phase need."""
-
-    law: ContactLaw
-    branch: Branch
-    riding: jax.Array  # state is (a, v, t) in pseudo-time; else (d, v, t) in time
-    mode: jax.Array
-    segment: jax.Array
-    radius: jax.Array  # held radius (HOLD)
-    motion: Motion
-    velocity_sign: jax.Array  # turnaround: sign·v crosses zero upwards
-    level_sign: jax.Array  # branch end: sign·(distance to the end) crosses zero upwards
-    level: jax.Array  # the end in the state's variable: a segment end (riding) or a depth d
-    speed_scale: jax.Array  # 1 + the speeds of the phase start and of the touch
-    damping: tuple[Parameter, Parameter]  # (η_a, η_0) of the viscous force (η_a·a + η_0)·v
-    releases: jax.Array  # the contact ends where the total force returns to zero (damped, no adhesion)
-    # Loading may be integrated in time (`Options.timed_loading`); else a timed phase is a hold.
-    timed_loading: bool = eqx.field(static=True)
-
-
-def timed_radius(d, args: PhaseArgs):
-    """Contact radius of a time-parametrized phase: held, or the branch root at d (only where
-    loading is integrated in time: otherwise every timed phase is a hold)."""
-    if not args.timed_loading:
-        return args.radius
-    riding = args.branch.radius(args.law, d, args.segment)
-    return jnp.where(args.mode == HOLD, args.radius, riding)
-
-
-def viscous_force(radius, velocity, args: PhaseArgs):
-    """F_v = (η_a·a + η_0)·v of the springs in contact (scaled)."""
-    per_radius, constant = args.damping
-    return (per_radius * radius + constant) * velocity
-
-
 def _make_vector_field(damped: bool):
     def vector_field(s, y, args: PhaseArgs):
         x, v = y[0], y[1]
         law, branch = args.law, args.branch
         radius = jnp.maximum(x, 0.0)  # a stage may step a hair past a = 0
         slope = law.edge_slope(radius, branch.coefficient)
-        pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         force = law.force(radius, branch.level(law, radius))
         held_radius = timed_radius(x, args)
         held = law.force(held_radius, x)
         if not damped:
-            riding = jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
+            riding = branch_rates(v, force, slope, args.motion.gravity)
             timed = jnp.stack([v, args.motion.gravity - held, jnp.ones_like(v)])
             return jnp.where(args.riding, riding, timed)
+        pace = 1.0 / jnp.sqrt(1.0 + slope**2)
         viscous = viscous_force(radius, v, args)
         held_viscous = viscous_force(held_radius, v, args)
         riding = jnp.stack(
@@ -175,15 +121,6 @@ def _make_vector_field(damped: bool):
         return jnp.where(args.riding, riding, timed)
 
     return vector_field
-
-
-def total_force(y, args: PhaseArgs):
-    """The elastic and the viscous force of the state y (riding: y[0] = a; timed: y[0] = d)."""
-    x, v = y[0], y[1]
-    law, branch = args.law, args.branch
-    radius = jnp.where(args.riding, jnp.maximum(x, 0.0), timed_radius(x, args))
-    depth = jnp.where(args.riding, branch.level(law, radius), x)
-    return law.force(radius, depth) + viscous_force(radius, v, args)
 
 
 def _distance_to_end(y, args: PhaseArgs):
@@ -211,46 +148,6 @@ def _conditions(y, args: PhaseArgs) -> list[jax.Array]:
     return conditions
 
 
-def _phase_args(problem: Problem, options: Options, c: Carry) -> PhaseArgs:
-    """How the phase starting from the carry is integrated and where it ends."""
-    law = problem.law
-    branch = active_branch(c.mode, problem.attach, problem.detach)
-    # A segment rising from (or within 1e-6 of) a steep tip (h' → ∞ at a = 0, power laws
-    # n < 1) is integrated in time: in a, the pace q would never let a get there. Where the
-    # scene never loads in time, no tip is steep (and a rounded slope of ĝ = Â·a must not say so).
-    steep = (
-        (branch.nodes[c.segment] < _TIP_FAR)
-        & (law.edge_slope(_TIP_NEAR, branch.coefficient) > law.edge_slope(_TIP_FAR, branch.coefficient))
-        if options.timed_loading
-        else jnp.asarray(False)
-    )
-    riding = ((c.mode == RECEDE) | (c.mode == ADVANCE)) & ~steep
-    # Ends of the phase: the branch's segment end (in a when riding, in d when timed), or the
-    # detach edge of the held radius.
-    node = segment_end(branch, c.mode, c.segment)
-    level = jnp.where(
-        riding,
-        node,
-        jnp.where(c.mode == HOLD, problem.detach.level(law, c.radius), branch.level(law, node)),
-    )
-    return PhaseArgs(
-        law=law,
-        branch=branch,
-        riding=riding,
-        mode=c.mode,
-        segment=c.segment,
-        radius=c.radius,
-        motion=problem.motion,
-        velocity_sign=jnp.where(c.mode == ADVANCE, -1.0, 1.0),
-        level_sign=jnp.where(c.mode == ADVANCE, 1.0, -1.0),
-        level=level,
-        speed_scale=speed_scale(problem, c),
-        damping=(problem.damping_per_radius, problem.damping_constant),
-        releases=(c.mode != ADVANCE) & ~law.adhesive,
-        timed_loading=options.timed_loading,
-    )
-
-
 def _end(integrator: Continuum, problem: Problem, options: Options, c: Carry, args: PhaseArgs, ride: Ride) -> PhaseEnd:
     """Where the ride ended on the law: from the located event or, with the energy's ends, from
     the phase's energy balance; its samples, summary and the phase after it."""
@@ -261,7 +158,7 @@ def _end(integrator: Continuum, problem: Problem, options: Options, c: Carry, ar
     # A located event may overshoot the segment end by round-off: the radius stays on it.
     x_end = jnp.where(riding, jnp.clip(x_end, branch.nodes[c.segment], branch.nodes[c.segment + 1]), x_end)
     if integrator.phase_ends == "energy":
-        x_end, v_end, turned = _energy_end(problem, args, c, (x_end, v_end), ride.found & ~ride.out_of_time, turned)
+        x_end, v_end, turned = energy_end(problem, args, c, (x_end, v_end), ride.found & ~ride.out_of_time, turned)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     a_end = jnp.where(riding, x_end, timed_radius(x_end, args))
 
@@ -337,66 +234,3 @@ def _damped(problem: Problem, solution, args: PhaseArgs, summary: ContactSummary
         leaves, transitions.next_phase(FLIGHT, 0, 0.0, EVENT_CODE["separation"], separated=True), transitions.capture()
     )
     return summary, where(released, release, nxt)
-
-
-def _energy_end(problem: Problem, args: PhaseArgs, c: Carry, located, ended, turned):
-    """(x, v, turned) at the end of an undamped phase from its energy balance,
-    v² = v₀² − 2∫F dd + 2g·Δd (unit mass in the scaled units); `located` = (x, v) from the solver's
-    dense output, kept where the phase did not end at a located event (`ended`).
-
-    Along a branch (ridden in a, or timed in d from a steep tip): at a segment end (the radius is
-    the node) v has the phase's direction; at a turnaround v = 0 and the radius is the root of
-    v² = 0, by Newton from the located one (within the solver's tolerance of it), with
-    d(v²)/da = 2(g − F)·h'(a), kept inside the segment; a timed phase's x is then the depth h(a).
-    Where the body only just reaches the segment's end, or only just fails to, the solver's event
-    may be the wrong one at a loose tolerance, and the energy decides: a turnaround near which
-    Newton finds no root of v², while the body reaches the segment's end with v² > 0, is that
-    end; a segment end reached with v² < 0 is a turnaround before it, where Newton from the end
-    finds v² = 0.
-    A hold ends at its detach depth (x, the depth, is `args.level`); a turnaround there is a
-    capture, left as located.
-    """
-    x_located, v_located = located
-    law, branch, gravity = problem.law, args.branch, problem.motion.gravity
-
-    def ridden_squared_speed(radius):
-        ridden = branch_work(law, branch, c.radius, radius)
-        return squared_speed((c.d, c.v), ridden, gravity, branch.level(law, radius))
-
-    def newton(radius, _):
-        force = law.force(radius, branch.level(law, radius))
-        slope = 2.0 * (gravity - force) * law.edge_slope(radius, branch.coefficient)
-        step = ridden_squared_speed(radius) / jnp.where(slope != 0.0, slope, 1.0)
-        return jnp.clip(radius - step, branch.nodes[c.segment], branch.nodes[c.segment + 1]), None
-
-    def speed(squared, sign):  # no nan derivative where it is unused at 0
-        return sign * derivatives.sqrt(jnp.maximum(squared, 0.0))
-
-    # The radius where the phase ended: riding, the state itself; timed along a branch, the
-    # segment's end, or at a turnaround the branch root at the located depth.
-    node = segment_end(branch, args.mode, args.segment)
-    if args.timed_loading:
-        timed = ((args.mode == ADVANCE) | (args.mode == RECEDE)) & ~args.riding
-        radius_located = jnp.where(args.riding, x_located, jnp.where(turned, timed_radius(x_located, args), node))
-    else:  # every timed phase is a hold
-        timed = jnp.asarray(False)
-        radius_located = x_located
-    root, _ = jax.lax.scan(newton, radius_located, None, length=_TURNAROUND_NEWTON)
-    riding = ended & (args.riding | timed)
-    # The energy's verdict where it and the solver's event disagree (see above).
-    at_node = ridden_squared_speed(node)
-    converged = jnp.abs(ridden_squared_speed(root)) <= _CONVERGED * (c.v**2 + jnp.abs(at_node) + 1.0)
-    reaches = riding & turned & ~converged & (at_node > 0.0)
-    falls_short = riding & ~turned & converged & (at_node < 0.0)
-    turned = (turned & ~reaches) | falls_short
-    end_radius = jnp.where(turned, root, node)  # riding and not turned: the segment's end
-    riding_speed = speed(ridden_squared_speed(end_radius), -args.velocity_sign)  # while riding, sign·v < 0
-    depth = args.level
-    held_speed = speed(
-        squared_speed((c.d, c.v), hold_work(law, c.radius, c.d, depth), gravity, depth), jnp.sign(v_located)
-    )
-    holding = ended & (args.mode == HOLD) & ~turned  # a hold never rides
-    x_along = jnp.where(timed, branch.level(law, end_radius), end_radius)
-    x_end = jnp.where(riding, x_along, jnp.where(holding, depth, x_located))
-    v_end = jnp.where(riding, jnp.where(turned, 0.0, riding_speed), jnp.where(holding, held_speed, v_located))
-    return x_end, v_end, turned

@@ -40,7 +40,7 @@ from .carry import Carry
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
-from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
+from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, branch_rates, speed_scale
 from .transitions import Next, next_phase
 from .work import ContactSummary, extremes
 
@@ -126,9 +126,6 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
             speed_scale=speed_scale(problem, c),
         )
 
-    def start(self, options: Options, args: "_Args", c: Carry) -> jax.Array:
-        return jnp.stack([c.radius, c.v, c.t])
-
     def vector_field(self, options: Options):
         return _vector_field
 
@@ -185,8 +182,7 @@ class _Args(AbstractPhaseArgs):
 def _vector_field(pseudo_time, y, args: _Args):
     s, v = y[0], y[1]
     _, force, slope = args.curve.riding(args.law, s, args.segment)
-    pace = 1.0 / jnp.sqrt(1.0 + slope**2)
-    return jnp.stack([v * pace, (args.motion.gravity - force) * slope * pace, slope * pace])
+    return branch_rates(v, force, slope, args.motion.gravity)
 
 
 def _work(law: CurveLaw, curve: AbstractCurve, start, end):

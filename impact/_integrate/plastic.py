@@ -25,15 +25,15 @@ from .._law.scales import Scales
 from .._law.thornton import plastic_law, plastic_scales
 from .base import dense_states
 from .carry import Carry
-from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
+from .codes import ADVANCE, EVENT_CODE
 from .flight import land
-from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .problem import AbstractClosedFormProblem, Motion, Options, Physics, motion_of, touch_velocity
 from .ride import AbstractPhaseArgs, AbstractRidingIntegrator, PhaseEnd, Ride, speed_scale
-from .transitions import Next, next_phase
+from .transitions import after_plastic_phase, next_phase
 from .work import ContactSummary
 
 
-class PlasticProblem(AbstractProblem):
+class PlasticProblem(AbstractClosedFormProblem):
     """The scaled impact: Thornton's law and the initial state."""
 
     law: PlasticLaw
@@ -43,10 +43,6 @@ class PlasticProblem(AbstractProblem):
     @property
     def scales(self) -> Scales:
         return self.law.scales
-
-    @property
-    def overflow(self):
-        return jnp.asarray(False)
 
 
 class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
@@ -121,9 +117,8 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
             deepest=jnp.maximum(c.d, d_end),
         )
         memory = where(advancing, law.after_turn(d_end, state), state)
-        return PhaseEnd(
-            t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=_after(advancing, ride.turned), memory=memory
-        )
+        nxt = after_plastic_phase(advancing, ride.turned, flowing=0)
+        return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
 class _Args(AbstractPhaseArgs):
@@ -147,24 +142,3 @@ def _vector_field(s, y, args: _Args):
     slope = 2.0 * x * pace  # dt/ds
     force = args.law.force(_depth(x, args.state), args.state)
     return jnp.stack([v * pace, (args.motion.gravity - force) * slope, slope])
-
-
-def _after(advancing, turned) -> Next:
-    """Loading turns into unloading or flows on; unloading ends in separation, or in a capture
-    where it turns."""
-    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
-    event = jnp.where(
-        advancing,
-        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
-        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
-    )
-    return Next(
-        mode=mode,
-        segment=jnp.zeros((), int),
-        radius=jnp.zeros(()),
-        event=event,
-        separated=~advancing & ~turned,
-        captured=~advancing & turned,
-        stops=jnp.asarray(False),
-        stop=Status.separated,
-    )

@@ -118,6 +118,14 @@ class AbstractProblem(eqx.Module):
         """The law's tables cannot hold the impact: nothing can be trusted."""
 
 
+class AbstractClosedFormProblem(AbstractProblem):
+    """A problem whose law is in closed form: no table of it can overflow."""
+
+    @property
+    def overflow(self) -> jax.Array:
+        return jnp.asarray(False)
+
+
 class Problem(AbstractProblem):
     """The scaled impact of the continuum (and spring-array) law: the law, its two branches and
     the initial state."""

@@ -49,6 +49,13 @@ def speed_scale(problem: AbstractProblem, c: Carry) -> jax.Array:
     return 1.0 + jnp.abs(c.v) + problem.motion.touch_speed
 
 
+def branch_rates(v, force, slope, gravity) -> jax.Array:
+    """(a', v', t') of a ride along a branch d = h(a) in the pseudo-time s, with h' = `slope`:
+    a' = v·q, v' = (g − F)·h'·q, t' = h'·q, q = 1/√(1 + h'²) (`continuum`)."""
+    pace = 1.0 / jnp.sqrt(1.0 + slope**2)
+    return jnp.stack([v * pace, (gravity - force) * slope * pace, slope * pace])
+
+
 class Ride(eqx.Module):
     """A finished ride: diffrax's solution and where it ended (`base.located_end`)."""
 
@@ -91,9 +98,10 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
     def phase(self, problem: ProblemT, options: Options, c: Carry) -> Args:
         """The ride's arguments for the phase starting from the carry."""
 
-    @abc.abstractmethod
     def start(self, options: Options, args: Args, c: Carry) -> jax.Array:
-        """The ride's initial state."""
+        """The ride's initial state: by default (radius, v, t), the branch ridden in the carry's
+        radius (or the curve's parameter)."""
+        return jnp.stack([c.radius, c.v, c.t])
 
     @abc.abstractmethod
     def vector_field(self, options: Options) -> Callable[[Any, jax.Array, Args], jax.Array]:

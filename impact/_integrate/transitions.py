@@ -103,6 +103,28 @@ def after_phase(problem: Problem, mode, segment, radius, indentation, turned) ->
     )
 
 
+def after_plastic_phase(advancing, turned, flowing: int) -> Next:
+    """The phase after a ride of Thornton's plastic laws: loading turns into unloading or flows
+    on (on segment `flowing`, where the ride had not flowed yet); unloading separates, or is
+    captured where it turns (below the deepest state the elastic branches conserve energy)."""
+    mode = jnp.where(advancing, jnp.where(turned, RECEDE, ADVANCE), jnp.where(turned, DONE, FLIGHT))
+    event = jnp.where(
+        advancing,
+        jnp.where(turned, EVENT_CODE["max_indentation"], EVENT_CODE["yield"]),
+        jnp.where(turned, EVENT_CODE["capture"], EVENT_CODE["separation"]),
+    )
+    return Next(
+        mode=mode,
+        segment=jnp.where(advancing & ~turned, flowing, 0),
+        radius=jnp.zeros(()),
+        event=event,
+        separated=~advancing & ~turned,
+        captured=~advancing & turned,
+        stops=jnp.asarray(False),
+        stop=Status.separated,
+    )
+
+
 def capture() -> Next:
     """An outward turnaround in contact: the body can never reach the separation point again.
 

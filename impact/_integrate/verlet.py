@@ -51,6 +51,24 @@ class Verlet(AbstractSpringArrayIntegrator):
         return _run_steps(problem.problem, options, problem.array, step)
 
 
+class _Ending(eqx.Module):
+    """What ends a stretch of steps (each a flag of the step that reached it)."""
+
+    turned: jax.Array  # loading turned around
+    separated: jax.Array  # unloading let the last spring go
+    captured: jax.Array  # unloading turned around in contact
+    overflow: jax.Array  # loading outgrew the array
+    out_of_time: jax.Array  # the time limit passed
+
+    @classmethod
+    def none(cls) -> "_Ending":
+        false = jnp.asarray(False)
+        return cls(turned=false, separated=false, captured=false, overflow=false, out_of_time=false)
+
+    def any(self) -> jax.Array:
+        return self.turned | self.separated | self.captured | self.overflow | self.out_of_time
+
+
 class _Stretch(eqx.Module):
     """State of the stepping loop inside one contact phase (scalars, plus trajectory rows)."""
 
@@ -63,17 +81,10 @@ class _Stretch(eqx.Module):
     deepest: jax.Array
     high: jax.Array  # largest force
     low: jax.Array  # smallest force
-    turned: jax.Array
-    separated: jax.Array
-    captured: jax.Array
-    overflow: jax.Array
-    out_of_time: jax.Array
+    ending: _Ending  # what ended the stretch, once one did
     trajectory: jax.Array  # [T, 5] rows (T = 0 without samples)
     stored: jax.Array  # rows written
     stride: jax.Array  # steps between stored rows (doubles whenever the rows fill up)
-
-    def stopped(self):
-        return self.turned | self.separated | self.captured | self.overflow | self.out_of_time
 
 
 def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _Stretch:
@@ -128,11 +139,13 @@ def _verlet_step(array: ComputedSpringArray, motion: Motion, dt, inward, rows: i
         deepest=jnp.maximum(s.deepest, d),
         high=jnp.maximum(s.high, force),
         low=jnp.minimum(s.low, force),
-        turned=inward & (v < 0.0),
-        separated=~inward & (k == 0),
-        captured=~inward & (k > 0) & (v > 0.0),
-        overflow=inward & (k >= array.count) & (d >= array.beyond_level),
-        out_of_time=t > motion.time_limit,
+        ending=_Ending(
+            turned=inward & (v < 0.0),
+            separated=~inward & (k == 0),
+            captured=~inward & (k > 0) & (v > 0.0),
+            overflow=inward & (k >= array.count) & (d >= array.beyond_level),
+            out_of_time=t > motion.time_limit,
+        ),
     )
     return _store(s, array, rows)
 
@@ -143,7 +156,6 @@ def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, state:
     c, attached = state.carry, state.attached
     inward = c.mode == ADVANCE
     start_force = array.force(attached, c.d)
-    false = jnp.asarray(False)
     start = _Stretch(
         t=c.t,
         d=c.d,
@@ -154,18 +166,14 @@ def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, state:
         deepest=c.d,
         high=start_force,
         low=start_force,
-        turned=false,
-        separated=false,
-        captured=false,
-        overflow=false,
-        out_of_time=false,
+        ending=_Ending.none(),
         trajectory=c.trajectory,
         stored=state.stored,
         stride=state.stride,
     )
 
     def running(s: _Stretch):
-        return ~s.stopped() & (s.steps < _MAX_STEPS)
+        return ~s.ending.any() & (s.steps < _MAX_STEPS)
 
     def step(s: _Stretch) -> _Stretch:
         return _verlet_step(array, problem.motion, dt, inward, rows, s)
@@ -176,13 +184,14 @@ def _stretch(problem: Problem, array: ComputedSpringArray, dt, rows: int, state:
 def _book(c: Carry, s: _Stretch) -> Carry:
     """Fold a finished stretch into the carry: its events, the next phase and the result code."""
     inward = c.mode == ADVANCE
-    capped = ~s.stopped()
+    ending = s.ending
+    capped = ~ending.any()
     turned, separated, captured, overflow = (
-        flag & ~s.out_of_time for flag in (s.turned, s.separated, s.captured, s.overflow)
+        flag & ~ending.out_of_time for flag in (ending.turned, ending.separated, ending.captured, ending.overflow)
     )
-    mode = jnp.where(s.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
+    mode = jnp.where(ending.out_of_time | capped | overflow | captured, DONE, jnp.where(inward, RECEDE, FLIGHT))
     status = Status.where(
-        s.out_of_time,
+        ending.out_of_time,
         Status.time_limit,
         Status.where(
             capped,
@@ -193,7 +202,7 @@ def _book(c: Carry, s: _Stretch) -> Carry:
     c = log_event(c, s.t, EVENT_CODE["max_indentation"], turned)
     c = log_event(c, s.t, EVENT_CODE["separation"], separated)
     c = log_event(c, s.t, EVENT_CODE["capture"], captured)
-    c = log_event(c, s.t, EVENT_CODE["limit"], s.out_of_time | capped)
+    c = log_event(c, s.t, EVENT_CODE["limit"], ending.out_of_time | capped)
     summary = ContactSummary(work=s.work, lowest_force=s.low, highest_force=s.high, deepest=s.deepest)
     c = record_contact(c, (s.t, s.d, s.v), summary, separated, captured)
     return replace(

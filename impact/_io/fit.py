@@ -26,8 +26,8 @@ import numpy as np
 import yaml
 
 from .._run.fit import FitResult
-from .files import atomic_path, write_text
-from .h5md import current_user, read_string, write_header, write_scene, write_string
+from .files import write_text
+from .h5md import new_h5md, read_string, write_scene, write_string
 
 SUMMARY = ("chi2", "dof", "converged", "iterations", "sigma_source")
 
@@ -60,8 +60,7 @@ def write_fit_yaml(result: FitResult, path: str | Path) -> Path:
 def write_fit(result: FitResult, path: str | Path, *, author: str | None = None) -> Path:
     """fit.h5, atomically."""
     path = Path(path)
-    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
-        write_header(file.create_group("h5md"), author or current_user())
+    with new_h5md(path, author) as file:
         group = file.create_group("fit")
         _write_parameters(group.create_group("parameters"), result)
         for name in ("covariance", "correlation", "jacobian"):

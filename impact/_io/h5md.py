@@ -3,6 +3,7 @@
 (package, jax and diffrax versions, x64), and opening a stored run for reading."""
 
 import getpass
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -13,6 +14,7 @@ import yaml
 from .._core.package import __version__
 from .._core.runtime import provenance
 from .._scene.scene import Scene, load_scene, scene_yaml
+from .files import atomic_path
 
 H5MD_VERSION = (1, 1)
 CONFIG = "parameters/config.yaml"
@@ -36,6 +38,15 @@ def write_header(h5md: h5py.Group, author: str) -> None:
     units = h5md.create_group("modules/units")
     units.attrs["version"] = np.array((1, 0), dtype=np.int32)
     units.attrs["system"] = "SI"
+
+
+@contextmanager
+def new_h5md(path: str | Path, author: str | None = None) -> Iterator[h5py.File]:
+    """A new H5MD file at `path`, open for writing with its `h5md` header (`author`: the login
+    name by default); it appears at `path` only once the block has written it whole."""
+    with atomic_path(Path(path)) as temporary, h5py.File(temporary, "w") as file:
+        write_header(file.create_group("h5md"), author or current_user())
+        yield file
 
 
 def write_string(group: h5py.Group, name: str, text: str) -> h5py.Dataset:
@@ -72,6 +83,22 @@ def write_scene(parameters: h5py.Group, scene: Scene) -> None:
 def read_scene(file: h5py.File) -> Scene:
     """The scene stored by `write_scene`, validated anew."""
     return load_scene(yaml.safe_load(read_string(file[CONFIG])))
+
+
+def write_run_stats(stats: h5py.Group, wall_time: float | None, scales: dict, units: dict[str, str], of: str) -> None:
+    """A run's wall time (s, where measured) and its internal units (`scales`, SI: each of `units`
+    with its unit) in its `stats` group; `of`: what the units are of (the integration, the march)."""
+    if wall_time is not None:
+        stats.create_dataset("wall_time", data=float(wall_time)).attrs["unit"] = "s"
+    group = stats.create_group("scales")
+    group.attrs["description"] = f"internal units of the {of}"
+    for name, unit in units.items():
+        group.create_dataset(name, data=float(scales[name])).attrs["unit"] = unit
+
+
+def read_scales(stats: h5py.Group, units: dict[str, str]) -> dict[str, float]:
+    """The internal units stored by `write_run_stats` (SI)."""
+    return {name: float(stats["scales"][name][()]) for name in units}
 
 
 @contextmanager

@@ -27,8 +27,16 @@ import numpy as np
 
 from .._run.indentation import IndentationResult, PullOff
 from .._run.units import INDENTATION_CURVE, MAXIMA_UNITS, PULL_OFF_UNITS
-from .files import atomic_path
-from .h5md import current_user, open_run, read_provenance, read_scene, read_string, write_header, write_scene
+from .h5md import (
+    new_h5md,
+    open_run,
+    read_provenance,
+    read_scales,
+    read_scene,
+    read_string,
+    write_run_stats,
+    write_scene,
+)
 
 KIND = "indentation"
 SCALES = {"radial": "m", "normal": "m", "force": "N"}
@@ -48,9 +56,8 @@ def write_indentation(
 ) -> Path:
     """Store an indentation result (and the wall time of its simulation, s), atomically."""
     path = Path(path)
-    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
+    with new_h5md(path, author) as file:
         file.attrs["impact_kind"] = KIND
-        write_header(file.create_group("h5md"), author or current_user())
         observables = file.create_group("observables")
         curve = observables.create_group("curve")
         step = None
@@ -81,12 +88,7 @@ def write_indentation(
         stats = parameters.create_group("stats")
         stats.create_dataset("steps", data=np.int64(result.stats["steps"]))
         stats.create_dataset("reach", data=float(result.stats["reach"])).attrs["unit"] = "m"
-        if wall_time is not None:
-            stats.create_dataset("wall_time", data=float(wall_time)).attrs["unit"] = "s"
-        scales = stats.create_group("scales")
-        scales.attrs["description"] = "internal units of the march"
-        for name, unit in SCALES.items():
-            scales.create_dataset(name, data=float(result.stats["scales"][name])).attrs["unit"] = unit
+        write_run_stats(stats, wall_time, result.stats["scales"], SCALES, of="march")
     return path
 
 
@@ -114,7 +116,7 @@ def read_indentation(path: str | Path) -> IndentationResult:
             stats={
                 "steps": int(stats["steps"][()]),
                 "reach": float(stats["reach"][()]),
-                "scales": {name: float(stats["scales"][name][()]) for name in SCALES},
+                "scales": read_scales(stats, SCALES),
             },
         )
 

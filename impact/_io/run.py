@@ -39,8 +39,7 @@ from .._run.impacts import Result
 from .._run.losses import NAMED_LOSSES
 from .._run.tangential import TANGENTIAL_SERIES
 from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, SCALAR_UNITS, VELOCITY_SERIES
-from .files import atomic_path
-from .h5md import current_user, open_run, read_scene, read_string, write_header, write_scene
+from .h5md import new_h5md, open_run, read_scales, read_scene, read_string, write_run_stats, write_scene
 
 SCALE_UNITS = {"radial": "m", "normal": "m", "force": "N", "time": "s"}
 STEP_COUNTS = ("steps", "accepted_steps", "rejected_steps")
@@ -49,8 +48,7 @@ STEP_COUNTS = ("steps", "accepted_steps", "rejected_steps")
 def write_run(result: Result, path: str | Path, *, wall_time: float | None = None, author: str | None = None) -> Path:
     """Store a result (and the wall time of its simulation, s) as an H5MD file, atomically."""
     path = Path(path)
-    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
-        write_header(file.create_group("h5md"), author or current_user())
+    with new_h5md(path, author) as file:
         clock = _write_body(file.create_group("particles/body"), result)
         _write_observables(file.create_group("observables"), result, clock)
         _write_parameters(file.create_group("parameters"), result, wall_time)
@@ -89,7 +87,7 @@ def read_run(path: str | Path) -> Result:
             ],
             stats={
                 **{name: int(stats[name][()]) for name in STEP_COUNTS},
-                "scales": {name: float(stats["scales"][name][()]) for name in SCALE_UNITS},
+                "scales": read_scales(stats, SCALE_UNITS),
             },
         )
 
@@ -154,12 +152,7 @@ def _write_parameters(parameters: h5py.Group, result: Result, wall_time: float |
     stats = parameters.create_group("solver_stats")
     for name in STEP_COUNTS:
         stats.create_dataset(name, data=np.int64(result.stats[name]))
-    if wall_time is not None:
-        stats.create_dataset("wall_time", data=float(wall_time)).attrs["unit"] = "s"
-    scales = stats.create_group("scales")
-    scales.attrs["description"] = "internal units of the integration"
-    for name, unit in SCALE_UNITS.items():
-        scales.create_dataset(name, data=float(result.stats["scales"][name])).attrs["unit"] = unit
+    write_run_stats(stats, wall_time, result.stats["scales"], SCALE_UNITS, of="integration")
 
 
 def _scalar(dataset: h5py.Dataset):

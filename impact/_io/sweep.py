@@ -41,7 +41,7 @@ from .._scene.scene import scene_yaml
 from .._scene.sweep import make_spec
 from .._scene.sweep_spec import SweepSpec
 from .files import atomic_path
-from .h5md import current_user, read_string, stamp_provenance, write_header, write_string
+from .h5md import new_h5md, read_string, stamp_provenance, write_string
 
 SWEEP_FILE = "sweep.h5"
 _COMPRESSION = dict(compression="gzip", compression_opts=4, shuffle=True)
@@ -57,8 +57,7 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
     """A new sweep file with empty resizable datasets (written atomically)."""
     path = Path(path)
     rows_per_chunk = max(1, min(chunk, _MAX_CHUNK_ROWS))
-    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
-        write_header(file.create_group("h5md"), current_user())
+    with new_h5md(path) as file:
         parameters = file.create_group("parameters")
         write_string(parameters, "scene.yaml", scene_yaml(spec.scene))
         stamp_provenance(write_string(parameters, "sweep.yaml", spec.definition()))

@@ -1,5 +1,5 @@
-"""What every figure shares: SI prefixes for axis units, writing figures atomically, and
-importing matplotlib ahead while a command computes.
+"""What every figure shares: SI prefixes for axis units, the frame of a force–indentation plot,
+writing figures atomically, and importing matplotlib ahead while a command computes.
 
 Figures are drawn on matplotlib's Agg canvas (no pyplot, no display, no global state), and
 matplotlib is imported only inside the functions that draw, so `import impact` never loads it.
@@ -21,6 +21,17 @@ def si_prefix(magnitude: float) -> tuple[float, str]:
     exponent = 3 * math.floor(math.log10(abs(magnitude)) / 3)
     exponent = min(max(exponent, min(_PREFIXES)), max(_PREFIXES))
     return 10.0**-exponent, _PREFIXES[exponent]
+
+
+def frame_force_indentation(axes, length_prefix: str, force_prefix: str, legend: str) -> None:
+    """The frame of a force–indentation plot: the axes through the origin, a grid, d and F
+    labelled with their units (`length_prefix`m, `force_prefix`N) and signs, the legend at `legend`."""
+    axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
+    axes.grid(alpha=0.3)
+    axes.set_xlabel(f"indentation d ({length_prefix}m), > 0 pressed in")
+    axes.set_ylabel(f"force F ({force_prefix}N), > 0 compressive")
+    axes.legend(loc=legend, fontsize="small")
 
 
 def write_figures(folder: str | Path, named) -> list[Path]:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._run.indentation import IndentationResult
-from .figures import si_prefix, write_figures
+from .figures import frame_force_indentation, si_prefix, write_figures
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -103,12 +103,7 @@ def force_indentation_figure(result: IndentationResult) -> "Figure":
                 ms=6,
                 label=kind.replace("_", " "),
             )
-    axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
-    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
-    axes.grid(alpha=0.3)
-    axes.set_xlabel(f"indentation d ({length_prefix}m), > 0 pressed in")
-    axes.set_ylabel(f"force F ({force_prefix}N), > 0 compressive")
-    axes.legend(loc="best", fontsize="small")
+    frame_force_indentation(axes, length_prefix, force_prefix, legend="best")
     axes.set_title(_title(result), fontsize="medium")
     return figure
 

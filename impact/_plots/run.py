@@ -13,7 +13,7 @@ import numpy as np
 
 from .._run.impacts import Result
 from .._scene.scene import Scene
-from .figures import si_prefix, write_figures
+from .figures import frame_force_indentation, si_prefix, write_figures
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -84,12 +84,7 @@ def force_indentation_figure(result: Result) -> "Figure":
     for label, (d, F), style in _closed_form_curves(result.scene, 1.05 * largest_radius):
         axes.plot(d * length_factor, F * force_factor, style, color="0.35", lw=1.2, label=label)
     axes.plot(indentation * length_factor, force * force_factor, color="C0", lw=1.8, alpha=0.85, label="simulation")
-    axes.axhline(0.0, color="0.6", lw=0.8, zorder=0)
-    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
-    axes.grid(alpha=0.3)
-    axes.set_xlabel(f"indentation d ({length_prefix}m), > 0 pressed in")
-    axes.set_ylabel(f"force F ({force_prefix}N), > 0 compressive")
-    axes.legend(loc="upper left", fontsize="small")
+    frame_force_indentation(axes, length_prefix, force_prefix, legend="upper left")
     axes.set_title(f"{result.scene.name}: force against indentation\n{_outcome(result)}")
     return figure
 

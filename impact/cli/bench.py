@@ -5,7 +5,6 @@ The benchmarks themselves live in `impact._bench`. Float64 is the entry point's 
 `impact` command enables it); without it the commands refuse to run.
 """
 
-import shutil
 from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
@@ -24,7 +23,7 @@ from .._bench.workloads import SPEED_OUTPUTS, speed_plan, workloads
 from .._core.defaults import SPEED_REPEATS
 from .._io.files import write_text
 from .console import out, refuse, refuse_value, say
-from .folders import check_output, check_output_file
+from .folders import check_output, check_output_file, removed_on_failure
 
 Measured = TypeVar("Measured")
 
@@ -93,13 +92,8 @@ def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path],
     check_output(folder, overwrite, holds="benchmark")
     if not jax.config.read("jax_enable_x64"):
         refuse("float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")])
-    created = not folder.exists()
-    try:
+    with removed_on_failure(folder):
         result = measure(folder)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise
     for name in outputs:
         say(f"  {folder / name}")
     return result

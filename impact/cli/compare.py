@@ -12,7 +12,6 @@ traceback and before anything is written.
 """
 
 import math
-import shutil
 from datetime import datetime
 from pathlib import Path
 
@@ -21,6 +20,7 @@ from rich.table import Table
 from rich.text import Text
 
 from .._compare.comparison import compare_lammps
+from .._compare.granular import NormalModel
 from .._compare.lammps_batch import LammpsFailed
 from .._compare.lammps_library import LammpsMissing
 from .._compare.report import lammps_input, summary_lines, table_csv
@@ -30,7 +30,7 @@ from .._plots.figures import import_ahead
 from .._scene.errors import SceneError
 from .._scene.scene import scene_yaml
 from .console import out, refuse, say
-from .folders import check_output
+from .folders import check_output, make_folder, removed_on_failure
 from .run import scene_of
 
 MOST_SPEEDS = 100_000
@@ -79,12 +79,13 @@ def run_compare_lammps(
     check_output(folder, overwrite, holds="comparison")
     import_ahead()
     try:
-        comparison = compare_lammps(scene, model, damping, speeds, dt)
+        normal = None if model is None else NormalModel.named(model)
+        comparison = compare_lammps(scene, normal, damping, speeds, dt)
     except LammpsMissing as error:
         refuse("LAMMPS is not installed", [("", str(error))])
     except LammpsFailed as error:
         refuse("LAMMPS stopped with an error", [("", str(error))])
-    except SceneError as error:  # CompareError (LAMMPS cannot represent it) or SweepError (impact cannot run it)
+    except SceneError as error:  # CompareError (LAMMPS cannot represent it or the option) or SweepError
         refuse(f"cannot compare {scene_file} with LAMMPS", error.problems)
     _write(comparison, folder, overwrite)
     out.print(_speeds_table(comparison.columns()))
@@ -96,22 +97,15 @@ def run_compare_lammps(
 def _write(comparison, folder: Path, overwrite: bool) -> None:
     """comparison.csv, comparison.png, summary.txt, in.lammps and config.yaml, each atomically; a
     folder created here is removed again if a write fails."""
-    created = not folder.exists()
-    try:
-        folder.mkdir(parents=True, exist_ok=overwrite)
-    except OSError as error:
-        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
-    try:
+    with removed_on_failure(folder):
+        make_folder(folder, exist_ok=overwrite, holds="comparison")
         write_text(folder / "config.yaml", scene_yaml(comparison.scene))
         write_text(folder / "comparison.csv", table_csv(comparison))
         write_text(folder / "summary.txt", "\n".join(summary_lines(comparison)) + "\n")
         write_text(folder / "in.lammps", lammps_input(comparison))
-        title = f"{comparison.scene.name}: impact against LAMMPS {comparison.model.model}"
-        save_comparison_figure(comparison.columns(), title, comparison.model.model, folder / FIGURE)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise
+        keyword = comparison.model.model.keyword
+        title = f"{comparison.scene.name}: impact against LAMMPS {keyword}"
+        save_comparison_figure(comparison.columns(), title, keyword, folder / FIGURE)
 
 
 def _speeds_table(columns: dict[str, np.ndarray]) -> Table:

@@ -13,7 +13,6 @@ if a write fails).
 """
 
 import math
-import shutil
 from pathlib import Path
 
 from .._io.fit import write_fit, write_fit_yaml
@@ -23,7 +22,7 @@ from .._run.fit import FitResult, fit_spec
 from .._scene.errors import SceneError
 from .._scene.fit_spec import FitSpec, load_fit
 from .console import refuse, say, warn
-from .folders import check_output
+from .folders import check_output, make_folder, removed_on_failure
 
 
 def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwrite: bool) -> None:
@@ -66,16 +65,11 @@ def _progress(spec: FitSpec):
 
 
 def _write(result: FitResult, folder: Path) -> None:
-    created = not folder.exists()
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
+    with removed_on_failure(folder):
+        make_folder(folder, exist_ok=True, holds="fit")
         write_fit_yaml(result, folder / "fit.yaml")
         write_fit(result, folder / "fit.h5")
         save_fit_figure(result, folder)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise
 
 
 def _summary(result: FitResult) -> None:

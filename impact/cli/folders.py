@@ -1,6 +1,10 @@
-"""The output folder of a command, checked before any work."""
+"""The output folder of a command: checked before any work, created for the writing, and removed
+again where the writing fails."""
 
 import os
+import shutil
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from .console import refuse
@@ -21,6 +25,30 @@ def check_output(folder: Path, overwrite: bool, holds: str = "run") -> None:
         refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is a file, not a folder")])
     if not os.access(nearest, os.W_OK | os.X_OK):
         refuse("output folder", [("--output", f"cannot create {folder}: {nearest} is not writable")])
+
+
+def make_folder(folder: Path, exist_ok: bool, holds: str = "run") -> None:
+    """Create the output folder (and its parents); an existing one only where `exist_ok`. Refused
+    as `check_output` says where one has taken its place since, else with the system's reason."""
+    try:
+        folder.mkdir(parents=True, exist_ok=exist_ok)
+    except FileExistsError:
+        check_output(folder, exist_ok, holds)
+    except OSError as error:
+        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
+
+
+@contextmanager
+def removed_on_failure(folder: Path) -> Iterator[None]:
+    """A folder that does not exist yet is removed again (with what the block wrote into it) if
+    the block fails or is interrupted: no half-written output is left."""
+    created = not folder.exists()
+    try:
+        yield
+    except BaseException:
+        if created:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise
 
 
 def check_output_file(path: Path, option: str) -> None:

@@ -7,7 +7,6 @@ without a physical outcome (status other than separated or captured) is still wr
 `impact run` exits with code 1.
 """
 
-import shutil
 import time
 from datetime import datetime
 from pathlib import Path
@@ -26,7 +25,7 @@ from .._scene.errors import SceneError
 from .._scene.overrides import apply_overrides
 from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
 from .console import out, refuse, say, warn
-from .folders import check_output
+from .folders import check_output, make_folder, removed_on_failure
 from .tables import facts_table, result_table
 
 if TYPE_CHECKING:
@@ -108,14 +107,8 @@ def write_outputs(
     created here is removed again if a write fails."""
     from .._run.shear import ShearResult  # a shear test's result, where a run is written
 
-    created = not folder.exists()
-    try:
-        folder.mkdir(parents=True, exist_ok=overwrite)
-    except FileExistsError:
-        check_output(folder, overwrite)
-    except OSError as error:
-        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
-    try:
+    with removed_on_failure(folder):
+        make_folder(folder, exist_ok=overwrite)
         write_text(folder / "config.yaml", scene_yaml(result.scene))
         if isinstance(result, Result):
             from .._io.run import write_run
@@ -138,7 +131,3 @@ def write_outputs(
 
             write_indentation(result, folder / "run.h5", wall_time=wall_time)
             save_indentation_figures(result, folder)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise

@@ -17,7 +17,6 @@ DIR/shard-<i>-of-<N>.h5; `impact merge` joins them.
 """
 
 import contextlib
-import shutil
 import time
 from pathlib import Path
 
@@ -46,6 +45,7 @@ from .._scene.errors import SceneError, SweepError
 from .._scene.sweep import load_sweep
 from .._scene.sweep_spec import SweepSpec
 from .console import err, out, refuse, refuse_value, say, warn
+from .folders import make_folder, removed_on_failure
 from .tables import OUTCOMES, outcome_counts, sticking_table, sweep_table
 
 FIGURE = "restitution.png"
@@ -233,20 +233,12 @@ def _writer(path: Path, plan: Plan, resume: bool, overwrite: bool, **layout) -> 
         say(f"resuming {path}: {writer.rows} of {layout['expected']} points done")
         return writer
     folder = path.parent
-    created = not folder.exists()
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        refuse("output folder", [("--output", f"cannot create {folder}: {error.strerror}")])
-    try:
+    with removed_on_failure(folder):
+        make_folder(folder, exist_ok=True, holds="sweep")
         if overwrite:
             (folder / FIGURE).unlink(missing_ok=True)
             (folder / LOSSES_FIGURE).unlink(missing_ok=True)
         return SweepWriter.start(path, plan.spec, plan, **layout)
-    except BaseException:
-        if created:
-            shutil.rmtree(folder, ignore_errors=True)
-        raise
 
 
 def _solve(plan: Plan, writer: SweepWriter, expected: int, **options) -> dict:

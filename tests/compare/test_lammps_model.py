@@ -13,6 +13,7 @@ import yaml
 from typer.testing import CliRunner
 
 from impact._compare.comparison import default_velocities, time_step
+from impact._compare.granular import DampingModel, NormalModel
 from impact._compare.lammps_library import NOT_INSTALLED
 from impact._compare.lammps_model import CompareError, lammps_model
 from impact._scene.scene import load_scene
@@ -37,7 +38,7 @@ def scene_with(base: dict, **sections) -> dict:
 
 def refusals(data: dict, model: str | None = None, damping: str | None = None) -> list[tuple[str, str]]:
     with pytest.raises(CompareError) as caught:
-        lammps_model(load_scene(data), model, damping)
+        lammps_model(load_scene(data), None if model is None else NormalModel.named(model), damping)
     return caught.value.problems
 
 
@@ -50,21 +51,21 @@ def test_jkr_on_a_wall_gives_the_scenes_E_star_and_the_jkr_pull_off():
     """γ = Δγ/2, so LAMMPS's pull-off 3πγR is (3/2)πRΔγ; E = 2(1 − ν²)E* (ν = 0.3 for a scene with
     E* alone) makes LAMMPS's wall modulus E/(2(1 − ν²)) the scene's E*; no damping."""
     model = lammps_model(load_scene(THORNTON_NING))
-    assert model.model == "jkr" and not model.pair
+    assert model.model is NormalModel.jkr and not model.particles.pair
     assert model.surface_energy == 0.05 / 2
     R, dgamma = 1e-6, 0.05
     assert math.isclose(3 * math.pi * model.surface_energy * R, 1.5 * math.pi * R * dgamma, rel_tol=ROUND_OFF)
     body, wall = model.materials
     assert body == wall and body.nu == 0.3
     assert math.isclose(lammps_E_star(body), 1e9, rel_tol=ROUND_OFF)
-    assert (model.body_radius, model.body_mass) == (1e-6, 1.0472e-14)
-    assert (model.damping.model, model.damping.coefficient) == ("velocity", 0.0)
+    assert (model.particles.body_radius, model.particles.body_mass) == (1e-6, 1.0472e-14)
+    assert (model.damping.model, model.damping.coefficient) == (DampingModel.velocity, 0.0)
     assert model.normal_model(body).startswith("jkr 1820000000 0 0.29999999999999999 0.025000000000000001 damping")
 
 
 def test_dmt_takes_the_dmt_pull_off():
     """γ = Δγ/2: LAMMPS's DMT pull-off 4πγR equals 2πRΔγ."""
-    model = lammps_model(load_scene(THORNTON_NING), "dmt")
+    model = lammps_model(load_scene(THORNTON_NING), NormalModel.dmt)
     assert math.isclose(4 * math.pi * model.surface_energy * 1e-6, 2 * math.pi * 1e-6 * 0.05, rel_tol=ROUND_OFF)
 
 
@@ -77,8 +78,9 @@ def test_two_spheres_keep_both_materials_and_lammps_mixes_them_into_E_star():
     assert (body.E, body.nu, other.E, other.nu) == (63e9, 0.2, 63e9, 0.2)
     mixed = 1 / ((1 - body.nu**2) / body.E + (1 - other.nu**2) / other.E)
     assert math.isclose(mixed, scene.material.effective_modulus, rel_tol=ROUND_OFF)
-    assert model.pair and (model.counterpart_radius, model.counterpart_velocity) == (20e-6, 0.05)
-    assert math.isclose(model.counterpart_mass, 2500 * 4 / 3 * math.pi * (20e-6) ** 3, rel_tol=ROUND_OFF)
+    particles = model.particles
+    assert particles.pair and (particles.counterpart_radius, particles.counterpart_velocity) == (20e-6, 0.05)
+    assert math.isclose(particles.counterpart_mass, 2500 * 4 / 3 * math.pi * (20e-6) ** 3, rel_tol=ROUND_OFF)
 
 
 def test_damping_maps_the_force_law():
@@ -86,15 +88,19 @@ def test_damping_maps_the_force_law():
     η₀·a·m·v_n is the scene's 2E*·a·A·ḋ; --damping replaces it."""
     no_adhesion = scene_with(THORNTON_NING, effects={"damping": {"model": "linear", "coefficient": 2e-6}})
     model = lammps_model(load_scene(no_adhesion))
-    assert (model.model, model.damping.model, model.damping.coefficient) == ("hertz/material", "velocity", 2e-6)
+    assert (model.model, model.damping.model, model.damping.coefficient) == (
+        NormalModel.hertz_material,
+        DampingModel.velocity,
+        2e-6,
+    )
     viscous = scene_with(THORNTON_NING, effects={"damping": {"model": "viscoelastic", "dissipative_constant": 1e-9}})
     model = lammps_model(load_scene(viscous))
-    assert model.damping.model == "viscoelastic"
+    assert model.damping.model is DampingModel.viscoelastic
     assert math.isclose(model.damping.coefficient * 1.0472e-14, 2 * 1e9 * 1e-9, rel_tol=ROUND_OFF)
     assert "total force returns to zero" in model.left_out
     replaced = lammps_model(load_scene(viscous), damping="coeff_restitution:0.9")
     assert (replaced.damping.model, replaced.damping.coefficient, replaced.damping.origin) == (
-        "coeff_restitution",
+        DampingModel.coeff_restitution,
         0.9,
         "--damping",
     )
@@ -109,14 +115,15 @@ def test_mdr_yields_at_the_scenes_yield_radius():
         TWO_SPHERES, effects={"adhesion": {"work_of_adhesion": 0.1}, "plasticity": {"yield_pressure": 1e9}}
     )
     scene = load_scene(plastic)
-    model = lammps_model(scene, "mdr")
+    model = lammps_model(scene, NormalModel.mdr)
     body, other = model.materials
     assert body == other and math.isclose(lammps_E_star(body), scene.material.effective_modulus, rel_tol=ROUND_OFF)
     assert model.surface_energy == 0.05
     E_star, R_star, R = scene.material.effective_modulus, scene.effective_radius, 10e-6
     a_y = math.pi * 1e9 * R_star / (2 * E_star)
     assert math.isclose(model.yield_stress * (1.75 * math.exp(-4.4 * a_y**2 / R**2) + 1), 2e9 / 3, rel_tol=ROUND_OFF)
-    assert lammps_model(load_scene(TWO_SPHERES), "mdr").yield_stress == body.E > 4 * body.E / (3 * math.pi * 0.96)
+    never_yields = lammps_model(load_scene(TWO_SPHERES), NormalModel.mdr).yield_stress
+    assert never_yields == body.E > 4 * body.E / (3 * math.pi * 0.96)
 
 
 @pytest.mark.parametrize(
@@ -251,6 +258,27 @@ def test_a_refused_scene_exits_2_and_writes_nothing(tmp_path):
         "cannot compare" in result.output
         and "body.profile.shape: LAMMPS's granular particles are spheres" in result.output
     )
+    assert "Traceback" not in result.output and not (tmp_path / "out").exists()
+
+
+def test_models_are_named_by_their_lammps_keywords():
+    """Each model's keyword is LAMMPS's and names it back; the input words of each follow it."""
+    assert [model.keyword for model in NormalModel] == ["jkr", "dmt", "hertz/material", "mdr"]
+    assert all(NormalModel.named(model.keyword) is model for model in NormalModel)
+    assert [DampingModel.named(name) for name in ("tsuji", "mdr", "linear")] == [
+        DampingModel.tsuji,
+        DampingModel.mdr,
+        None,
+    ]
+    words = NormalModel.mdr.words(E=2e9, nu=0.3, damping=0.5, gamma=0.025, yield_stress=1e8)
+    assert words == "mdr 2000000000 0.29999999999999999 100000000 0.025000000000000001 0.0 0.5"
+
+
+def test_an_unknown_model_option_exits_2_and_writes_nothing(tmp_path):
+    result = invoke("compare", "lammps", CONFIGS / "thornton_ning.yaml", "--model", "hooke", "-o", tmp_path / "out")
+    assert result.exit_code == 2
+    message = "--model: unknown model 'hooke'; expected one of: jkr, dmt, hertz/material, mdr"
+    assert "cannot compare" in result.output and message in " ".join(result.output.split())
     assert "Traceback" not in result.output and not (tmp_path / "out").exists()
 
 

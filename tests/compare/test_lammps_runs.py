@@ -14,6 +14,7 @@ from typer.testing import CliRunner
 
 from impact import theory
 from impact._compare.comparison import STEP_ERROR_FACTOR, compare_lammps, hertz_time
+from impact._compare.granular import NormalModel
 from impact._compare.lammps_batch import run_batch
 from impact._compare.lammps_model import lammps_model
 from impact._scene.scene import load_scene
@@ -79,14 +80,14 @@ def test_lammps_jkr_loses_the_energy_of_the_branch_cut_at_the_force_controlled_p
     minimum), 1e-2 at all. Just above LAMMPS's own sticking velocity (0.7028 v_s) it lets go
     where Thornton–Ning capture."""
     scene = load_scene(CONFIGS / scene_name)
-    model = lammps_model(scene, "jkr")
+    model = lammps_model(scene, NormalModel.jkr)
     v_s = float(
         theory.thornton_ning_sticking_velocity(
             scene.reduced_mass, scene.contact_profile.R, model.E_star, scene.effects.adhesion.work_of_adhesion
         )
     )
     approach = np.array([0.75, 2.0, 4.0]) * v_s  # the relative speeds; the counterpart adds its own
-    velocities = approach - model.counterpart_velocity
+    velocities = approach - model.particles.counterpart_velocity
     dt = hertz_time(scene, model, float(velocities.max())) / STEPS_PER_CONTACT
     duration = 20 * hertz_time(scene, model, float(velocities.min()))
     runs = [run_batch(model, velocities, step, duration) for step in (dt, dt / 2)]

@@ -2,15 +2,13 @@
 
 import functools
 
-import equinox as eqx
 import jax.numpy as jnp
 
-from ..._core.pytree import replace_where
 from ..codes import Status
 from .continuum_cascade import after_cascade, cascade_bracket, cascade_outcome
 from .continuum_pieces import move, plan
 from .continuum_state import Carry, ContinuumMarch
-from .events import EventLog, empty_record, run_march
+from .events import EventLog, MarchRecord, end_march, run_march
 from .loading import FREE, QuasiStaticNumerics, QuasiStaticOutcome
 from .setup import Built, bracketed_root, edge_path
 
@@ -21,15 +19,11 @@ def march_continuum(built: Built, numerics: QuasiStaticNumerics) -> QuasiStaticO
     ride's crossing of the target, or where a cascade stops), so the loop body and its compile
     time stay small."""
     attach, detach = built.problem.attach, built.problem.detach
-    steps = numerics.steps(built.targets.shape[0])
-    up_nodes, up_tags = edge_path(attach, built.attach3, built.top, True)
-    down_nodes, down_tags = edge_path(detach, built.detach3, built.top, False)
+    steps = numerics.steps(built.program.targets.shape[0])
     march = ContinuumMarch(
         built=built,
-        up_nodes=up_nodes,
-        up_tags=up_tags,
-        down_nodes=down_nodes,
-        down_tags=down_tags,
+        up=edge_path(attach, built.attach3, built.top, True),
+        down=edge_path(detach, built.detach3, built.top, False),
         grid=jnp.linspace(0.0, 1.0, numerics.samples),
         extent=built.law.extent(),
     )
@@ -41,25 +35,25 @@ def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
     curve and its events (or done at once where a branch table overflowed)."""
     carry = Carry(
         leg=jnp.zeros((), int),
-        direction=jnp.asarray(built.directions[0], int),
-        target=built.targets[0],
+        direction=jnp.asarray(built.program.directions[0], int),
+        target=built.program.targets[0],
         landing=jnp.asarray(False),
         mode=jnp.asarray(FREE),
         wall=jnp.asarray(False),
         a=jnp.zeros(()),
         d=jnp.zeros(()),
-        **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
+        pre=jnp.zeros(2),
+        record=MarchRecord.empty(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
     attach, detach = built.problem.attach, built.problem.detach
     overflow = attach.overflow | detach.overflow | built.attach3.overflow | built.detach3.overflow
-    return replace_where(carry, overflow, status=Status.branch_overflow, done=True)
+    return end_march(carry, overflow, Status.branch_overflow)
 
 
 def step(march: ContinuumMarch, c: Carry) -> Carry:
     """One piece: every mode's piece is set up from the state, the one bisection solves the
     ride's crossing of the target (or where the cascade stops), then the piece of the current
     mode is applied (`move`) and the cascade's outcome (`after_cascade`)."""
-    c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
     log = EventLog()
     a, d = c.a, c.d
     p = plan(march, c)
@@ -67,7 +61,7 @@ def step(march: ContinuumMarch, c: Carry) -> Carry:
     root = bracketed_root(
         march.law,
         p.rode.edge,
-        march.force_control & ~p.is_cascade,
+        march.program.force_control & ~p.is_cascade,
         jnp.where(p.is_cascade, d, c.target),
         jnp.where(p.is_cascade, bracket.lower, p.rode.lo),
         jnp.where(p.is_cascade, bracket.upper, p.rode.hi),

@@ -12,8 +12,9 @@ from ..._core.pytree import replace_where
 from ..._law.branches import Branch
 from ..codes import Status
 from .continuum_state import Carry, ContinuumMarch, complete, instability
-from .events import EventLog
+from .events import EventLog, end_march, record_pull_off
 from .loading import EVENT, FREE, HOLD, RIDE, SAME_RADIUS
+from .program import back_on_leg
 
 
 class Bracket(eqx.Module):
@@ -76,32 +77,22 @@ def after_cascade(march: ContinuumMarch, c: Carry, log: EventLog, keep, a, d, ou
     c = separate(march, c, log, keep & outcome.gone, a, d)
     jumped = keep & ~outcome.gone & ~outcome.stop
     c = jump(march, c, log, jumped, moved, a, d, outcome, up)
-    return replace_where(c, keep & outcome.stop, status=outcome.code, done=True)
+    return end_march(c, keep & outcome.stop, outcome.code)
 
 
 def separate(march: ContinuumMarch, c: Carry, log: EventLog, pulled, a, d) -> Carry:
     """Separation: the pull-off is where the instability began (force) or this point (a, d)."""
-    built = march.built
     before = jnp.where(c.landing, c.pre, jnp.stack([a, d]))
     F_before = march.force(before[0], before[1])
-    c = replace_where(c, pulled, pull_off=jnp.concatenate([before, F_before[None]]))
+    c = record_pull_off(c, pulled, jnp.concatenate([before, F_before[None]]))
     # The curve ends at the pull-off; under displacement control the force then drops to 0 at
     # constant d (under force control the body leaves at constant force: no state follows).
     log.emit(before[0], before[1], F_before, pulled, c.leg)
     log.event(EVENT["pull_off"], pulled)
-    log.emit(0.0, d, 0.0, pulled & ~march.force_control, c.leg)
-    c = replace_where(
-        c,
-        pulled,
-        mode=FREE,
-        a=0.0,
-        d=d,
-        wall=False,
-        landing=False,
-        target=built.targets[c.leg],
-        direction=built.directions[c.leg],
-    )
-    return complete(march, c, log, pulled & ~jnp.isfinite(built.targets[c.leg]))
+    log.emit(0.0, d, 0.0, pulled & ~march.program.force_control, c.leg)
+    c = replace_where(c, pulled, mode=FREE, a=0.0, d=d, wall=False)
+    c = back_on_leg(c, march.program, pulled)
+    return complete(march, c, log, pulled & ~jnp.isfinite(march.program.targets[c.leg]))
 
 
 def jump(march: ContinuumMarch, c: Carry, log: EventLog, jumped, moved, a, d, outcome: Outcome, up) -> Carry:

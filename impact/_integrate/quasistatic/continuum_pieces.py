@@ -83,7 +83,7 @@ def approach(c: Carry, up, is_free) -> Approach:
 def hold(march: ContinuumMarch, c: Carry, up) -> Hold:
     """A hold at the radius a: it ends at the target (d, or d where F meets it) or at the level of
     the edge of the direction, the attach level (none at the wall) or the detach level."""
-    law, force_control, force = march.law, march.force_control, march.force
+    law, force_control, force = march.law, march.program.force_control, march.force
     a, d = c.a, c.d
     safe = jnp.where(a > 0.0, a, 1.0)
     level = jnp.where(
@@ -102,17 +102,17 @@ def hold(march: ContinuumMarch, c: Carry, up) -> Hold:
 def ride(march: ContinuumMarch, c: Carry, up, is_ride) -> Ride:
     """The interval of the merged turning points (`edge_path`) that the radius a rides next, and
     whether d and F rise along it and the target is met inside it."""
-    law, force_control = march.law, march.force_control
+    law, force_control = march.law, march.program.force_control
     a = c.a
-    nodes = jnp.where(up, march.up_nodes, march.down_nodes)
-    tags = jnp.where(up, march.up_tags, march.down_tags)
+    nodes = jnp.where(up, march.up.nodes, march.down.nodes)
+    tags = jnp.where(up, march.up.tags, march.down.tags)
     edge = jnp.where(up, march.attach.coefficient, march.detach.coefficient)
     j = jnp.where(
         up,
-        jnp.searchsorted(march.up_nodes, a, side="right", method="compare_all") - 1,
-        jnp.searchsorted(march.down_nodes, a, side="left", method="compare_all") - 1,
+        jnp.searchsorted(march.up.nodes, a, side="right", method="compare_all") - 1,
+        jnp.searchsorted(march.down.nodes, a, side="left", method="compare_all") - 1,
     )
-    j = jnp.clip(j, 0, march.up_nodes.shape[0] - 2)
+    j = jnp.clip(j, 0, march.up.nodes.shape[0] - 2)
     far = jnp.where(up, nodes[j + 1], nodes[j])
     lo, hi = jnp.minimum(a, far), jnp.maximum(a, far)
     mid = 0.5 * (lo + hi)
@@ -152,7 +152,7 @@ def move(march: ContinuumMarch, c: Carry, log: EventLog, p: Plan, root) -> Carry
     piece_a = jnp.where(is_ride, a + (stop_at - a) * u, jnp.where(is_hold, a, 0.0) * jnp.ones_like(u))
     piece_d = jnp.where(is_ride, law.edge(piece_a, rode.edge), d + (jnp.where(is_hold, held.end, free.end) - d) * u)
     piece_F = jnp.where(is_free, 0.0, march.force(piece_a, piece_d))
-    shown = jnp.where(is_free, ~march.force_control & (free.touches | ~up), ~c.landing) & (
+    shown = jnp.where(is_free, ~march.program.force_control & (free.touches | ~up), ~c.landing) & (
         is_free | is_hold | rode.moving
     )
     log.emit(piece_a, piece_d, piece_F, shown, c.leg)

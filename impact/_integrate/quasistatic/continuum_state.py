@@ -7,13 +7,13 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.branches import Branch
 from ..._law.law import ContactLaw
-from ..codes import Status
-from .events import EventLog
+from .events import AbstractMarchCarry, EventLog, MarchRecord
 from .loading import EVENT, FREE, HOLD
-from .setup import Built
+from .program import Program, back_on_leg, next_leg
+from .setup import Built, EdgePath
 
 
-class Carry(eqx.Module):
+class Carry(AbstractMarchCarry):
     leg: jax.Array
     direction: jax.Array  # +1 up (d or F increasing), −1 down
     target: jax.Array  # the leg's target, or the force of a landing
@@ -23,14 +23,7 @@ class Carry(eqx.Module):
     a: jax.Array
     d: jax.Array
     pre: jax.Array  # [2] a, d where the current instability began
-    pull_off: jax.Array  # [3]
-    status: Status
-    done: jax.Array
-    steps: jax.Array
-    rows: jax.Array
-    count: jax.Array
-    events: jax.Array
-    event_count: jax.Array
+    record: MarchRecord
 
 
 class ContinuumMarch(eqx.Module):
@@ -39,10 +32,8 @@ class ContinuumMarch(eqx.Module):
     body's largest radius."""
 
     built: Built
-    up_nodes: jax.Array
-    up_tags: jax.Array  # 0: a turning point of h, 1: of the force (ξ = 3)
-    down_nodes: jax.Array
-    down_tags: jax.Array
+    up: EdgePath  # out, along the attach edge
+    down: EdgePath  # in, along the detach edge
     grid: jax.Array
     extent: jax.Array
 
@@ -59,8 +50,8 @@ class ContinuumMarch(eqx.Module):
         return self.built.problem.detach
 
     @property
-    def force_control(self) -> jax.Array:
-        return self.built.force_control
+    def program(self) -> Program:
+        return self.built.program
 
     def force(self, a, d):
         """F(a, d) of the law (scaled)."""
@@ -69,36 +60,20 @@ class ContinuumMarch(eqx.Module):
 
 def complete(march: ContinuumMarch, c: Carry, log: EventLog, keep) -> Carry:
     """The current target is met: a landing ends (its jump logged), or the leg ends."""
-    built = march.built
+    program = march.program
     landed = keep & c.landing
     log.emit(c.a, c.d, march.force(c.a, c.d), landed, c.leg)
     kind = jnp.where(c.a >= c.pre[0], EVENT["snap_in"], EVENT["snap_out"])
     log.event(kind, landed & (c.a != c.pre[0]))
-    leg_direction = built.directions[c.leg]
-    c = replace_where(
-        c,
-        landed,
-        landing=False,
-        target=built.targets[c.leg],
-        direction=leg_direction,
-        mode=jnp.where(c.direction != leg_direction, HOLD, c.mode),
-    )
+    # Landing against the leg's direction, the march holds before it goes on.
+    c = replace_where(c, landed, mode=jnp.where(c.direction != program.directions[c.leg], HOLD, c.mode))
+    c = back_on_leg(c, program, landed)
     finished = keep & ~landed
-    more = c.leg + 1 < built.legs
-    following = jnp.minimum(c.leg + 1, built.legs - 1)
-    log.event(EVENT["reversal"], finished & more & (c.mode != FREE))
-    return replace_where(
-        c,
-        finished,
-        leg=following,
-        done=~more,
-        direction=built.directions[following],
-        target=built.targets[following],
-        mode=jnp.where(c.mode == FREE, FREE, HOLD),
-    )
+    c = next_leg(c, program, log, finished, c.mode != FREE)
+    return replace_where(c, finished, mode=jnp.where(c.mode == FREE, FREE, HOLD))
 
 
 def instability(march: ContinuumMarch, c: Carry, keep, a, d) -> Carry:
     """Force control: the applied force can no longer be met here; jump at constant force."""
-    start = keep & march.force_control & ~c.landing
+    start = keep & march.program.force_control & ~c.landing
     return replace_where(c, start, landing=True, target=march.force(a, d), pre=jnp.stack([a, d]))

@@ -34,8 +34,9 @@ from ..._core.search import bisect
 from ..._law.branches import next_rising, previous_rising
 from ..._law.curve import AbstractCurve, CurveLaw
 from ..codes import Status
-from .events import EventLog, empty_record, run_march
+from .events import AbstractMarchCarry, EventLog, MarchRecord, end_march, record_pull_off, run_march
 from .loading import BISECTION_STEPS, EVENT, SAME_RADIUS, QuasiStaticNumerics, QuasiStaticOutcome
+from .program import Program, back_on_leg, next_leg
 
 
 class CurveMarch(eqx.Module):
@@ -46,10 +47,7 @@ class CurveMarch(eqx.Module):
     curve: AbstractCurve
     pieces: jax.Array  # [P+1] sorted: the curve's nodes and the turning points of F(s)
     force_rising: jax.Array  # [P] F rises with s on the piece
-    force_control: jax.Array
-    directions: jax.Array
-    targets: jax.Array  # scaled (N or m units of the law)
-    legs: jax.Array
+    program: Program  # its targets in the units of the law
     grid: jax.Array  # u ∈ [0, 1]: where a ride is sampled
 
     def at(self, memory) -> "CurveMarch":
@@ -72,7 +70,7 @@ class CurveMarch(eqx.Module):
         return jnp.where(force, force_value, depth)
 
 
-class CurveCarry(eqx.Module):
+class CurveCarry(AbstractMarchCarry):
     leg: jax.Array
     direction: jax.Array  # +1 loading (d or F rising), −1 unloading
     target: jax.Array  # the leg's target, or the constant force of a landing
@@ -83,14 +81,7 @@ class CurveCarry(eqx.Module):
     memory: jax.Array  # what a curve that remembers keeps of the path (`AbstractCurve.at`); else 0
     d: jax.Array
     pre: jax.Array  # [2] s, d where the current instability began
-    pull_off: jax.Array  # [3] a, d, F
-    status: Status
-    done: jax.Array
-    steps: jax.Array
-    rows: jax.Array
-    count: jax.Array
-    events: jax.Array
-    event_count: jax.Array
+    record: MarchRecord
 
 
 def path_pieces(law: CurveLaw, curve: AbstractCurve, max_turns: int):
@@ -103,26 +94,22 @@ def path_pieces(law: CurveLaw, curve: AbstractCurve, max_turns: int):
 
 
 def march_curve(
-    law: CurveLaw, curve: AbstractCurve, loading_program, numerics: QuasiStaticNumerics
+    law: CurveLaw, curve: AbstractCurve, program: Program, numerics: QuasiStaticNumerics
 ) -> QuasiStaticOutcome:
-    """March the program (force control, directions, scaled targets, legs) along the curve."""
-    force_control, directions, targets, legs = loading_program
+    """March the program along the curve."""
     pieces, force_rising, overflow = path_pieces(law, curve, numerics.tabulation.max_turns)
     march = CurveMarch(
         law=law,
         curve=curve,
         pieces=pieces,
         force_rising=force_rising,
-        force_control=force_control,
-        directions=directions,
-        targets=targets,
-        legs=legs,
+        program=program,
         grid=jnp.linspace(0.0, 1.0, numerics.samples),
     )
-    steps = numerics.steps(targets.shape[0])
+    steps = numerics.steps(program.targets.shape[0])
     start = initial(march, numerics, steps)
-    start = replace_where(start, overflow | curve.overflow, status=Status.branch_overflow, done=True)
-    start = replace_where(start, ~curve.resolves(law), status=Status.unresolved_zone, done=True)
+    start = end_march(start, overflow | curve.overflow, Status.branch_overflow)
+    start = end_march(start, ~curve.resolves(law), Status.unresolved_zone)
     return run_march(functools.partial(step, march), start, steps, march.state(curve.nodes[-1])[0])
 
 
@@ -130,33 +117,47 @@ def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> Cur
     """Apart, at the depth where the interaction starts, on the first leg; empty buffers."""
     return CurveCarry(
         leg=jnp.zeros((), int),
-        direction=jnp.asarray(march.directions[0], int),
-        target=march.targets[0],
+        direction=jnp.asarray(march.program.directions[0], int),
+        target=march.program.targets[0],
         landing=jnp.asarray(False),
         attached=jnp.asarray(False),
         s=jnp.zeros(()),
         segment=jnp.zeros((), int),
         memory=jnp.zeros(()),
         d=jnp.asarray(march.law.onset, float),
-        **empty_record(rows=steps * (numerics.samples + 8), events=4 * steps),
+        pre=jnp.zeros(2),
+        record=MarchRecord.empty(rows=steps * (numerics.samples + 8), events=4 * steps),
     )
 
 
-class Piece(eqx.Module):
-    """What a step moves over: the approach (apart), a jump at fixed d (the touch, or the end of
-    a rising segment), or a ride over one piece of the path."""
+class JumpPlan(eqx.Module):
+    """A jump at fixed d: from s = `start` at the depth `level` onto the next rising segment in
+    the direction of motion."""
 
-    away: jax.Array  # apart, not reaching the onset: d moves to the target (or the leg ends)
-    jumping: jax.Array  # a jump at fixed d from `start`
-    touching: jax.Array  # the jump is the touch at the onset
-    riding: jax.Array
     start: jax.Array  # s where the jump starts
     level: jax.Array  # d of the jump
     segment: jax.Array  # the rising segment the jump lands on
     lost: jax.Array  # no such segment: blocked (up, the top of the curve) or released (down)
-    far: jax.Array  # the end of the ride's piece in its direction
+
+
+class RidePlan(eqx.Module):
+    """A ride along one piece of the path (between turning points of d or F)."""
+
+    far: jax.Array  # the end of the piece in the direction of motion
     unstable: jax.Array  # force control: the ride cannot follow the applied force here
-    crossed: jax.Array  # the ride meets its target inside its piece
+    crossed: jax.Array  # the ride meets its target inside the piece
+
+
+class Piece(eqx.Module):
+    """What a step moves over: the approach (apart), a jump at fixed d (the touch, or the end of
+    a rising segment), or a ride over one piece of the path; and its one bisection."""
+
+    away: jax.Array  # apart, not reaching the onset: d moves to the target (or the leg ends)
+    jumping: jax.Array  # a jump at fixed d
+    touching: jax.Array  # the jump is the touch at the onset
+    riding: jax.Array
+    jump: JumpPlan
+    ride: RidePlan
     lower: jax.Array  # the bracket of the step's bisection
     upper: jax.Array
     goal: jax.Array  # the level the bisection looks for
@@ -167,17 +168,41 @@ def plan(march: CurveMarch, c: CurveCarry) -> Piece:
     """The piece a step moves over, and the bracket of its bisection."""
     curve, law = march.curve, march.law
     up = c.direction > 0
-    touching = ~c.attached & up & (march.force_control | (c.target >= law.onset))
+    touching = ~c.attached & up & (march.program.force_control | (c.target >= law.onset))
     at_end = c.attached & jnp.where(up, c.s >= curve.nodes[c.segment + 1], c.s <= curve.nodes[c.segment])
     jumping = touching | at_end
     riding = c.attached & ~at_end
+    jump = plan_jump(march, c, up, touching)
+    ride = plan_ride(march, c, up, riding)
+    return Piece(
+        away=~c.attached & ~touching,
+        jumping=jumping,
+        touching=touching,
+        riding=riding,
+        jump=jump,
+        ride=ride,
+        lower=jnp.where(jumping, curve.nodes[jump.segment], jnp.minimum(c.s, ride.far)),
+        upper=jnp.where(jumping, curve.nodes[jump.segment + 1], jnp.maximum(c.s, ride.far)),
+        goal=jnp.where(jumping, jump.level, c.target),
+        force=riding & march.program.force_control,
+    )
+
+
+def plan_jump(march: CurveMarch, c: CurveCarry, up, touching) -> JumpPlan:
+    """The jump from the state (or, `touching`, from the onset at s = 0) to the next rising
+    segment at its level."""
+    curve = march.curve
     start = jnp.where(touching, 0.0, c.s)
-    level = jnp.where(touching, law.onset, c.d)
+    level = jnp.where(touching, march.law.onset, c.d)
     out, blocked = next_rising(curve.nodes, curve.levels, curve.increasing, start, level)
     back, released = previous_rising(curve.nodes, curve.levels, curve.increasing, start, level)
-    segment = jnp.where(up, out, back)
+    return JumpPlan(start=start, level=level, segment=jnp.where(up, out, back), lost=jnp.where(up, blocked, released))
 
-    pieces = march.pieces
+
+def plan_ride(march: CurveMarch, c: CurveCarry, up, riding) -> RidePlan:
+    """The piece of the path the state rides next, and whether it can follow the control there
+    and meets its target inside."""
+    pieces, force_control = march.pieces, march.program.force_control
     index = jnp.where(
         up,
         jnp.searchsorted(pieces, c.s, side="right", method="compare_all") - 1,
@@ -185,27 +210,10 @@ def plan(march: CurveMarch, c: CurveCarry) -> Piece:
     )
     index = jnp.clip(index, 0, pieces.shape[0] - 2)
     far = jnp.where(up, pieces[index + 1], pieces[index])
-    follows = ~march.force_control | march.force_rising[index]
-    unstable = riding & ~follows & ~c.landing
-    far_value = march.controlled(far, march.force_control)
+    follows = ~force_control | march.force_rising[index]
+    far_value = march.controlled(far, force_control)
     crossed = riding & follows & jnp.where(up, c.target <= far_value, c.target >= far_value)
-    return Piece(
-        away=~c.attached & ~touching,
-        jumping=jumping,
-        touching=touching,
-        riding=riding,
-        start=start,
-        level=level,
-        segment=segment,
-        lost=jnp.where(up, blocked, released),
-        far=far,
-        unstable=unstable,
-        crossed=crossed,
-        lower=jnp.where(jumping, curve.nodes[segment], jnp.minimum(c.s, far)),
-        upper=jnp.where(jumping, curve.nodes[segment + 1], jnp.maximum(c.s, far)),
-        goal=jnp.where(jumping, level, c.target),
-        force=riding & march.force_control,
-    )
+    return RidePlan(far=far, unstable=riding & ~follows & ~c.landing, crossed=crossed)
 
 
 class Evaluated(eqx.Module):
@@ -221,15 +229,16 @@ class Evaluated(eqx.Module):
 def evaluate(march: CurveMarch, c: CurveCarry, p: Piece, root) -> tuple[jax.Array, jax.Array, Evaluated]:
     """Where the jump lands and the ride stops, and the states the step reads there."""
     up = c.direction > 0
-    landing = jnp.where(up, jnp.maximum(root, p.start), jnp.minimum(root, p.start))
+    landing = jnp.where(up, jnp.maximum(root, p.jump.start), jnp.minimum(root, p.jump.start))
     # A rising segment that goes on from the current one's end (the junction) is no jump: the
     # state stays at the node, whatever an ulp of d finds on the flat start of the next one.
     nodes = march.curve.nodes
-    adjacent = jnp.where(up, nodes[p.segment] == nodes[c.segment + 1], nodes[p.segment + 1] == nodes[c.segment])
-    landing = jnp.where(p.jumping & ~p.touching & adjacent, p.start, landing)
-    stop = jnp.where(p.crossed, root, p.far)
+    onto = p.jump.segment
+    adjacent = jnp.where(up, nodes[onto] == nodes[c.segment + 1], nodes[onto + 1] == nodes[c.segment])
+    landing = jnp.where(p.jumping & ~p.touching & adjacent, p.jump.start, landing)
+    stop = jnp.where(p.ride.crossed, root, p.ride.far)
     ride = c.s + (stop - c.s) * march.grid
-    radius, depth, force = march.state(jnp.concatenate([jnp.stack([p.start, landing, c.s, c.pre[0]]), ride]))
+    radius, depth, force = march.state(jnp.concatenate([jnp.stack([p.jump.start, landing, c.s, c.pre[0]]), ride]))
 
     def at(i):
         return radius[i], depth[i], force[i]
@@ -241,7 +250,6 @@ def evaluate(march: CurveMarch, c: CurveCarry, p: Piece, root) -> tuple[jax.Arra
 def step(march: CurveMarch, c: CurveCarry) -> CurveCarry:
     """One piece: planned from the state, its one bisection, the states it reads (one batched
     evaluation of the curve), then applied."""
-    c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
     march = march.at(c.memory)
     log = EventLog()
     p = plan(march, c)
@@ -257,7 +265,7 @@ def approach(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece) -> Curve
     """Apart: d moves to the target out of range (displacement control; shown), or the leg ends."""
     up = c.direction > 0
     end = jnp.where(up, c.target, jnp.where(jnp.isfinite(c.target), jnp.minimum(c.target, c.d), c.d))
-    shown = p.away & ~march.force_control
+    shown = p.away & ~march.program.force_control
     zeros = jnp.zeros_like(march.grid)
     log.emit(zeros, c.d + (end - c.d) * march.grid, zeros, shown, c.leg)
     c = replace_where(c, shown, d=end)
@@ -273,17 +281,17 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     log.event(EVENT["touch"], p.touching)
     # Force control: the touch starts a landing at F = 0 (the applied force out of range); a
     # segment's end, one at the force there.
-    begins = p.jumping & march.force_control & ~c.landing
+    begins = p.jumping & march.program.force_control & ~c.landing
     start_force = jnp.where(p.touching, 0.0, states.start[2])
     before = tuple(jnp.where(c.landing, b, s) for b, s in zip(states.before, states.start, strict=True))
-    c = replace_where(c, begins, landing=True, target=start_force, pre=jnp.stack([p.start, p.level]))
+    c = replace_where(c, begins, landing=True, target=start_force, pre=jnp.stack([p.jump.start, p.jump.level]))
 
-    blocked = p.jumping & up & p.lost
-    c = replace_where(c, blocked, status=Status.radius_overflow, done=True)
-    c = separate(march, c, log, p.jumping & ~up & p.lost, before, p.level)
+    blocked = p.jumping & up & p.jump.lost
+    c = end_march(c, blocked, Status.radius_overflow)
+    c = separate(march, c, log, p.jumping & ~up & p.jump.lost, before, p.jump.level)
 
-    moves = p.jumping & ~p.lost
-    start, after = states.start, states.landing
+    moves = p.jumping & ~p.jump.lost
+    start, after, level = states.start, states.landing, p.jump.level
     # A jump moves the radius or the force (scaled: O(1)); a landing within round-off does not.
     moved = (jnp.abs(after[0] - start[0]) > SAME_RADIUS * jnp.maximum(jnp.abs(start[0]), 1.0)) | (
         jnp.abs(after[2] - start[2]) > SAME_RADIUS * jnp.maximum(jnp.abs(start[2]), 1.0)
@@ -291,11 +299,9 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
     # Displacement control shows the jump (the touch: the force switching on, even in place).
     shown = moves & ~c.landing & (moved | p.touching)
     keep = jnp.stack([shown & ~p.touching, shown])
-    log.emit(
-        jnp.stack([start[0], after[0]]), jnp.stack([p.level, p.level]), jnp.stack([start[2], after[2]]), keep, c.leg
-    )
+    log.emit(jnp.stack([start[0], after[0]]), jnp.stack([level, level]), jnp.stack([start[2], after[2]]), keep, c.leg)
     log.event(jnp.where(up, EVENT["snap_in"], EVENT["snap_out"]), shown & moved)
-    c = replace_where(c, moves, attached=True, s=landing, segment=p.segment, d=p.level)
+    c = replace_where(c, moves, attached=True, s=landing, segment=p.jump.segment, d=p.jump.level)
     # In a landing, a jump past the applied force turns the motion back (riding on across a node
     # is no jump: on a frozen Maugis–Dugdale zone F equals the applied force to round-off there).
     overshoot = moves & moved & c.landing & jnp.where(c.direction > 0, after[2] > c.target, after[2] < c.target)
@@ -305,13 +311,13 @@ def jump(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, landing, sta
 def ride(march: CurveMarch, c: CurveCarry, log: EventLog, p: Piece, stop, states: Evaluated) -> CurveCarry:
     """Along one piece of a rising segment: to the target (the root), else to the piece's end.
     Force control, where F falls along the way: not followed; a landing starts (none moves)."""
-    c = replace_where(c, p.unstable, landing=True, target=states.here[2], pre=jnp.stack([c.s, c.d]))
-    moving = p.riding & ~p.unstable
+    c = replace_where(c, p.ride.unstable, landing=True, target=states.here[2], pre=jnp.stack([c.s, c.d]))
+    moving = p.riding & ~p.ride.unstable
     radius, depth, force = states.ride
     log.emit(radius, depth, force, moving & ~c.landing, c.leg)
     c = replace_where(c, moving, s=stop, d=depth[-1])
     end = (radius[-1], depth[-1], force[-1])
-    return complete(march, c, log, moving & p.crossed, end)
+    return complete(march, c, log, moving & p.ride.crossed, end)
 
 
 def complete(march: CurveMarch, c: CurveCarry, log: EventLog, keep, here=(0.0, 0.0, 0.0)) -> CurveCarry:
@@ -319,21 +325,9 @@ def complete(march: CurveMarch, c: CurveCarry, log: EventLog, keep, here=(0.0, 0
     landed = keep & c.landing
     log.emit(here[0], here[1], here[2], landed, c.leg)
     log.event(jnp.where(c.s >= c.pre[0], EVENT["snap_in"], EVENT["snap_out"]), landed & (c.s != c.pre[0]))
-    c = replace_where(
-        c, landed, landing=False, target=march.targets[c.leg], direction=march.directions[c.leg].astype(int)
-    )
+    c = back_on_leg(c, march.program, landed)
     finished = keep & ~landed
-    more = c.leg + 1 < march.legs
-    following = jnp.minimum(c.leg + 1, march.legs - 1)
-    log.event(EVENT["reversal"], finished & more & c.attached)
-    c = replace_where(
-        c,
-        finished,
-        leg=following,
-        done=~more,
-        direction=march.directions[following].astype(int),
-        target=march.targets[following],
-    )
+    c = next_leg(c, march.program, log, finished, c.attached)
     return anchor(march, c, finished & c.attached) if march.curve.remembers else c
 
 
@@ -350,20 +344,18 @@ def separate(march: CurveMarch, c: CurveCarry, log: EventLog, released, before, 
     (a, d, F) where the instability began (force control) or the last state. Under displacement
     control the force then drops to 0 at this d; under force control the body leaves at constant
     force (no state follows)."""
-    c = replace_where(c, released, pull_off=jnp.stack(before))
+    c = record_pull_off(c, released, jnp.stack(before))
     log.emit(before[0], before[1], before[2], released, c.leg)
     log.event(EVENT["pull_off"], released)
-    log.emit(0.0, d, 0.0, released & ~march.force_control, c.leg)
+    log.emit(0.0, d, 0.0, released & ~march.program.force_control, c.leg)
     c = replace_where(
         c,
         released,
         attached=False,
-        landing=False,
         s=0.0,
         segment=0,
         memory=0.0,
         d=d,
-        target=march.targets[c.leg],
-        direction=march.directions[c.leg].astype(int),
     )
-    return complete(march, c, log, released & ~jnp.isfinite(march.targets[c.leg]))
+    c = back_on_leg(c, march.program, released)
+    return complete(march, c, log, released & ~jnp.isfinite(march.program.targets[c.leg]))

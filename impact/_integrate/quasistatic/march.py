@@ -17,6 +17,7 @@ from ..._law.scales import Scales
 from .continuum import march_continuum
 from .curve import march_curve
 from .loading import Loading, QuasiStaticNumerics
+from .program import Program
 from .setup import build, loading_scales
 from .springs import march_springs
 
@@ -43,7 +44,12 @@ def march_finite_range(loading: Loading, numerics: QuasiStaticNumerics):
             steps_per_leg=numerics.steps_per_leg or 8 * numerics.springs + 64,
         )
     scales, unit, scaled, curve = finite_range_curve(loading, numerics)
-    program = (loading.force_control, loading.directions, loading.targets / unit, loading.legs)
+    program = Program(
+        force_control=loading.force_control,
+        directions=loading.directions,
+        targets=loading.targets / unit,
+        legs=loading.legs,
+    )
     return scales, march_curve(scaled, curve, program, numerics)
 
 

@@ -15,6 +15,7 @@ from ..._law.law import ContactLaw
 from ..._law.scales import Scales
 from ..problem import Motion, Problem
 from .loading import BISECTION_STEPS, OCTAVES, SCALE_DECADES, SCALE_STEPS, TOP_MARGIN, Loading, QuasiStaticNumerics
+from .program import Program
 
 
 def _log_bisect(excess, lower, upper):
@@ -74,10 +75,7 @@ class Built(eqx.Module):
     problem: Problem
     attach3: Branch  # Branch of the ξ = 3 attach edge: extrema of the loading force
     detach3: Branch  # Branch of the ξ = 3 detach edge: extrema of the unloading force
-    force_control: jax.Array
-    directions: jax.Array
-    targets: jax.Array  # scaled
-    legs: jax.Array
+    program: Program
     top: jax.Array
     bounded: jax.Array  # the program's peak is reached at a finite radius
 
@@ -121,10 +119,12 @@ def build(loading: Loading, numerics: QuasiStaticNumerics) -> Built:
         problem=branch_problem(law, attach, detach),
         attach3=attach3,
         detach3=detach3,
-        force_control=jnp.asarray(loading.force_control),
-        directions=loading.directions,
-        targets=targets,
-        legs=loading.legs,
+        program=Program(
+            force_control=jnp.asarray(loading.force_control),
+            directions=loading.directions,
+            targets=targets,
+            legs=loading.legs,
+        ),
         top=top,
         bounded=bounded,
     )
@@ -149,7 +149,14 @@ def bracketed_root(law: ContactLaw, coefficient, force_control, target, lower, u
     return 0.5 * (lo + hi)
 
 
-def edge_path(h_branch, f_branch, top, up: bool):
+class EdgePath(eqx.Module):
+    """The turning points of a march's path along one edge (out or in), sorted, and whose they are."""
+
+    nodes: jax.Array  # radii (scaled)
+    tags: jax.Array  # 0: a turning point of h, 1: of the force (ξ = 3)
+
+
+def edge_path(h_branch, f_branch, top, up: bool) -> EdgePath:
     """Turning points of h and of the ξ = 3 edge, merged and sorted, with a tag (0: h, 1: force).
 
     At equal radii the h nodes come first on the way out and last on the way in, so a march
@@ -161,4 +168,4 @@ def edge_path(h_branch, f_branch, top, up: bool):
     nodes = jnp.concatenate([first, second])
     order = jnp.argsort(nodes, stable=True)
     nodes, tags = nodes[order], tags[order]
-    return nodes, jnp.where(nodes >= top, 0, tags)
+    return EdgePath(nodes=nodes, tags=jnp.where(nodes >= top, 0, tags))

@@ -9,12 +9,13 @@ import jax.numpy as jnp
 from ..._core.pytree import replace_where
 from ..._law.springs import TabulatedSpringArray
 from ..codes import Status
-from .events import EventLog, empty_record, run_march
+from .events import AbstractMarchCarry, EventLog, MarchRecord, end_march, record_pull_off, run_march
 from .loading import EVENT, QuasiStaticNumerics, QuasiStaticOutcome
+from .program import Program, back_on_leg, next_leg
 from .setup import Built
 
 
-class SpringCarry(eqx.Module):
+class SpringCarry(AbstractMarchCarry):
     leg: jax.Array
     direction: jax.Array
     target: jax.Array
@@ -23,14 +24,7 @@ class SpringCarry(eqx.Module):
     k: jax.Array  # springs attached
     d: jax.Array
     pre: jax.Array  # [2] k, d where the current instability began
-    pull_off: jax.Array
-    status: Status
-    done: jax.Array
-    steps: jax.Array
-    rows: jax.Array
-    count: jax.Array
-    events: jax.Array
-    event_count: jax.Array
+    record: MarchRecord
 
 
 def spring_array(built: Built, capacity: int, count, length) -> TabulatedSpringArray:
@@ -62,8 +56,8 @@ class SpringMarch(eqx.Module):
     count: jax.Array  # springs of the array (N ≤ its capacity)
 
     @property
-    def force_control(self) -> jax.Array:
-        return self.built.force_control
+    def program(self) -> Program:
+        return self.built.program
 
     def force(self, k, d):
         """F with k springs attached at the indentation d (scaled)."""
@@ -91,7 +85,7 @@ def march_springs(built: Built, numerics: QuasiStaticNumerics, length, count) ->
     """March the program on the spring array (`numerics.springs` its capacity), event by event."""
     assert numerics.springs is not None, "a spring-array march needs the array's capacity"
     march = SpringMarch(built=built, array=spring_array(built, numerics.springs, count, length), count=count)
-    steps = numerics.steps(built.targets.shape[0])
+    steps = numerics.steps(built.program.targets.shape[0])
     return run_march(functools.partial(step, march), initial(built, steps), steps, built.top)
 
 
@@ -100,20 +94,20 @@ def initial(built: Built, steps: int) -> SpringCarry:
     buffers for the curve and its events."""
     return SpringCarry(
         leg=jnp.zeros((), int),
-        direction=jnp.asarray(built.directions[0], int),
-        target=built.targets[0],
+        direction=jnp.asarray(built.program.directions[0], int),
+        target=built.program.targets[0],
         landing=jnp.asarray(False),
         touching=jnp.asarray(False),
         k=jnp.zeros((), int),
         d=jnp.zeros(()),
-        **empty_record(rows=2 * steps + 64 * built.targets.shape[0], events=steps // 2 + 64),
+        pre=jnp.zeros(2),
+        record=MarchRecord.empty(rows=2 * steps + 64 * built.program.targets.shape[0], events=steps // 2 + 64),
     )
 
 
 def step(march: SpringMarch, c: SpringCarry) -> SpringCarry:
     """One event: apart, the approach (and the touch); in contact, the hold to the next
     threshold or the target, and past the threshold the attach or detach cascade."""
-    c = eqx.tree_at(lambda s: s.steps, c, c.steps + 1)
     log = EventLog()
     up = c.direction > 0
     k, d = c.k, c.d
@@ -128,29 +122,16 @@ def step(march: SpringMarch, c: SpringCarry) -> SpringCarry:
 
 def complete_leg(march: SpringMarch, c: SpringCarry, log: EventLog, keep) -> SpringCarry:
     """The current target is met: a landing ends, or the leg ends (a reversal in contact)."""
-    built = march.built
     landed = keep & c.landing
-    c = replace_where(c, landed, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg])
-    finished = keep & ~landed
-    leg = c.leg + 1
-    more = leg < built.legs
-    following = jnp.minimum(leg, built.legs - 1)
-    log.event(EVENT["reversal"], finished & more & c.touching)
-    return replace_where(
-        c,
-        finished,
-        leg=following,
-        done=~more,
-        direction=built.directions[following],
-        target=built.targets[following],
-    )
+    c = back_on_leg(c, march.program, landed)
+    return next_leg(c, march.program, log, keep & ~landed, c.touching)
 
 
 def approach(march: SpringMarch, c: SpringCarry, log: EventLog, up, approaching) -> SpringCarry:
     """Not touching: the approach to d = 0 and the touch, or away to the leg's target."""
     touches = approaching & up & (c.target >= 0.0)
     end = jnp.where(up, 0.0, jnp.where(jnp.isfinite(c.target), jnp.minimum(c.target, c.d), c.d))
-    shown = approaching & ~march.force_control & (touches | ~up)
+    shown = approaching & ~march.program.force_control & (touches | ~up)
     march.emit(log, jnp.zeros(2, int), jnp.stack([c.d, end]), shown, c.leg)
     c = touch(march, c, log, touches)
     c = complete_leg(march, c, log, approaching & ~touches)
@@ -166,7 +147,7 @@ def touch(march: SpringMarch, c: SpringCarry, log: EventLog, touches) -> SpringC
     march.emit(log, jump_in, 0.0, touches, c.leg)
     log.event(EVENT["snap_in"], touches & (jump_in > 0))
     F_touch = march.force(jump_in, 0.0)
-    lands = touches & march.force_control & (F_touch != 0.0) & (jump_in > 0)
+    lands = touches & march.program.force_control & (F_touch != 0.0) & (jump_in > 0)
     c = replace_where(c, touches, touching=True, k=jump_in, d=0.0)
     return replace_where(
         c,
@@ -181,7 +162,7 @@ def touch(march: SpringMarch, c: SpringCarry, log: EventLog, touches) -> SpringC
 def threshold(march: SpringMarch, c: SpringCarry, up, contact, k, d) -> Threshold:
     """With k springs at d: the next attach threshold up (past the array: the spring beyond it),
     the edge spring's detach threshold down (no spring: gone at once), or the target first."""
-    array, force_control = march.array, march.force_control
+    array, force_control = march.array, march.program.force_control
     capacity = array.count
     beyond = k >= march.count
     attach_next = jnp.where(beyond, array.beyond_level, array.attach_level[jnp.minimum(k, capacity - 1)])
@@ -222,29 +203,26 @@ def cross(march: SpringMarch, c: SpringCarry, log: EventLog, up, passes, k, beyo
         array.attach_cascade(jnp.minimum(k + 1, march.count), d_now),
         array.detach_cascade(jnp.maximum(k - 1, 0), d_now),
     )
-    start = moves & march.force_control & ~c.landing
+    start = moves & march.program.force_control & ~c.landing
     c = replace_where(c, start, landing=True, target=march.force(k, d_now), pre=jnp.stack([k.astype(float), d_now]))
     gone = moves & ~up & (k_new == 0)
     c = separate(march, c, log, gone, k, d_now)
     c = snap(march, c, log, moves & ~gone, up, k, k_new, d_now)
     code = Status.where(march.built.bounded, Status.radius_overflow, Status.unbounded_contact)
-    return replace_where(c, overflow, status=code, done=True)
+    return end_march(c, overflow, code)
 
 
 def separate(march: SpringMarch, c: SpringCarry, log: EventLog, gone, k, d_now) -> SpringCarry:
     """The last spring let go: the pull-off is where the instability began (force) or here."""
-    built = march.built
     before_k = jnp.where(c.landing, c.pre[0], k).astype(int)
     before_d = jnp.where(c.landing, c.pre[1], d_now)
-    pull_off = jnp.stack([before_k * march.array.spacing, before_d, march.force(before_k, before_d)])
-    c = replace_where(c, gone, pull_off=pull_off)
+    c = record_pull_off(c, gone, jnp.stack([before_k * march.array.spacing, before_d, march.force(before_k, before_d)]))
     march.emit(log, before_k, before_d, gone, c.leg)
     log.event(EVENT["pull_off"], gone)
-    march.emit(log, jnp.zeros((), int), d_now, gone & ~march.force_control, c.leg)
-    c = replace_where(
-        c, gone, touching=False, k=0, landing=False, target=built.targets[c.leg], direction=built.directions[c.leg]
-    )
-    return complete_leg(march, c, log, gone & ~jnp.isfinite(built.targets[c.leg]))
+    march.emit(log, jnp.zeros((), int), d_now, gone & ~march.program.force_control, c.leg)
+    c = replace_where(c, gone, touching=False, k=0)
+    c = back_on_leg(c, march.program, gone)
+    return complete_leg(march, c, log, gone & ~jnp.isfinite(march.program.targets[c.leg]))
 
 
 def snap(march: SpringMarch, c: SpringCarry, log: EventLog, jumped, up, k, k_new, d_now) -> SpringCarry:

@@ -18,7 +18,7 @@ from ..errors import FieldProblem
 from ..profiles import Number
 from ..sections import WorkOfAdhesion
 from .base import AbstractAdhesion, adaptive, value
-from .jkr import approach_not_above
+from .hysteresis import approach_not_above
 
 if TYPE_CHECKING:
     from ..scene import Scene

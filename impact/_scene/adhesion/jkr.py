@@ -3,15 +3,15 @@
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import Field
 
 from ..._integrate.base import AbstractIntegrator
 from ..._law.jkr import JKR
 from ...profiles import Profile
-from ..errors import FieldProblem
 from ..profiles import PowerLawSpec
 from ..sections import WorkOfAdhesion
-from .base import AbstractAdhesion, edge_integrator, loads_from_the_tip, value
+from .base import edge_integrator, loads_from_the_tip, value
+from .hysteresis import AbstractHystereticAdhesion
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 _ZERO_RANGE = "only for model 'maugis_dugdale' (jkr has zero range)"
 
 
-class JKRAdhesion(AbstractAdhesion):
+class JKRAdhesion(AbstractHystereticAdhesion):
     """JKR adhesion (zero range): the edge spring lets go at the elongation `√(2πxΔγ/E*)` (rule of
     Heß, (3.26)); on approach the next one attaches at `√(2πxΔγa/E*)`, 0 ≤ Δγa ≤ Δγ (Δγa = Δγ: the
     reversible JKR law with its jump-in; 0: attach on touch)."""
@@ -45,15 +45,6 @@ class JKRAdhesion(AbstractAdhesion):
     }
     zero_range: ClassVar[bool] = True
     curve_fields: ClassVar[tuple[str, ...]] = ("work_of_adhesion", "approach_work_of_adhesion")
-
-    @model_validator(mode="after")
-    def _approach_not_above(self):
-        approach_not_above(self.approach_work_of_adhesion, self.work_of_adhesion)
-        return self
-
-    @property
-    def approach(self) -> float:
-        return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
 
     @property
     def unit_work_of_adhesion(self) -> float:
@@ -100,13 +91,3 @@ class JKRAdhesion(AbstractAdhesion):
         if shape in ("power_law", "cone") and self.approach == self.work_of_adhesion:
             return "power law (3.81–82)"
         return "closed form"
-
-
-def approach_not_above(approach: float | None, work_of_adhesion: float) -> None:
-    """Refuse Δγa > Δγ: attaching cannot gain more energy than detaching costs."""
-    if approach is not None and approach > work_of_adhesion:
-        raise FieldProblem(
-            "approach_work_of_adhesion",
-            f"{approach:g} J/m² is above work_of_adhesion ({work_of_adhesion:g} J/m²): "
-            "0 ≤ Δγa ≤ Δγ (attaching cannot gain more energy than detaching costs)",
-        )

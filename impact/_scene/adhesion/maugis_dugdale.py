@@ -18,8 +18,8 @@ from ..errors import FieldProblem
 from ..profiles import Number
 from ..sections import SOLVER_METHODS, Length, WorkOfAdhesion
 from ..springs import DUGDALE_MAX_SPRINGS, spring_capacity, unresolved_zone
-from .base import AbstractAdhesion, adaptive, value
-from .jkr import approach_not_above
+from .base import adaptive, value
+from .hysteresis import AbstractHystereticAdhesion
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -32,7 +32,7 @@ DUGDALE_SHAPES = ("paraboloid", "power_law", "cone")
 DUGDALE_LEAST_APPROACH = 1e-9
 
 
-class MaugisDugdaleAdhesion(AbstractAdhesion):
+class MaugisDugdaleAdhesion(AbstractHystereticAdhesion):
     """Maugis–Dugdale adhesion: the stress σ0 acts wherever the gap is below the range h,
     Δγ = σ0·h; with Δγa < Δγ it attaches over the range Δγa/σ0 and detaches over h."""
 
@@ -56,7 +56,6 @@ class MaugisDugdaleAdhesion(AbstractAdhesion):
 
     @model_validator(mode="after")
     def _parameters(self):
-        approach_not_above(self.approach_work_of_adhesion, self.work_of_adhesion)
         approach = self.approach_work_of_adhesion
         if approach is not None and approach < DUGDALE_LEAST_APPROACH * self.work_of_adhesion:
             raise FieldProblem(
@@ -75,24 +74,14 @@ class MaugisDugdaleAdhesion(AbstractAdhesion):
         return self
 
     @property
-    def approach(self) -> float:
-        return self.work_of_adhesion if self.approach_work_of_adhesion is None else self.approach_work_of_adhesion
-
-    @property
     def adhesive_stress(self) -> float:
         """σ0 (Pa): given, or Δγ/h."""
-        if self.stress is not None:
-            return self.stress
-        assert self.range is not None, "validated: maugis_dugdale takes stress or range"
-        return self.work_of_adhesion / self.range
+        return _factor(self.stress, self.work_of_adhesion, self.range)
 
     @property
     def adhesion_range(self) -> float:
         """h (m): given, or Δγ/σ0."""
-        if self.range is not None:
-            return self.range
-        assert self.stress is not None, "validated: maugis_dugdale takes stress or range"
-        return self.work_of_adhesion / self.stress
+        return _factor(self.range, self.work_of_adhesion, self.stress)
 
     def law(self, xp: Any = np) -> MaugisDugdale:
         return MaugisDugdale(
@@ -195,3 +184,11 @@ def _radius_at_height(profile: Profile, height: float, steps: int = 200) -> floa
         middle = np.sqrt(lower * upper)
         lower, upper = (middle, upper) if float(profile.f(middle)) < height else (lower, middle)
     return float(np.sqrt(lower * upper))
+
+
+def _factor(given: float | None, product: float, other: float | None) -> float:
+    """One factor of Δγ = σ0·h: the one `given`, else the `product` over the `other` one."""
+    if given is not None:
+        return given
+    assert other is not None, "validated: maugis_dugdale takes stress or range"
+    return product / other
