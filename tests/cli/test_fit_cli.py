@@ -114,7 +114,7 @@ def _nan_in_row_3(text: str) -> str:
             {"parameters": {"material.E_starr": {"start": 1.0e9}}},
             None,
             "parameters.material.E_starr",
-            "no field 'material.E_starr' in the scene; material takes: E, E_body, E_star, nu, nu_body",
+            "no field 'material.E_starr' in the scene; material takes: E, E_body, E_star, G_star, nu, nu_body",
         ),
         (
             {"inputs": ["contact.springs"]},

@@ -190,7 +190,9 @@ def test_an_unknown_output_is_refused():
         impact.as_function(CONFIGS + "thornton_ning.yaml", ["initial.velocity"], ["restitution", "bounciness"])
     assert str(error.value) == (
         "output: unknown output 'bounciness'; known: restitution, contact_time, max_indentation, "
-        "max_force, min_force, touch_velocity, separation_velocity, dissipated_energy"
+        "max_force, min_force, touch_velocity, separation_velocity, dissipated_energy, "
+        "tangential_velocity_after, spin_after, tangential_restitution, "
+        "contact_point_tangential_restitution, rebound_angle, friction_work"
     )
 
 
