@@ -186,10 +186,12 @@ def _join(coordinator, num_processes, process_id) -> tuple[int, int]:
 
 def _ask_devices(devices: int) -> None:
     """On CPU, make `devices` host devices visible if the backend has not started yet (JAX
-    refuses the setting once it has: the devices there are then what the sweep gets)."""
+    refuses the setting once it has: the devices there are then what the sweep gets). The
+    setting is read as an attribute of `jax.config` (−1 where neither it nor
+    JAX_NUM_CPU_DEVICES is set); a larger JAX_NUM_CPU_DEVICES is kept."""
     if devices < 1:
         refuse_value("--devices", devices, "be >= 1")
-    if devices > jax.config.read("jax_num_cpu_devices"):
+    if devices > jax.config.jax_num_cpu_devices:
         with contextlib.suppress(RuntimeError):
             jax.config.update("jax_num_cpu_devices", devices)
 
