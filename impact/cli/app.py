@@ -4,6 +4,7 @@ import atexit
 import gc
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Annotated
 
@@ -11,7 +12,7 @@ import typer
 
 from .._core.package import __version__
 from . import commands
-from .console import FlagHelpGroup, say
+from .console import FlagHelpGroup, say, show_warning
 from .settings import CacheChoice
 
 HELP = (
@@ -36,9 +37,10 @@ _COLLECTION_THRESHOLDS = (100_000, 50, 100)
 
 def main() -> None:
     """Console entry point: the command line (each command configures float64, whole-loop
-    compilation and the compilation cache itself, as the global options ask). The process ends
-    as soon as the command has: see `_end`."""
+    compilation and the compilation cache itself, as the global options ask); a Python warning
+    is printed as one line. The process ends as soon as the command has: see `_end`."""
     gc.set_threshold(*_COLLECTION_THRESHOLDS)
+    warnings.showwarning = show_warning
     try:
         app()
     except SystemExit as stop:
