@@ -26,20 +26,11 @@ def build_axis(scene: Scene, path: str, entry) -> Axis:
     where = f"axes.{path}"
     owner, name = numeric_field(scene, path)
     raw, spec = _raw_values(where, entry)
-    info = type(owner).model_fields[name]
-    # The field's type with its constraints (gt, ge, ...), built at run time.
-    field_type: Any = Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
-    adapter: TypeAdapter[list] = TypeAdapter(list[field_type])
-    try:
-        values = adapter.validate_python(raw)
-    except ValidationError as error:
-        listed = []
-        for problem in error.errors()[:MAX_LISTED]:
-            index = problem["loc"][0] if problem["loc"] else "?"
-            message = problem["msg"].removeprefix("Value error, ")
-            listed.append(f"value {problem['input']!r} (#{index}): {message}")
-        more = len(error.errors()) - len(listed)
-        raise SweepError([(where, "; ".join(listed) + (f"; and {more} more" if more > 0 else ""))]) from None
+    values, invalid = field_values(owner, name, raw)
+    if invalid:
+        listed = [f"value {value!r} (#{index}): {message}" for index, value, message in invalid[:MAX_LISTED]]
+        more = len(invalid) - len(listed)
+        raise SweepError([(where, "; ".join(listed) + (f"; and {more} more" if more > 0 else ""))])
     if any(value is None or isinstance(value, str) for value in values):
         raise SweepError([(where, "every value must be a number")])
     integer = all(isinstance(value, int) for value in values)
@@ -47,6 +38,27 @@ def build_axis(scene: Scene, path: str, entry) -> Axis:
     if integer and isinstance(spec, list):
         spec = [int(value) for value in array]
     return Axis(path, array, spec)
+
+
+def field_values(owner: BaseModel, name: str, raw: list) -> tuple[list, list[tuple[int, Any, str]]]:
+    """(the values validated by the field `name` of `owner`, its type with its constraints: gt,
+    ge, ...; the invalid ones as (index, value, why), by index)."""
+    info = type(owner).model_fields[name]
+    # The field's type with its constraints (gt, ge, ...), built at run time.
+    field_type: Any = Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
+    adapter: TypeAdapter[list] = TypeAdapter(list[field_type])
+    try:
+        return adapter.validate_python(raw), []
+    except ValidationError as error:
+        invalid = [
+            (problem["loc"][0] if problem["loc"] else -1, problem["input"], _message(problem))
+            for problem in error.errors()
+        ]
+        return [], sorted(invalid, key=lambda problem: problem[0])
+
+
+def _message(problem) -> str:
+    return problem["msg"].removeprefix("Value error, ")
 
 
 def _raw_values(where: str, entry):
