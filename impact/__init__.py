@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
+    from ._scene.cost import allow_long as allow_long
     from ._scene.fit_spec import FitError as FitError
     from ._scene.scene import Scene as Scene
     from ._scene.scene import SceneError as SceneError
@@ -39,6 +40,7 @@ _SOURCES = {
     "Scene": "._scene.scene",
     "SceneError": "._scene.scene",
     "SweepResult": "._run.sweep",
+    "allow_long": "._scene.cost",
     "as_function": "._run.differentiable",
     "configure": "._core.runtime",
     "fit": "._run.fit",
@@ -58,6 +60,7 @@ __all__ = [
     "SceneError",
     "SweepResult",
     "__version__",
+    "allow_long",
     "as_function",
     "configure",
     "fit",

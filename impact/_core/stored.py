@@ -185,9 +185,7 @@ def _discard(path: Path, error: Exception) -> None:
     with contextlib.suppress(OSError):
         path.unlink(missing_ok=True)
     reason = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
-    warnings.warn(
-        f"stored program {path.name} discarded and traced anew: {reason}", StoredProgramWarning, stacklevel=4
-    )
+    warnings.warn(f"stored program {path.name} discarded and traced anew: {reason}", StoredProgramWarning, stacklevel=4)
 
 
 def _lowering(exported: export.Exported) -> contextlib.AbstractContextManager:

@@ -5,6 +5,7 @@ section's cross-field check names one of its fields; `problems_of` turns a pydan
 error into such pairs.
 """
 
+import re
 from typing import get_args
 
 from pydantic import ValidationError
@@ -37,12 +38,28 @@ def _profile_shapes() -> tuple[str, ...]:
     return tuple(model.model_fields["shape"].default for model in get_args(union))
 
 
-# Tags pydantic inserts into error locations for unions; they are not scene keys.
-_UNION_TAGS = set(_profile_shapes()) | {"int", "literal['continuum']"}
+# Tags pydantic inserts into error locations for the choices of a union (a profile's shapes;
+# 'continuum' or an integer: `function-after[check(), int]`, `literal['continuum']`); they are
+# not scene keys.
+_UNION_TAGS = set(_profile_shapes())
+_CHOICE_TAG = re.compile(r"[a-z-]+\[.*\]|int|float|str|bool")
+# Errors of a value that should have been a section (a mapping of keys).
+_NOT_A_MAPPING = ("model_type", "model_attributes_type", "dict_type")
+_SHOWN = 60  # characters of a refused value shown at most
+
+
+def _is_tag(part) -> bool:
+    return isinstance(part, str) and (part in _UNION_TAGS or _CHOICE_TAG.fullmatch(part) is not None)
 
 
 def _dotted(location: tuple) -> str:
-    return ".".join(str(part) for part in location if not (isinstance(part, str) and part in _UNION_TAGS))
+    return ".".join(str(part) for part in location if not _is_tag(part))
+
+
+def _shown(value) -> str:
+    """A refused value as the message shows it: its repr, cut to `_SHOWN` characters."""
+    text = repr(value)
+    return text if len(text) <= _SHOWN else f"{text[: _SHOWN - 1]}…"
 
 
 def _path_and_message(error) -> tuple[str, str]:
@@ -57,6 +74,8 @@ def _path_and_message(error) -> tuple[str, str]:
         text = "unknown key"
     elif error["type"] == "missing":
         text = "missing (required)"
+    elif error["type"] in _NOT_A_MAPPING:
+        text = f"expected a mapping of keys (a section), got {_shown(error['input'])}"
     elif error["type"] == "union_tag_invalid":
         text = f"unknown shape {error['ctx']['tag']!r}; known shapes: {', '.join(_profile_shapes())}"
         path = ".".join(part for part in (path, "shape") if part)
@@ -67,10 +86,24 @@ def _path_and_message(error) -> tuple[str, str]:
 
 
 def problems_of(error: ValidationError) -> list[tuple[str, str]]:
-    """(dotted.path, message) for each error of a pydantic validation."""
-    problems = []
+    """(dotted.path, message) for each error of a pydantic validation; the errors of the choices
+    of one union ('continuum' or an integer) as one, "expected 'continuum' or a valid integer,
+    got 'abc'", unless one choice says what is wrong (an integer outside its range)."""
+    problems: list[tuple[str, str]] = []
+    choices: dict[str, tuple[list[str], object]] = {}  # path → (each choice's complaint, the value)
     for item in error.errors():
-        entry = _path_and_message(item)
+        if any(_is_tag(part) for part in item["loc"]) and item["msg"].startswith("Input should be "):
+            path = _dotted(item["loc"])
+            wanted = item["msg"].removeprefix("Input should be ").split(",")[0]
+            choices.setdefault(path, ([], item["input"]))[0].append(wanted)
+            entry = (path, "")  # its message once every choice is known
+        else:
+            entry = _path_and_message(item)
         if entry not in problems:
             problems.append(entry)
-    return problems
+    complained = {path for path, text in problems if text}  # a choice's own complaint says more
+    return [
+        (path, text or f"expected {' or '.join(choices[path][0])}, got {_shown(choices[path][1])}")
+        for path, text in problems
+        if text or path not in complained
+    ]

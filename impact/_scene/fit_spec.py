@@ -39,7 +39,8 @@ from .fit_curve import BRANCH, branch_codes, control_column, curve_observables, 
 from .overrides import apply_fit_overrides
 from .paths import AbsentSection, NoField, resolve_field
 from .profiles import Number
-from .scene import Scene, load_scene, read_text, read_yaml
+from .reading import MAX_TABLE_BYTES, parse_yaml, read_text, read_yaml
+from .scene import Scene, load_scene
 from .sections import Section
 from .sweep_axes import field_values
 from .sweep_points import point_problems
@@ -163,11 +164,9 @@ def load_fit(path: str | Path, assignments: Sequence[str] = ()) -> FitSpec:
     path = Path(path)
     try:
         text = read_text(path)
-        data = yaml.safe_load(text)
+        data = parse_yaml(text, str(path))
     except SceneError as error:
         raise FitError(error.problems) from None
-    except yaml.YAMLError as error:
-        raise FitError([("", f"invalid YAML in {path}: {error}")]) from None
     if not isinstance(data, dict):
         raise FitError([("", f"{path} must hold a mapping with the keys {', '.join(FitFile.model_fields)}")])
     if assignments:
@@ -203,7 +202,7 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
     """The columns of a CSV file (a header row, then one row per measurement; lines starting
     with '#' skipped): float64 where every entry is a number, else the entries as text."""
     try:
-        text = read_text(path)
+        text = read_text(path, MAX_TABLE_BYTES)
     except SceneError as error:
         raise FitError([("data", message) for _, message in error.problems]) from None
     lines = [line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]
@@ -317,7 +316,8 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray], scene: Scene
     for name in used:
         if columns[name].dtype.kind != "f":
             row = next(row for row, entry in enumerate(columns[name]) if not _is_number(entry))
-            problems.append(("data", f"column {name!r}, data row {row + 1}: {columns[name][row]!r} is not a number"))
+            entry = str(columns[name][row])
+            problems.append(("data", f"column {name!r}, data row {row + 1}: {entry!r} is not a number"))
             continue
         bad = np.flatnonzero(~np.isfinite(columns[name]))
         if bad.size:

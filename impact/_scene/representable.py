@@ -219,6 +219,13 @@ def _root_of_height(profile, height):
 
 
 @float64
+def time_unit(scene) -> float:
+    """The time unit (s) of an impact's scaled problem (`_law.scales`)."""
+    values, _ = unit_columns([unit_inputs(scene)], scene.active_adhesion is not None)
+    return float(values["time"][0])
+
+
+@float64
 def check_representable(scene) -> None:
     """Raise FieldProblem (dotted path from the scene) where the impact cannot be represented."""
     check_units(scene, units_at(*unit_columns([unit_inputs(scene)], scene.active_adhesion is not None), 0))

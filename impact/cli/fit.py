@@ -24,6 +24,7 @@ from .._scene.errors import SceneError
 from .._scene.fit_spec import FitSpec, load_fit
 from .console import refuse, say, warn
 from .folders import check_output
+from .long_runs import interruptible
 
 
 def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwrite: bool) -> None:
@@ -38,7 +39,7 @@ def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwri
     import_ahead()  # matplotlib, for the figure, while the fit computes
     say(_announcement(spec))
     try:
-        result = fit_spec(spec, spec.model, progress=_progress(spec))
+        result = interruptible(lambda: fit_spec(spec, spec.model, progress=_progress(spec)))
     except SceneError as error:
         refuse(f"{fit_file} is not a valid fit", error.problems)
     _write(result, folder)

@@ -27,7 +27,7 @@ from impact._core.cache import cache_directory, directory_in_use, use_cache
 from impact._core.stored import EXPORTED, StoredProgramWarning, call_stored
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve, solve_by_field
-from impact._scene.scene import read_yaml
+from impact._scene.reading import read_yaml
 from impact._scene.sweep import load_sweep
 from impact.cli.console import show_warning
 

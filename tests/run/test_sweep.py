@@ -382,8 +382,8 @@ def test_two_devices_give_the_results_of_one(grid, jobs):
 
 
 def test_the_devices_option_shards_the_sweep_over_that_many_cpu_devices(tmp_path, cache_env):
-    """`impact sweep --devices 2` starts two host devices (jax 0.10 reads the setting as an
-    attribute of jax.config: `jax.config.read` is gone)."""
+    """`impact sweep --devices 2` starts two host devices (jax 0.10 refuses `jax.config.read`
+    of a setting that has a context manager: it is read as an attribute of jax.config)."""
     sweep_file = write_sweep(tmp_path / "tiny.yaml", {"initial.velocity": [0.5, 1.0, 2.0, 4.0]})
     done = subprocess.run(
         sweep_cli("sweep", sweep_file, "-o", tmp_path / "out", "--devices", 2),
