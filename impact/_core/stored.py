@@ -148,7 +148,7 @@ def _stored_compiled(key: str, jitted: jax.stages.Wrapped, leaves: list[Any], op
             exported = export.export(jitted, disabled_checks=allowed)(*leaves)
     except (NotImplementedError, ValueError):  # what export refuses; an error of the program raises again
         return None
-    _store(path, exported.serialize())
+    _store(path, bytes(exported.serialize()))
     return _compiled(exported, leaves, options)
 
 

@@ -253,7 +253,7 @@ class TabulatedSpec(_Spec):
     """Piecewise-linear profile through the points (r, f); continued with its last slope."""
 
     shape: Literal["tabulated"] = "tabulated"
-    r: list[Coordinate] = Field(description="radii (m), strictly increasing from r[0] = 0, at least 2 points")
+    r: list[Coordinate] = Field(description="radii (m), strictly increasing from r[0] = 0, from 2 to 10⁴ points")
     f: list[Coordinate] = Field(description="heights f(r) above the tip (m), f[0] = 0, same length as r")
 
     @field_validator("r")

@@ -87,7 +87,7 @@ class _CheckedLoader(yaml.SafeLoader):
         self._depth = 0
         self._values: dict[int, tuple[int, int]] = {}  # id(node) → (values, depth), aliases expanded
 
-    def compose_node(self, parent, index):
+    def compose_node(self, parent: yaml.Node | None, index: int) -> yaml.Node | None:
         if self._depth == MAX_DEPTH:
             line = self.peek_event().start_mark.line + 1
             raise _Refused(f"mappings and lists nested deeper than {MAX_DEPTH} levels (line {line})")
@@ -99,7 +99,7 @@ class _CheckedLoader(yaml.SafeLoader):
         self._count(node)
         return node
 
-    def compose_mapping_node(self, anchor):
+    def compose_mapping_node(self, anchor: Any) -> yaml.MappingNode:
         node = super().compose_mapping_node(anchor)
         seen: dict[tuple[str, str], yaml.ScalarNode] = {}
         for key, _ in node.value:
@@ -112,10 +112,10 @@ class _CheckedLoader(yaml.SafeLoader):
                 raise _Refused(f"key {key.value!r} appears twice in one mapping ({where}); give each key once")
         return node
 
-    def _count(self, node) -> None:
+    def _count(self, node: yaml.Node | None) -> None:
         """Record the node's values and depth (its children's, aliases expanded); refuse a document
         beyond `MAX_VALUES` values or `MAX_DEPTH` levels once expanded."""
-        if id(node) in self._values:
+        if node is None or id(node) in self._values:
             return  # an alias of a node counted where it was anchored
         if isinstance(node, yaml.ScalarNode):
             self._values[id(node)] = (1, 0)

@@ -51,7 +51,7 @@ def field_values(owner: BaseModel, name: str, raw: list) -> tuple[list, list[tup
         return adapter.validate_python(raw), []
     except ValidationError as error:
         invalid = [
-            (problem["loc"][0] if problem["loc"] else -1, problem["input"], _message(problem))
+            (int(problem["loc"][0]) if problem["loc"] else -1, problem["input"], _message(problem))
             for problem in error.errors()
         ]
         return [], sorted(invalid, key=lambda problem: problem[0])

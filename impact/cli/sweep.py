@@ -192,7 +192,7 @@ def _ask_devices(devices: int) -> None:
     JAX_NUM_CPU_DEVICES is kept."""
     if devices < 1:
         refuse_value("--devices", devices, "be >= 1")
-    if devices > jax.config.jax_num_cpu_devices:
+    if devices > jax.config.jax_num_cpu_devices:  # type: ignore[attr-defined] # a setting, not in the stubs
         with contextlib.suppress(RuntimeError):
             jax.config.update("jax_num_cpu_devices", devices)
 
