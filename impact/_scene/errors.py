@@ -74,6 +74,8 @@ def _path_and_message(error) -> tuple[str, str]:
         text = "unknown key"
     elif error["type"] == "missing":
         text = "missing (required)"
+    elif error["type"] == "too_long":
+        text = f"at most {error['ctx']['max_length']} values, got {error['ctx']['actual_length']}"
     elif error["type"] in _NOT_A_MAPPING:
         text = f"expected a mapping of keys (a section), got {_shown(error['input'])}"
     elif error["type"] == "union_tag_invalid":

@@ -229,7 +229,7 @@ BAD_SCENES = [
         "tabulated beyond 10⁴ points",
         {"body.profile": {"shape": "tabulated", "r": [k * 1e-9 for k in range(10001)], "f": [0.0] * 10001}},
         "body.profile.r",
-        "tabulated r takes at most 10000 points, got 10001",
+        "at most 10000 values, got 10001",
     ),
     (
         "a billion springs",
