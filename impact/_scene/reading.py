@@ -96,8 +96,7 @@ class _Checks(Composer):
     """PyYAML's composer, counting depth and values as it composes and refusing a key that a
     mapping holds twice."""
 
-    def __init__(self) -> None:
-        super().__init__()
+    def __init__(self) -> None:  # after the loader's own (which makes the composer's anchors)
         self._depth = 0
         self._values: dict[int, tuple[int, int]] = {}  # id(node) → (values, depth), aliases expanded
 
@@ -163,6 +162,7 @@ def _fast_loader() -> type | None:
     class FastLoader(_Checks, CParser, SafeConstructor, Resolver):
         def __init__(self, stream: io.StringIO):
             CParser.__init__(self, stream)
+            Composer.__init__(self)  # the composer in Python (its checks), not libyaml's
             SafeConstructor.__init__(self)
             Resolver.__init__(self)
             _Checks.__init__(self)

@@ -20,6 +20,8 @@ import yaml
 from typer.testing import CliRunner
 
 from impact import simulate
+from impact._scene import reading
+from impact._scene.errors import SceneError
 from impact._scene.reading import MAX_DEPTH, MAX_VALUES, MAX_YAML_BYTES
 from impact.cli import app, folders
 from impact.cli.tables import impact_table
@@ -94,6 +96,32 @@ def test_a_document_too_deep_or_too_large_is_refused_within_seconds(text, phrase
     started = time.monotonic()
     refused(invoke("validate", tmp_path / "scene.yaml"), phrase)
     assert time.monotonic() - started < 10
+
+
+@pytest.mark.parametrize("libyaml", [True, False], ids=["libyaml's parser", "PyYAML's"])
+def test_both_loaders_read_what_yaml_reads_and_refuse_alike(libyaml, monkeypatch):
+    """With libyaml's parser (where PyYAML has it) or without, the same document, and the same
+    refusals."""
+    if not libyaml:
+        monkeypatch.setattr(reading, "_FastLoader", None)
+    elif reading._FastLoader is None:
+        pytest.skip("PyYAML was built without libyaml")
+    text = THORNTON_NING.read_text() + "anchored: &x [1, {a: 2.5e-3}]\nrepeated: *x\nmerged: {<<: {b: 1}, b: 2}\n"
+    assert reading.parse_yaml(text, "scene.yaml") == yaml.safe_load(text)
+    for hostile, phrase in [
+        (
+            "a: 1\nb: {c: 2, c: 3}\n",
+            "scene.yaml: key 'c' appears twice in one mapping (twice on line 2); give each key once",
+        ),
+        ("a: " + "[" * 40 + "]" * 40, f"scene.yaml: mappings and lists nested deeper than {MAX_DEPTH} levels (line 1)"),
+        (
+            "a: " + "[" * 5000 + "]" * 5000,
+            f"scene.yaml: mappings and lists nested deeper than {MAX_DEPTH} levels (line 1)",
+        ),
+    ]:
+        with pytest.raises(SceneError) as caught:
+            reading.parse_yaml(hostile, "scene.yaml")
+        assert caught.value.problems == [("", phrase)]
 
 
 def test_a_file_above_the_size_limit_is_refused_unread(tmp_path):
