@@ -4,12 +4,13 @@ A scene can be valid field by field and still ask for a computation that would n
 lifetime (a Verlet step of 1e-30 s: 4e22 steps) or that needs more memory than the machine has
 (an indentation on 10⁹ springs). The estimates, in the scene's own numbers:
 
-- solver steps: each spring of an array attaches and detaches once a contact (N events, measured
-  0.8–1.3·N); a Verlet contact lasts about π time units of the scaled problem (measured 2.7–4.4)
-  in steps of `solver.dt`; an indentation's march on springs takes 2·N events a cycle. With
-  gravity every bounce up to `limits.max_bounces` counts as a contact. The continuum law's
-  solvers are bounded by `solver.max_steps` per phase and not estimated here.
-- memory: an indentation on springs keeps its march's events, `INDENTATION_SPRING_BYTES` each;
+- solver steps: each spring of an array attaches and detaches once a contact (about N events);
+  a Verlet contact lasts about π time units of the scaled problem, in steps of `solver.dt`; an
+  indentation's march on springs takes 2·N events a cycle. With gravity every bounce up to
+  `limits.max_bounces` counts as a contact. The continuum law's solvers are bounded by
+  `solver.max_steps` per phase and not estimated here.
+- memory: an indentation on springs keeps its march's events, `INDENTATION_SPRING_BYTES` a
+  spring and cycle;
 - the points of a sweep (`SWEEP_POINTS`), and the memory of their parameters and results.
 
 A scene beyond `limits.step_budget` (default `STEP_BUDGET`) or `MEMORY_BUDGET`, or a sweep beyond
@@ -25,16 +26,16 @@ from collections.abc import Iterator
 
 from .errors import FieldProblem
 
-STEP_BUDGET = 1e7  # solver steps of one run (a Verlet step costs about a microsecond)
+STEP_BUDGET = 1e7  # solver steps of one run: seconds of stepping (user guide, "Long runs and Ctrl-C")
 MEMORY_BUDGET = 4e9  # bytes of the arrays of one run or sweep
 SWEEP_POINTS = 10**7  # points of one sweep
-# Bytes an indentation on springs holds per spring and cycle (measured: 2.9 kB at 10⁵ and 10⁶
-# springs, one cycle).
+# Bytes an indentation on springs holds per spring and cycle (the user guide gives the measured
+# figure).
 INDENTATION_SPRING_BYTES = 3000.0
-# Scaled time units a Verlet contact lasts (measured 2.7–4.4 from 1.02 to 1300 times v_s).
+# Scaled time units a Verlet contact lasts (about π from just above v_s to a thousand times it).
 _CONTACT_TIME_UNITS = math.pi
 # Bytes a sweep holds per point: its parameters and some 30 results in float64, the values its
-# check reads as Python floats (measured: 0.6 GB more at 10⁶ points than at 4).
+# check reads as Python floats.
 SWEEP_POINT_BYTES = 600
 ALLOW = "run with --allow-long (in Python: `with impact.allow_long():`)"
 
@@ -49,7 +50,7 @@ def allow_long() -> Iterator[None]:
     is still refused. The command line's `--allow-long`:
 
         with impact.allow_long():
-            result = impact.simulate(scene)  # a Verlet run of 10⁹ steps
+            result = impact.simulate("verlet.yaml")  # a scene file or mapping, read within
     """
     token = _allowed.set(True)
     try:

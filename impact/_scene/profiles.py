@@ -245,8 +245,8 @@ class ConstantStressSpec(_Spec):
 
 
 # Points of a tabulated profile at most: a run evaluates it at thousands of places at once, each
-# evaluation a sum over every point (10⁴ points: 1.1 GB and 30 s for a run, measured). A longer
-# list is refused before its values are checked.
+# evaluation a sum over every point (memory and time: the user guide). A longer list is refused
+# before its values are checked.
 MAX_TABULATED_POINTS = 10_000
 
 

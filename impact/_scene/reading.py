@@ -19,8 +19,8 @@ from yaml.resolver import Resolver
 
 from .errors import SceneError
 
-# The largest YAML file read (bytes): libyaml and the composer read about 1.4 MB/s here (PyYAML
-# alone 0.2 MB/s); a scene with a tabulated profile of the most points it takes (10⁴) is 0.3 MB.
+# The largest YAML file read (bytes): read in about a second; a scene with a tabulated profile of
+# the most points it takes (10⁴) is 0.3 MB.
 MAX_YAML_BYTES = 2_000_000
 # The largest CSV file of a fit's data (bytes): 10⁶ rows of a few columns.
 MAX_TABLE_BYTES = 50_000_000
@@ -153,8 +153,8 @@ class _Loader(_Checks, yaml.SafeLoader):
 
 
 def _fast_loader() -> type | None:
-    """The safe loader with `_Checks` on libyaml's parser (six times faster: 0.4 s instead of
-    2.6 s for 0.6 MB), where PyYAML was built with it; None otherwise."""
+    """The safe loader with `_Checks` on libyaml's parser (several times faster than PyYAML's),
+    where PyYAML was built with it; None otherwise."""
     if not yaml.__with_libyaml__:
         return None
     from yaml.cyaml import CParser
