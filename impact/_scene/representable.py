@@ -267,11 +267,12 @@ def _check_units(values: dict[str, float]) -> None:
 
 def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) -> None:
     """The detachment length at the contact radius unit must reach RESOLVABLE of the indentation
-    unit; it grows as √Δγ, so the least Δγ follows from the ratio."""
+    unit; it grows as √Δγ, so the least Δγ follows from its value at Δγ = 1 J/m² (a Δγ so small
+    that the ratio underflows to 0 is refused with it too)."""
     ratio = float(_detachment_ratio(values, adhesion.work_of_adhesion, E_star))
     if ratio >= RESOLVABLE:
         return
-    least = adhesion.work_of_adhesion * (RESOLVABLE / ratio) ** 2
+    least = (RESOLVABLE / float(_detachment_ratio(values, 1.0, E_star))) ** 2
     allowed = Domain(least, WORK_OF_ADHESION.high, WORK_OF_ADHESION.unit, zero=True)
     why = (
         f"the detachment length is {ratio:.2g} of the indentation, below what float64 resolves "
