@@ -9,6 +9,7 @@ holding more than `MAX_VALUES` values (aliases expanded) is refused before it is
 """
 
 import io
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -96,13 +97,16 @@ class _Checks(Composer):
     """PyYAML's composer, counting depth and values as it composes and refusing a key that a
     mapping holds twice."""
 
+    peek_event: Callable[[], yaml.Event]  # the parser's, beside it in the loader
+
     def __init__(self) -> None:  # after the loader's own (which makes the composer's anchors)
         self._depth = 0
         self._values: dict[int, tuple[int, int]] = {}  # id(node) → (values, depth), aliases expanded
 
     def compose_node(self, parent: yaml.Node | None, index: int) -> yaml.Node | None:
         if self._depth == MAX_DEPTH:
-            raise _Refused(_too_deep(self.peek_event().start_mark.line + 1))
+            mark = self.peek_event().start_mark
+            raise _Refused(_too_deep(mark.line + 1 if mark is not None else 0))
         self._depth += 1
         try:
             node = super().compose_node(parent, index)
@@ -157,7 +161,7 @@ def _fast_loader() -> type | None:
     where PyYAML was built with it; None otherwise."""
     if not yaml.__with_libyaml__:
         return None
-    from yaml.cyaml import CParser
+    from yaml._yaml import CParser  # libyaml's parser (yaml.cyaml's stubs do not export it)
 
     class FastLoader(_Checks, CParser, SafeConstructor, Resolver):
         def __init__(self, stream: io.StringIO):
