@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
+    from ._scene.cost import allow_long as allow_long
     from ._scene.fit_spec import FitError as FitError
     from ._scene.scene import Scene as Scene
     from ._scene.scene import SceneError as SceneError
@@ -43,6 +44,7 @@ _SOURCES = {
     "SceneError": "._scene.scene",
     "ShearResult": "._run.shear",
     "SweepResult": "._run.sweep",
+    "allow_long": "._scene.cost",
     "as_function": "._run.differentiable",
     "configure": "._core.runtime",
     "fit": "._run.fit",
@@ -65,6 +67,7 @@ __all__ = [
     "ShearResult",
     "SweepResult",
     "__version__",
+    "allow_long",
     "as_function",
     "configure",
     "fit",

@@ -18,8 +18,9 @@ For each workload × points count:
   point function reads), each reduced to one number per point (`checksum`), and the
   sweep's compiled point function, each the median of SPLIT_REPEATS interleaved runs, per
   impact: build, integrate = the second − the first, post-process = the third − the second (the
-  SI results and the closed form). Noise can make a difference slightly negative: it is
-  reported as measured.
+  SI results and the closed form). Where the solve stage takes longer than the whole point
+  function (it keeps fields that the point function's compilation trims), post-processing
+  reads 0 (`split_times`); noise can still make the integration slightly negative.
 - the mean solver steps, the peak RSS of the process so far (`resource.getrusage`) and, on
   GPUs, the most memory a device has held so far.
 
@@ -210,8 +211,17 @@ def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float
             t0 = time.perf_counter()
             jax.block_until_ready(stage(batch))
             times[run, s] = time.perf_counter() - t0
-    build, solved, full = np.median(times, axis=0) / size * 1e6
-    return float(build), float(solved - build), float(full - solved)
+    return split_times(*(np.median(times, axis=0) / size * 1e6))
+
+
+def split_times(build: float, solved: float, full: float) -> tuple[float, float, float]:
+    """(build, integrate, post-process) from the times of the three stages (any unit): the
+    differences of the nested stages, build + integrate + post-process = full. The solve stage
+    returns every field of the outcome that the point function reads, the point function only
+    what its results need (XLA trims the rest): where the solve takes longer than the whole,
+    the integration is capped at the whole less the build and post-processing reads 0."""
+    integrate = min(solved, full) - build
+    return float(build), float(integrate), float(full - build - integrate)
 
 
 def read_by_point(solved) -> tuple:

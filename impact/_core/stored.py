@@ -18,6 +18,11 @@ linear solve in the implicit derivative of a located event, inside a fit's Jacob
 raising from a host callback, which `jax.export` cannot serialize: with or without a cache, so
 that a result never depends on it.
 
+A stored file holds the SHA-256 of the program before it: a file whose digest does not match
+(a flipped bit, a cut write) is never handed to the StableHLO reader, which can fail, or hang,
+on a damaged program. A file that does not match, or a program that fails to load, lower or
+compile, is discarded with one warning (`StoredProgramWarning`) and the program is traced anew.
+
 The first call of a stored program on the CPU would initialize jaxlib's LAPACK kernels, which
 imports `scipy.linalg` (a noticeable share of a short run) whatever the program calls; a program that calls no
 LAPACK kernel is run without, and one that does initializes them as usual.
@@ -28,6 +33,7 @@ import functools
 import hashlib
 import importlib.util
 import os
+import warnings
 from collections.abc import Callable, Iterator
 from importlib import metadata
 from pathlib import Path
@@ -48,6 +54,7 @@ from .cache import directory_in_use
 from .runtime import compiler_options
 
 EXPORTED = "exported"  # folder of the serialized programs inside the cache directory
+_DIGEST = hashlib.sha256().digest_size  # bytes of the SHA-256 that a stored file starts with
 _LIBRARIES = ("jax", "jaxlib", "diffrax", "equinox", "optimistix", "lineax")
 
 _loaded: dict[str, Callable] = {}  # key → the program of this process
@@ -76,14 +83,13 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
     if key in _loaded:
         return _loaded[key](*leaves)
     jitted = jax.jit(traced, compiler_options=compiler_options())
-    exported = _load_or_export(key, jitted, leaves)
-    if exported is None:  # not stored: traced here (or by the export that failed: its trace is reused)
+    compiled = _stored_compiled(key, jitted, leaves, compiler_options())
+    if compiled is None:  # not stored: traced here (or by the export that failed: its trace is reused)
         _loaded[key] = jitted
         with _errors_as_nan():
             return jitted(*leaves)
-    _loaded[key] = jax.jit(exported.call, compiler_options=compiler_options())
-    with _lowering(exported):
-        return _loaded[key](*leaves)  # the first call lowers the program
+    _loaded[key] = compiled
+    return compiled(*leaves)
 
 
 def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, options: dict) -> Callable[[Any], Any]:
@@ -99,13 +105,10 @@ def compile_stored(function: Callable[[Any], Any], label: str, abstract: Any, op
         return function(jax.tree.unflatten(structure, values))
 
     jitted = jax.jit(flat, compiler_options=options)
-    exported = _load_or_export(key, jitted, leaves)
-    if exported is None:  # not stored: traced here (or by the export that failed: its trace is reused)
+    compiled = _stored_compiled(key, jitted, leaves, options)
+    if compiled is None:  # not stored: traced here (or by the export that failed: its trace is reused)
         with _errors_as_nan():
             compiled = jitted.lower(*leaves).compile()
-    else:
-        with _lowering(exported):
-            compiled = jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
     return lambda tree: compiled(*jax.tree.leaves(tree))
 
 
@@ -115,9 +118,14 @@ def _can_serialize() -> bool:
     return importlib.util.find_spec("flatbuffers") is not None
 
 
-def _load_or_export(key: str, jitted: jax.stages.Wrapped, leaves: list[Any]) -> export.Exported | None:
-    """The stored program of `key`, or `jitted` traced, exported and stored (a file that cannot
-    be read back is replaced; one that cannot be written is skipped). None without a cache
+class StoredProgramWarning(RuntimeWarning):
+    """A stored program was damaged or could not be loaded: it was discarded and traced anew."""
+
+
+def _stored_compiled(key: str, jitted: jax.stages.Wrapped, leaves: list[Any], options: dict) -> Any:
+    """The stored program of `key` compiled for `leaves`, or `jitted` traced, exported, stored and
+    compiled from its export. A stored file that is damaged or fails to deserialize, lower or
+    compile is discarded (one `StoredProgramWarning`) and replaced. None without a cache
     directory or `flatbuffers`, or where the program cannot be exported: it holds a host
     callback (an equinox check that raises, from a trace that a library's own jit cache kept
     from outside `_errors_as_nan`) or a kernel that `jax.export` refuses."""
@@ -126,24 +134,58 @@ def _load_or_export(key: str, jitted: jax.stages.Wrapped, leaves: list[Any]) -> 
         return None
     path = directory / EXPORTED / f"{key}.jaxexport"
     try:
-        return export.deserialize(bytearray(path.read_bytes()))
-    except Exception:  # noqa: BLE001 - missing, unreadable or damaged (struct.error, ...): trace anew
-        pass
+        stored = path.read_bytes()
+    except OSError:  # missing or unreadable: traced anew
+        stored = None
+    if stored is not None:
+        try:
+            return _compiled(_deserialized(stored), leaves, options)
+        except Exception as error:  # noqa: BLE001 - any failure of a stored program: trace anew
+            _discard(path, error)
     allowed = [export.DisabledSafetyCheck.custom_call(kernel) for kernel in _UNLISTED_KERNELS]
     try:
         with _errors_as_nan():
             exported = export.export(jitted, disabled_checks=allowed)(*leaves)
     except (NotImplementedError, ValueError):  # what export refuses; an error of the program raises again
         return None
-    partial = path.with_name(f"{path.name}.{os.getpid()}.partial")  # written whole, then renamed
+    _store(path, bytes(exported.serialize()))
+    return _compiled(exported, leaves, options)
+
+
+def _deserialized(stored: bytes) -> export.Exported:
+    """The program of a stored file (its SHA-256, then the serialized program); ValueError where
+    the digest does not match."""
+    digest, program = stored[:_DIGEST], stored[_DIGEST:]
+    if hashlib.sha256(program).digest() != digest:
+        raise ValueError("its SHA-256 does not match (the file is damaged)")
+    return export.deserialize(bytearray(program))
+
+
+def _compiled(exported: export.Exported, leaves: list[Any], options: dict) -> Any:
+    """An exported program lowered and compiled for `leaves` with the XLA `options`."""
+    with _lowering(exported):
+        return jax.jit(exported.call, compiler_options=options).lower(*leaves).compile()
+
+
+def _store(path: Path, program: bytes) -> None:
+    """Write a serialized program after its SHA-256, whole (a partial file renamed); skipped
+    where it cannot be written."""
+    partial = path.with_name(f"{path.name}.{os.getpid()}.partial")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        partial.write_bytes(exported.serialize())
+        partial.write_bytes(hashlib.sha256(program).digest() + program)
         os.replace(partial, path)
     except OSError:
         with contextlib.suppress(OSError):
             partial.unlink(missing_ok=True)
-    return exported
+
+
+def _discard(path: Path, error: Exception) -> None:
+    """Remove a stored program that failed, with one warning line saying why."""
+    with contextlib.suppress(OSError):
+        path.unlink(missing_ok=True)
+    reason = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+    warnings.warn(f"stored program {path.name} discarded and traced anew: {reason}", StoredProgramWarning, stacklevel=4)
 
 
 def _lowering(exported: export.Exported) -> contextlib.AbstractContextManager:

@@ -104,35 +104,53 @@ class _Leg:
         high = cells[first]
         root = illinois_root(self.squared, low, high, _ILLINOIS_STEPS)
         turned = at_far <= 0.0
-        energies = jnp.abs(self.squared(self.start)) + jnp.abs(at_far) + 1.0
-        settled = ~turned | (jnp.abs(self.squared(root)) <= _SETTLED * energies)
-        return jnp.where(turned, root, self.far), turned, settled
+        return jnp.where(turned, root, self.far), turned, ~turned | self.settled(root)
 
-    def time(self, end):
-        """The leg's duration from its start to `end`, and whether v² > 0 at every node between."""
+    def settled(self, end):
+        """Whether |v²| at `end` is within `_SETTLED` of the leg's energies, v₀² + |v² at its far
+        end| + 1: a turnaround found there."""
+        energies = jnp.abs(self.squared(self.start)) + jnp.abs(self.squared(self.far)) + 1.0
+        return jnp.abs(self.squared(end)) <= _SETTLED * energies
+
+    def balance(self, end, turned) -> Callable[[jax.Array], jax.Array]:
+        """v²(x) on the leg to `end`; where it turns at a settled end, less the residual v²(end)
+        in proportion to (x − start)/(end − start), so that the turnaround is an exact root.
+        Near the sticking velocity the root is nearly double (v² has its minimum just past it,
+        at the segment's node): the Illinois search settles within `_SETTLED` a little past it,
+        where the nodes just before `end` would see v² < 0 (`solver_failure` at e.g.
+        v = (1 − 1.6e-7)·v_s of Thornton–Ning). An end that did not settle is not moved."""
+        span = end - self.start
+        residual = jnp.where(turned & (span != 0.0) & self.settled(end), self.squared(end), 0.0)
+        safe_span = jnp.where(span != 0.0, span, 1.0)
+        return lambda x: self.squared(x) - residual * (x - self.start) / safe_span
+
+    def time(self, end, turned):
+        """The leg's duration from its start to `end` (a turnaround where `turned`), and whether
+        v² > 0 at every node between."""
         fraction, weight = _RULE
         span = end - self.start
         x = self.start + span * fraction
-        squared = self.squared(x)
+        squared = self.balance(end, turned)(x)
         real = jnp.all(squared > 0.0) | (span == 0.0)
         speed = derivatives.sqrt(jnp.maximum(squared, jnp.finfo(squared.dtype).tiny))
         return jnp.abs(span) * ordered_sum(weight * self.rate(x) / speed), real
 
-    def samples(self, end, theta, duration):
+    def samples(self, end, turned, theta, duration):
         """(x, t since the leg's start, v) at the points θ ∈ [0, 1] (increasing, from 0 to 1) of
-        the leg to `end`: t by a small rule between neighbours, scaled to the leg's `duration`
-        (from the full rule), so that the times rise to it."""
+        the leg to `end` (a turnaround where `turned`): t by a small rule between neighbours,
+        scaled to the leg's `duration` (from the full rule), so that the times rise to it."""
         nodes, weights = np.polynomial.legendre.leggauss(_SAMPLE_NODES)
         span = end - self.start
+        balance = self.balance(end, turned)
         lower = jnp.concatenate([theta[:1], theta[:-1]])
         inner = lower[:, None] + (theta - lower)[:, None] * jnp.asarray((nodes + 1.0) / 2.0)  # [P, nodes]
         x = self.start + span * (1.0 - jnp.cos(jnp.pi * inner)) / 2.0
-        speed = derivatives.sqrt(jnp.maximum(self.squared(x), jnp.finfo(x.dtype).tiny))
+        speed = derivatives.sqrt(jnp.maximum(balance(x), jnp.finfo(x.dtype).tiny))
         density = self.rate(x) / speed * jnp.pi / 2.0 * jnp.sin(jnp.pi * inner) * jnp.abs(span)
         times = jnp.cumsum(ordered_sum(density * jnp.asarray(weights / 2.0) * (theta - lower)[:, None]))
         times = duration * times / jnp.where(times[-1] > 0.0, times[-1], 1.0)
         points = self.start + span * (1.0 - jnp.cos(jnp.pi * theta)) / 2.0
-        velocity = self.direction * derivatives.sqrt(jnp.maximum(self.squared(points), 0.0))
+        velocity = self.direction * derivatives.sqrt(jnp.maximum(balance(points), 0.0))
         return points, times, velocity
 
 
@@ -167,14 +185,14 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
         jnp.where(advancing, 1.0, -1.0),
     )
     x_end, turned, settled = leg.end()
-    duration, real = leg.time(x_end)
+    duration, real = leg.time(x_end, turned)
     a_end = jnp.where(riding, x_end, c.radius)
     d_end = jnp.where(riding, branch.level(law, x_end), x_end)
     v_end = jnp.where(turned, 0.0, leg.direction * derivatives.sqrt(jnp.maximum(squared(x_end), 0.0)))
     t_end = c.t + duration
 
     if options.samples_per_phase:
-        x, t, v = leg.samples(x_end, jnp.linspace(0.0, 1.0, options.samples_per_phase), duration)
+        x, t, v = leg.samples(x_end, turned, jnp.linspace(0.0, 1.0, options.samples_per_phase), duration)
         radii = jnp.where(riding, x, c.radius)
         depths = jnp.where(riding, branch.level(law, x), x)
         rows = jnp.stack([c.t + t, depths, v, law.force(radii, depths), radii], axis=1)

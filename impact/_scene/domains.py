@@ -156,6 +156,7 @@ SPRINGS = Domain(1, 1e9, "", reason="a spring count float64 holds exactly, with 
 RTOL = Domain(1e-16, 0.5, "", reason="from float64's resolution to a loose 50 %")
 ATOL = Domain(1e-300, 1.0, "", reason="the scaled state is of order 1")
 MAX_STEPS = Domain(16, 1e6, "", reason="a million steps per phase at most")
+STEP_BUDGET = Domain(1.0, 1e15, "", reason="a spring array's or Verlet's steps, estimated before the run")
 TIME_STEP = Domain(1e-30, 1.0, "s", reason="float64's range of contact times")
 DURATION = Domain(1e-30, 1e9, "s", reason="up to thirty years")
 # Each bounce allocates four phases of 64 trajectory samples: 1000 bounces hold about 10 MB.

@@ -39,8 +39,12 @@ from .fit_curve import BRANCH, branch_codes, control_column, curve_observables, 
 from .overrides import apply_fit_overrides
 from .paths import AbsentSection, NoField, resolve_field
 from .profiles import Number
-from .scene import Scene, load_scene, read_text, read_yaml
+from .reading import MAX_TABLE_BYTES, parse_yaml, read_text, read_yaml
+from .scene import Scene, load_scene
 from .sections import Section
+from .sweep_axes import field_values
+from .sweep_points import point_problems
+from .sweep_spec import MAX_LISTED, Axis, SweepSpec
 
 # The scalar results of an impact a fit can match (the fields of `impact.Result` of that name).
 OBSERVABLES = ("restitution", "contact_time", "max_indentation", "max_force", "min_force", "dissipated_energy")
@@ -160,11 +164,9 @@ def load_fit(path: str | Path, assignments: Sequence[str] = ()) -> FitSpec:
     path = Path(path)
     try:
         text = read_text(path)
-        data = yaml.safe_load(text)
+        data = parse_yaml(text, str(path))
     except SceneError as error:
         raise FitError(error.problems) from None
-    except yaml.YAMLError as error:
-        raise FitError([("", f"invalid YAML in {path}: {error}")]) from None
     if not isinstance(data, dict):
         raise FitError([("", f"{path} must hold a mapping with the keys {', '.join(FitFile.model_fields)}")])
     if assignments:
@@ -200,7 +202,7 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
     """The columns of a CSV file (a header row, then one row per measurement; lines starting
     with '#' skipped): float64 where every entry is a number, else the entries as text."""
     try:
-        text = read_text(path)
+        text = read_text(path, MAX_TABLE_BYTES)
     except SceneError as error:
         raise FitError([("data", message) for _, message in error.problems]) from None
     lines = [line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]
@@ -208,6 +210,12 @@ def read_table(path: Path) -> dict[str, np.ndarray]:
     if len(rows) < 2:
         raise FitError([("data", f"{path} holds no header row and data rows")])
     header = [name.strip() for name in rows[0]]
+    for column, name in enumerate(header):
+        if name in header[:column]:
+            first = header.index(name) + 1
+            raise FitError(
+                [("data", f"{path}: column {name!r} appears twice in the header (columns {first} and {column + 1})")]
+            )
     for number, row in enumerate(rows[1:], start=1):
         if len(row) != len(header):
             raise FitError([("data", f"{path}, data row {number}: {len(row)} values for {len(header)} columns")])
@@ -255,6 +263,9 @@ def make_fit_spec(
     problems += [(f"inputs.{path}", "is also a fitted parameter") for path in file.inputs if path in file.parameters]
     problems += curve_problems(scene, branch, model, columns)
     problems += _column_problems(file, columns, scene)
+    if problems:
+        raise FitError(problems)
+    problems = _input_row_problems(scene, file.inputs, columns)
     if problems:
         raise FitError(problems)
     used = {name: columns[name] for name in _used_columns(file, scene)}
@@ -305,7 +316,8 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray], scene: Scene
     for name in used:
         if columns[name].dtype.kind != "f":
             row = next(row for row, entry in enumerate(columns[name]) if not _is_number(entry))
-            problems.append(("data", f"column {name!r}, data row {row + 1}: {columns[name][row]!r} is not a number"))
+            entry = str(columns[name][row])
+            problems.append(("data", f"column {name!r}, data row {row + 1}: {entry!r} is not a number"))
             continue
         bad = np.flatnonzero(~np.isfinite(columns[name]))
         if bad.size:
@@ -314,9 +326,40 @@ def _column_problems(file: FitFile, columns: dict[str, np.ndarray], scene: Scene
         zero = np.flatnonzero(columns[name] == 0)
         if spec.relative and zero.size:
             problems.append((f"observables.{name}.relative", f"σ·|value| is 0 in row {zero[0] + 1}"))
-    measured = min(sizes) * len(file.observables)
-    if measured <= len(file.parameters):
-        problems.append(("data", f"{measured} measured values cannot determine {len(file.parameters)} parameters"))
+    rows, count = min(sizes), len(file.parameters)
+    measured = rows * len(file.observables)
+    if measured <= count:
+        problems.append(
+            (
+                "data",
+                f"{rows} data row(s) × {len(file.observables)} observable(s) = {measured} measured value(s) for "
+                f"{count} parameter(s): a fit needs more measured values than parameters (at least {count + 1}), to "
+                "leave degrees of freedom for χ² and the standard errors",
+            )
+        )
+    return problems
+
+
+def _input_row_problems(scene: Scene, inputs: Sequence[str], columns: dict[str, np.ndarray]) -> list[tuple[str, str]]:
+    """Rows whose input value lies outside its scene field's range, or whose inputs together make
+    the scene invalid (as a sweep's points are checked, `sweep_points`): the first few named by
+    column, data row and value."""
+    problems, axes = [], []
+    for path in inputs:
+        owner, name = resolve_field(scene, path)
+        raw = columns[path].tolist()
+        values, invalid = field_values(owner, name, raw)
+        problems += [
+            ("data", f"column {path!r}, data row {index + 1}: {value!r} is refused by {path}: {why}")
+            for index, value, why in invalid[:MAX_LISTED]
+        ]
+        axes.append(Axis(path, np.asarray(values, np.float64), raw))
+    if problems or not axes:
+        return problems
+    invalid_rows = point_problems(SweepSpec(scene, tuple(axes), "zip", "given"))
+    for index, why in sorted(invalid_rows.items())[:MAX_LISTED]:
+        listed = ", ".join(f"{path} = {columns[path].tolist()[index]!r}" for path in inputs)
+        problems.append(("data", f"data row {index + 1} ({listed}) makes the scene invalid: {why}"))
     return problems
 
 

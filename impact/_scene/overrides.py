@@ -14,12 +14,11 @@ import re
 from collections.abc import Mapping
 from pathlib import Path
 
-import yaml
 from pydantic import BaseModel
 
 from .errors import SceneError
 from .paths import NoField, NotASection, assign, check_path
-from .scene import read_yaml
+from .reading import parse_yaml, read_yaml
 
 # A number in exponent notation that YAML 1.1 (PyYAML) reads as a string: 2e9, 1.0e-3.
 EXPONENT_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+")
@@ -32,9 +31,9 @@ def _split(assignment: str) -> tuple[list[str], object]:
     if not separator or not all(keys):
         raise SceneError([("--set", f"expected dotted.path=value, got {assignment!r}")])
     try:
-        value = yaml.safe_load(text)
-    except yaml.YAMLError:
-        raise SceneError([(f"--set {path}", f"value {text!r} is not valid YAML")]) from None
+        value = parse_yaml(text, f"the value of --set {path.strip()}")
+    except SceneError as error:
+        raise SceneError([(f"--set {path}", message) for _, message in error.problems]) from None
     if isinstance(value, str) and EXPONENT_NUMBER.fullmatch(value):
         value = float(value)
     return keys, value

@@ -244,12 +244,23 @@ class ConstantStressSpec(_Spec):
         return profiles.ConstantStress(radius=self.radius, stress=self.stress, E_star=self.E_star)
 
 
+# Points of a tabulated profile at most: a run evaluates it at thousands of places at once, each
+# evaluation a sum over every point (memory and time: the user guide). A longer list is refused
+# before its values are checked.
+MAX_TABULATED_POINTS = 10_000
+
+
 class TabulatedSpec(_Spec):
     """Piecewise-linear profile through the points (r, f); continued with its last slope."""
 
     shape: Literal["tabulated"] = "tabulated"
-    r: list[Coordinate] = Field(description="radii (m), strictly increasing from r[0] = 0, at least 2 points")
-    f: list[Coordinate] = Field(description="heights f(r) above the tip (m), f[0] = 0, same length as r")
+    r: list[Coordinate] = Field(
+        max_length=MAX_TABULATED_POINTS,
+        description="radii (m), strictly increasing from r[0] = 0, from 2 to 10⁴ points",
+    )
+    f: list[Coordinate] = Field(
+        max_length=MAX_TABULATED_POINTS, description="heights f(r) above the tip (m), f[0] = 0, same length as r"
+    )
 
     @field_validator("r")
     @classmethod

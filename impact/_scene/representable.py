@@ -215,6 +215,13 @@ def _root_of_height(profile, height):
 
 
 @float64
+def time_unit(scene) -> float:
+    """The time unit (s) of an impact's scaled problem (`_law.scales`)."""
+    values, _ = unit_columns([unit_inputs(scene)], scene.active_adhesion is not None)
+    return float(values["time"][0])
+
+
+@float64
 def check_representable(scene) -> None:
     """Raise FieldProblem (dotted path from the scene) where the impact cannot be represented."""
     check_units(scene, units_at(*unit_columns([unit_inputs(scene)], scene.active_adhesion is not None), 0))
@@ -256,11 +263,12 @@ def _check_units(values: dict[str, float]) -> None:
 
 def _check_adhesion_resolved(adhesion, E_star: float, values: dict[str, float]) -> None:
     """The detachment length at the contact radius unit must reach RESOLVABLE of the indentation
-    unit; it grows as √Δγ, so the least Δγ follows from the ratio."""
+    unit; it grows as √Δγ, so the least Δγ follows from its value at Δγ = 1 J/m² (a Δγ so small
+    that the ratio underflows to 0 is refused with it too)."""
     ratio = float(_detachment_ratio(values, adhesion.work_of_adhesion, E_star))
     if ratio >= RESOLVABLE:
         return
-    least = adhesion.work_of_adhesion * (RESOLVABLE / ratio) ** 2
+    least = (RESOLVABLE / float(_detachment_ratio(values, 1.0, E_star))) ** 2
     allowed = Domain(least, WORK_OF_ADHESION.high, WORK_OF_ADHESION.unit, zero=True)
     why = (
         f"the detachment length is {ratio:.2g} of the indentation, below what float64 resolves "

@@ -10,7 +10,7 @@ from typing import Any, Literal
 
 import numpy as np
 import yaml
-from pydantic import Field, ValidationError, model_validator
+from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .. import theory
 from .._integrate.base import AbstractIntegrator
@@ -18,10 +18,12 @@ from .._law.base import AbstractContactLaw
 from .._law.jkr import Elastic
 from .adhesion import AbstractAdhesion
 from .adhesion.base import edge_integrator
+from .cost import check_run_cost
 from .effects import Effects
 from .errors import FieldProblem, SceneError, problems_of
 from .profiles import ParaboloidSpec, PowerLawSpec, ProfileSpec
-from .representable import check_representable
+from .reading import read_yaml
+from .representable import check_representable, time_unit
 from .sections import (
     MASS_OR_DENSITY,
     QUADRATURE,
@@ -39,6 +41,8 @@ from .sections import (
 )
 from .shear import Shear
 
+MAX_NAME = 100  # characters of a scene's name (its runs' folder; file names end at 255 bytes)
+
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
 _IMPACT_ONLY = {
     "initial": "an indentation is quasi-static: it has no initial velocity or gap",
@@ -52,7 +56,11 @@ class Scene(Section):
     """One impact (`kind: impact`, the default) or one quasi-static indentation test
     (`kind: indentation`: `control` and `program`, no mass, initial state or solver)."""
 
-    name: str = Field("scene", pattern=r"^[A-Za-z0-9_.-]+$", description="name of the run (file-name safe)")
+    name: str = Field(
+        "scene",
+        pattern=r"^[A-Za-z0-9_.-]+$",
+        description=f"name of the run (file-name safe: letters, digits, _ . -; at most {MAX_NAME} characters)",
+    )
     kind: Literal["impact", "indentation"] = Field(
         "impact", description="'impact' (a body hits the surface) or 'indentation' (quasi-static loading, §3.3)"
     )
@@ -71,6 +79,15 @@ class Scene(Section):
     contact: Contact = Contact()
     solver: Solver = Solver()
     limits: Limits = Limits()
+
+    @field_validator("name")
+    @classmethod
+    def _names_a_folder(cls, name: str) -> str:
+        if len(name) > MAX_NAME:
+            raise ValueError(f"at most {MAX_NAME} characters (it names the run's folder), got {len(name)}")
+        if set(name) == {"."}:
+            raise ValueError(f"{name!r} names no folder of its own; use letters or digits")
+        return name
 
     @model_validator(mode="after")
     def _sections_of_the_kind(self):
@@ -263,6 +280,12 @@ class Scene(Section):
             check_representable(self)
         return self
 
+    @model_validator(mode="after")
+    def _within_budget(self):
+        verlet = self.kind == "impact" and self.solver.method == "verlet"
+        check_run_cost(self, time_unit(self) if verlet else None)
+        return self
+
     @property
     def contact_profile(self) -> ProfileSpec:
         """The profile of the gap between the two surfaces: the body's against a flat, else the
@@ -347,37 +370,6 @@ class Scene(Section):
         if self.program is None:
             raise ValueError(f"scene {self.name!r} of kind {self.kind!r} has no loading program")
         return self.program
-
-
-def read_text(path: Path) -> str:
-    """The text of a file the user named, or SceneError saying why it cannot be read (missing,
-    a directory or other non-file, unreadable, not UTF-8 text)."""
-    if not path.exists():
-        raise SceneError([("", f"no such file: {path}")])
-    if path.is_dir():
-        raise SceneError([("", f"{path} is a directory, not a file")])
-    if not path.is_file():
-        raise SceneError([("", f"{path} is not a regular file")])
-    try:
-        return path.read_text(encoding="utf-8")
-    except UnicodeDecodeError as error:
-        raise SceneError(
-            [("", f"{path} is not UTF-8 text (byte {error.object[error.start]:#04x} at {error.start})")]
-        ) from None
-    except OSError as error:
-        raise SceneError([("", f"cannot read {path}: {error.strerror}")]) from None
-
-
-def read_yaml(path: str | Path) -> dict:
-    """A YAML mapping from a file, or SceneError (missing file, invalid YAML, not a mapping)."""
-    path = Path(path)
-    try:
-        data = yaml.safe_load(read_text(path))
-    except yaml.YAMLError as error:
-        raise SceneError([("", f"invalid YAML in {path}: {error}")]) from None
-    if not isinstance(data, dict):
-        raise SceneError([("", f"{path} must hold a mapping of scene keys")])
-    return data
 
 
 def load_scene(source: "str | Path | Mapping | Scene") -> Scene:

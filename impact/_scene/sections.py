@@ -14,6 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validat
 from .. import theory
 from .._integrate.base import PHASE_ENDS, SOLVERS
 from . import domains as d
+from .cost import STEP_BUDGET
 from .domains import within
 from .errors import FieldProblem
 from .profiles import Number, ParaboloidSpec, ProfileSpec
@@ -324,6 +325,13 @@ class Limits(Section):
     max_bounces: Annotated[int, within(d.BOUNCES)] = Field(64, description="contacts simulated at most")
     duration: Annotated[Number, within(d.DURATION)] | None = Field(
         None, description="simulated time at most (s); default: no bound"
+    )
+    step_budget: Annotated[Number, within(d.STEP_BUDGET)] = Field(
+        STEP_BUDGET,
+        description=(
+            "solver steps a run may take, estimated before it compiles (a spring array's events, Verlet's steps); "
+            "a scene estimated beyond it is refused: raise it for a longer run (or run with --allow-long)"
+        ),
     )
 
 

@@ -17,14 +17,15 @@ point through the validators of the sections on its paths (`sweep_points`).
 """
 
 import copy
+import math
 from collections.abc import Mapping
 from pathlib import Path
 
-import yaml
-
-from .errors import SceneError, SweepError
+from .cost import check_sweep_cost
+from .errors import FieldProblem, SceneError, SweepError
 from .paths import NotASection, assign
-from .scene import Scene, load_scene, read_text, read_yaml
+from .reading import parse_yaml, read_text, read_yaml
+from .scene import Scene, load_scene
 from .sweep_axes import build_axis
 from .sweep_points import check_points
 from .sweep_spec import MODES, ORDERS, SweepSpec
@@ -41,12 +42,9 @@ def load_sweep(source: "str | Path | Mapping") -> SweepSpec:
         path = Path(source)
         try:
             text, folder = read_text(path), path.parent
+            data = parse_yaml(text, str(path))
         except SceneError as error:
             raise SweepError(error.problems) from None
-        try:
-            data = yaml.safe_load(text)
-        except yaml.YAMLError as error:
-            raise SweepError([("", f"invalid YAML in {path}: {error}")]) from None
         if not isinstance(data, dict):
             raise SweepError([("", f"{path} must hold a mapping with the keys {', '.join(SWEEP_KEYS)}")])
     problems = [
@@ -111,6 +109,10 @@ def make_spec(scene, axes: Mapping, mode: str = "grid", order: str = "cost") -> 
         problems.append(("axes", "name at least one field to sweep, e.g. initial.velocity: [0.5, 1.0]"))
     if problems:
         raise SweepError(problems)
+    try:  # before any value is made: a grid of 10⁷ × 10⁷ is refused at once
+        check_sweep_cost(_points_written(axes.values(), mode))
+    except FieldProblem as error:
+        raise SweepError([(error.field, str(error))]) from None
     built = []
     for path, entry in axes.items():
         try:
@@ -127,3 +129,18 @@ def make_spec(scene, axes: Mapping, mode: str = "grid", order: str = "cost") -> 
     spec = SweepSpec(scene, tuple(built), mode, order)
     check_points(spec)
     return spec
+
+
+def _points_written(entries, mode: str) -> int:
+    """The points the axes' entries ask for as written (a list's length, a generator's num; 1 for
+    an entry that names none, which `build_axis` refuses): the longest axis in zip mode, their
+    product in a grid."""
+    counts = []
+    for entry in entries:
+        count = len(entry) if isinstance(entry, (list, tuple)) else 1
+        if isinstance(entry, Mapping) and len(entry) == 1:
+            arguments = next(iter(entry.values()))
+            if isinstance(arguments, (list, tuple)) and len(arguments) == 3 and isinstance(arguments[2], (int, float)):
+                count = max(int(arguments[2]), 1) if math.isfinite(arguments[2]) else 1
+        counts.append(count)
+    return max(counts, default=1) if mode == "zip" else math.prod(counts)

@@ -28,33 +28,45 @@ def build_axis(scene: Scene, path: str, entry) -> Axis:
     where = f"axes.{path}"
     owner, name = numeric_field(scene, path)
     raw, spec = _raw_values(where, entry)
-    info = type(owner).model_fields[name]
-    # The field's type with its constraints (gt, ge, ...), built at run time.
-    field_type: Any = Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
-    adapter: TypeAdapter[list] = TypeAdapter(list[field_type])
-    try:
-        values = adapter.validate_python(raw)
-    except ValidationError as error:
-        listed = []
-        for problem in error.errors()[:MAX_LISTED]:
-            index = problem["loc"][0] if problem["loc"] else "?"
-            message = problem["msg"].removeprefix("Value error, ")
-            listed.append(f"value {problem['input']!r} (#{index}): {message}")
-        more = len(error.errors()) - len(listed)
-        raise SweepError([(where, "; ".join(listed) + (f"; and {more} more" if more > 0 else ""))]) from None
+    values, invalid = field_values(owner, name, raw)
+    if invalid:
+        listed = [f"value {value!r} (#{index}): {message}" for index, value, message in invalid[:MAX_LISTED]]
+        more = len(invalid) - len(listed)
+        raise SweepError([(where, "; ".join(listed) + (f"; and {more} more" if more > 0 else ""))])
     if any(value is None or isinstance(value, str) for value in values):
         raise SweepError([(where, "every value must be a number")])
     integer = all(isinstance(value, int) for value in values)
     array = np.asarray(values, dtype=np.int64 if integer else np.float64)
     if integer and isinstance(spec, list):
         spec = [int(value) for value in array]
-    return Axis(path, array, spec, unit=field_unit(info))
+    return Axis(path, array, spec, unit=field_unit(type(owner).model_fields[name]))
 
 
 def field_unit(info: FieldInfo) -> str:
     """The unit of a numeric field's values (UDUNITS; '' dimensionless): its domain's."""
     units = {udunits(domain.unit) for domain in domains_of(info)}
     return units.pop() if len(units) == 1 else ""
+
+
+def field_values(owner: BaseModel, name: str, raw: list) -> tuple[list, list[tuple[int, Any, str]]]:
+    """(the values validated by the field `name` of `owner`, its type with its constraints: gt,
+    ge, ...; the invalid ones as (index, value, why), by index)."""
+    info = type(owner).model_fields[name]
+    # The field's type with its constraints (gt, ge, ...), built at run time.
+    field_type: Any = Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
+    adapter: TypeAdapter[list] = TypeAdapter(list[field_type])
+    try:
+        return adapter.validate_python(raw), []
+    except ValidationError as error:
+        invalid = [
+            (int(problem["loc"][0]) if problem["loc"] else -1, problem["input"], _message(problem))
+            for problem in error.errors()
+        ]
+        return [], sorted(invalid, key=lambda problem: problem[0])
+
+
+def _message(problem) -> str:
+    return problem["msg"].removeprefix("Value error, ")
 
 
 def _raw_values(where: str, entry):

@@ -45,9 +45,21 @@ _REPRESENTABLE = "_representable"
 _PENDING = 16 * 4096
 
 
-@float64
 def check_points(spec: SweepSpec) -> None:
     """Validate every point of the sweep as a scene; SweepError naming the axes if one is invalid."""
+    problems = point_problems(spec)
+    if problems:
+        params = spec.flat_params()
+        listed = [
+            ({path: params[path][index].item() for path in spec.paths}, message)
+            for index, message in sorted(problems.items())[:MAX_LISTED]
+        ]
+        raise _invalid_points(spec, listed, len(problems))
+
+
+@float64
+def point_problems(spec: SweepSpec) -> dict[int, str]:
+    """{point (flat index): why it makes the scene invalid} of every invalid point of the sweep."""
     chains = _chains(spec.scene, spec.paths)
     fast = all(
         all(
@@ -59,13 +71,7 @@ def check_points(spec: SweepSpec) -> None:
     params = spec.flat_params()
     columns = [params[path].tolist() for path in spec.paths]
     with _without_collection():
-        problems = _fast_problems(spec, chains, columns) if fast else _full_problems(spec, columns)
-    if problems:
-        listed = [
-            ({path: column[index] for path, column in zip(spec.paths, columns, strict=True)}, message)
-            for index, message in sorted(problems.items())[:MAX_LISTED]
-        ]
-        raise _invalid_points(spec, listed, len(problems))
+        return _fast_problems(spec, chains, columns) if fast else _full_problems(spec, columns)
 
 
 def _fast_problems(spec: SweepSpec, chains, columns) -> dict[int, str]:

@@ -4,6 +4,7 @@ import atexit
 import gc
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Annotated
 
@@ -11,7 +12,8 @@ import typer
 
 from .._core.package import __version__
 from . import commands
-from .console import FlagHelpGroup, say
+from .console import FlagHelpGroup, say, show_warning, warn
+from .long_runs import INTERRUPTED, Interrupted, catch_ctrl_c
 from .settings import CacheChoice
 
 HELP = (
@@ -36,13 +38,19 @@ _COLLECTION_THRESHOLDS = (100_000, 50, 100)
 
 def main() -> None:
     """Console entry point: the command line (each command configures float64, whole-loop
-    compilation and the compilation cache itself, as the global options ask). The process ends
-    as soon as the command has: see `_end`."""
+    compilation and the compilation cache itself, as the global options ask); a Python warning
+    is printed as one line; Ctrl-C ends it with exit code 130 (`long_runs`). The process ends as
+    soon as the command has: see `_end`."""
     gc.set_threshold(*_COLLECTION_THRESHOLDS)
+    warnings.showwarning = show_warning
+    catch_ctrl_c()
     try:
         app()
     except SystemExit as stop:
         _end(stop.code)
+    except Interrupted:
+        warn("interrupted")
+        _end(INTERRUPTED)
     _end(0)
 
 

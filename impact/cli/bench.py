@@ -6,7 +6,6 @@ The benchmarks themselves live in `impact._bench`. Float64 is the entry point's 
 """
 
 from collections.abc import Callable
-from datetime import datetime
 from pathlib import Path
 from typing import TypeVar
 
@@ -23,7 +22,7 @@ from .._bench.workloads import SPEED_OUTPUTS, speed_plan, workloads
 from .._core.defaults import SPEED_REPEATS
 from .._io.files import write_text
 from .console import out, refuse, refuse_value, say
-from .folders import check_output, check_output_file, removed_on_failure
+from .folders import check_output, check_output_file, fresh_folder, removed_on_failure
 
 Measured = TypeVar("Measured")
 
@@ -88,11 +87,12 @@ def speed_command(quick: bool, points: list[int], only: list[str], repeats: int,
 def _into_folder(output: Path | None, overwrite: bool, measure: Callable[[Path], Measured], outputs) -> Measured:
     """Check the output folder, run `measure(folder)`, list its outputs; a folder this call made
     is removed again if the run fails or is interrupted."""
-    folder = output or Path("runs") / "bench" / datetime.now().strftime("%Y%m%d-%H%M%S")
-    check_output(folder, overwrite, holds="benchmark")
+    if output is not None:
+        check_output(output, overwrite, holds="benchmark")
     if not jax.config.read("jax_enable_x64"):
         refuse("float64", [("", "the benchmark needs float64: run it through the `impact` command (which enables it)")])
-    with removed_on_failure(folder):
+    folder = output or fresh_folder(Path("runs") / "bench")
+    with removed_on_failure(folder, created=output is None):
         result = measure(folder)
     for name in outputs:
         say(f"  {folder / name}")

@@ -13,6 +13,7 @@ import typer
 
 from .._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK, SPEED_REPEATS
 from .console import FlagHelpCommand, FlagHelpGroup
+from .long_runs import AllowLong, command_scope
 from .settings import configured
 
 
@@ -56,7 +57,10 @@ RunFolder = Annotated[
 Overwrite = Annotated[
     bool, typer.Option("--overwrite", help="write into an existing output folder", show_default=False)
 ]
-RunFile = Annotated[Path, typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`", show_default=False)]
+RunFile = Annotated[
+    Path,
+    typer.Argument(metavar="RUN.h5", help="run.h5 written by `impact run`, or its folder", show_default=False),
+]
 
 
 def run_command(
@@ -65,24 +69,29 @@ def run_command(
     output: RunFolder = None,
     assignments: SetOption = None,
     overwrite: Overwrite = False,
+    allow_long: AllowLong = False,
 ) -> None:
     """Run one scene; write run.h5, config.yaml and plots to an output folder."""
     configured(ctx)
     from .run import run_scene
 
-    run_scene(scene_file, output, assignments, overwrite)
+    with command_scope(allow_long):
+        run_scene(scene_file, output, assignments, overwrite)
 
 
-def validate_command(ctx: typer.Context, scene_file: SceneArgument, assignments: SetOption = None) -> None:
+def validate_command(
+    ctx: typer.Context, scene_file: SceneArgument, assignments: SetOption = None, allow_long: AllowLong = False
+) -> None:
     """Check a scene without running it; print its resolved key facts."""
     configured(ctx)
     from .run import validate_scene
 
-    validate_scene(scene_file, assignments)
+    with command_scope(allow_long):
+        validate_scene(scene_file, assignments)
 
 
 def show_command(ctx: typer.Context, run_file: RunFile) -> None:
-    """Print the summary of a stored run (run.h5)."""
+    """Print the summary of a stored run (run.h5, or the folder holding it)."""
     configured(ctx)
     from .run import show_run
 
@@ -158,12 +167,14 @@ def sweep_command(
     num_processes: NumProcesses = None,
     process_id: ProcessId = None,
     distributed: Distributed = False,
+    allow_long: AllowLong = False,
 ) -> None:
     """Run a sweep of a scene over numeric fields; write sweep.h5, restitution.png and a summary."""
     configured(ctx)
     from .sweep import run_sweep
 
-    run_sweep(sweep_file, output, chunk, devices, overwrite, coordinator, num_processes, process_id, distributed)
+    with command_scope(allow_long):
+        run_sweep(sweep_file, output, chunk, devices, overwrite, coordinator, num_processes, process_id, distributed)
 
 
 def merge_command(ctx: typer.Context, shards: Shards, output: MergedFile, overwrite: MergeOverwrite = False) -> None:
@@ -245,12 +256,14 @@ def fit_command(
     output: FitFolder = None,
     assignments: FitSetOption = None,
     overwrite: Overwrite = False,
+    allow_long: AllowLong = False,
 ) -> None:
     """Fit scene values to measurements (weighted least squares); write fit.yaml, fit.h5 and fit.png."""
     configured(ctx)
     from .fit import run_fit
 
-    run_fit(fit_file, output, assignments or [], overwrite)
+    with command_scope(allow_long):
+        run_fit(fit_file, output, assignments or [], overwrite)
 
 
 # --- benchmarks -----------------------------------------------------------------------------

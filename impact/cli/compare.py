@@ -12,7 +12,6 @@ traceback and before anything is written.
 """
 
 import math
-from datetime import datetime
 from pathlib import Path
 
 import numpy as np
@@ -30,7 +29,7 @@ from .._plots.figures import import_ahead
 from .._scene.errors import SceneError
 from .._scene.scene import scene_yaml
 from .console import out, refuse, say
-from .folders import check_output, make_folder, removed_on_failure
+from .folders import check_output, fresh_folder, make_folder, removed_on_failure
 from .run import scene_of
 
 MOST_SPEEDS = 100_000
@@ -73,10 +72,8 @@ def run_compare_lammps(
     scene = scene_of(scene_file, assignments)
     speeds = None if velocities is None else velocities_of(velocities)
     label = (model or "default").replace("/", "-")
-    folder = output or Path("runs") / "compare" / f"{scene.name}-lammps-{label}" / datetime.now().strftime(
-        "%Y%m%d-%H%M%S"
-    )
-    check_output(folder, overwrite, holds="comparison")
+    if output is not None:
+        check_output(output, overwrite, holds="comparison")
     import_ahead()
     try:
         normal = None if model is None else NormalModel.named(model)
@@ -87,18 +84,21 @@ def run_compare_lammps(
         refuse("LAMMPS stopped with an error", [("", str(error))])
     except SceneError as error:  # CompareError (LAMMPS cannot represent it or the option) or SweepError
         refuse(f"cannot compare {scene_file} with LAMMPS", error.problems)
-    _write(comparison, folder, overwrite)
+    folder = output or fresh_folder(Path("runs") / "compare" / f"{scene.name}-lammps-{label}")
+    _write(comparison, folder, overwrite, created=output is None)
     out.print(_speeds_table(comparison.columns()))
     for line in summary_lines(comparison):
         say(line)
     say(f"comparison written to {folder}")
 
 
-def _write(comparison, folder: Path, overwrite: bool) -> None:
+def _write(comparison, folder: Path, overwrite: bool, created: bool) -> None:
     """comparison.csv, comparison.png, summary.txt, in.lammps and config.yaml, each atomically; a
-    folder created here is removed again if a write fails."""
-    with removed_on_failure(folder):
-        make_folder(folder, exist_ok=overwrite, holds="comparison")
+    folder created for them (`created`: made already, by `fresh_folder`) is removed again if a
+    write fails."""
+    with removed_on_failure(folder, created):
+        if not created:
+            make_folder(folder, exist_ok=overwrite, holds="comparison")
         write_text(folder / "config.yaml", scene_yaml(comparison.scene))
         write_text(folder / "comparison.csv", table_csv(comparison))
         write_text(folder / "summary.txt", "\n".join(summary_lines(comparison)) + "\n")

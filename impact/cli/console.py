@@ -60,3 +60,9 @@ def say(line: str) -> None:
 def warn(line: str) -> None:
     """Print one warning line to stderr, in yellow (not wrapped)."""
     err.print(Text(line, "yellow"), soft_wrap=True)
+
+
+def show_warning(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ARG001
+    """A Python warning as one line, "warning: <message>" (`warnings.showwarning` of the command
+    line: no source file, line number or code)."""
+    warn(f"warning: {message}")

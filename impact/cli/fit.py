@@ -23,6 +23,7 @@ from .._scene.errors import SceneError
 from .._scene.fit_spec import FitSpec, load_fit
 from .console import refuse, say, warn
 from .folders import check_output, make_folder, removed_on_failure
+from .long_runs import interruptible
 
 
 def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwrite: bool) -> None:
@@ -37,7 +38,7 @@ def run_fit(fit_file: Path, output: Path | None, assignments: list[str], overwri
     import_ahead()  # matplotlib, for the figure, while the fit computes
     say(_announcement(spec))
     try:
-        result = fit_spec(spec, spec.model, progress=_progress(spec))
+        result = interruptible(lambda: fit_spec(spec, spec.model, progress=_progress(spec)))
     except SceneError as error:
         refuse(f"{fit_file} is not a valid fit", error.problems)
     _write(result, folder)

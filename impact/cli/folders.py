@@ -1,10 +1,11 @@
-"""The output folder of a command: checked before any work, created for the writing, and removed
-again where the writing fails."""
+"""The output folder of a command: checked before any work, or a fresh one made for it, created
+for the writing, and removed again where the writing fails."""
 
 import os
 import shutil
 from collections.abc import Iterator
 from contextlib import contextmanager
+from datetime import datetime
 from pathlib import Path
 
 from .console import refuse
@@ -39,10 +40,11 @@ def make_folder(folder: Path, exist_ok: bool, holds: str = "run") -> None:
 
 
 @contextmanager
-def removed_on_failure(folder: Path) -> Iterator[None]:
-    """A folder that does not exist yet is removed again (with what the block wrote into it) if
-    the block fails or is interrupted: no half-written output is left."""
-    created = not folder.exists()
+def removed_on_failure(folder: Path, created: bool = False) -> Iterator[None]:
+    """A folder that does not exist yet (or was `created` for this command by `fresh_folder`) is
+    removed again, with what the block wrote into it, if the block fails or is interrupted: no
+    half-written output is left."""
+    created = created or not folder.exists()
     try:
         yield
     except BaseException:
@@ -61,3 +63,19 @@ def check_output_file(path: Path, option: str) -> None:
         refuse("output file", [(option, f"cannot write {path}: folder {parent} does not exist")])
     if not os.access(parent, os.W_OK | os.X_OK):
         refuse("output file", [(option, f"cannot write {path}: {parent} is not writable")])
+
+
+def fresh_folder(parent: Path) -> Path:
+    """A new folder parent/<YYYYmmdd-HHMMSS> of this second, made here: parent/<…>-2, -3, … where
+    another command took that name first (mkdir is atomic, so commands started together each
+    get their own). A place that cannot take it is refused (exit code 2)."""
+    stem, number = datetime.now().strftime("%Y%m%d-%H%M%S"), 1
+    while True:
+        folder = parent / (stem if number == 1 else f"{stem}-{number}")
+        try:
+            folder.mkdir(parents=True)
+            return folder
+        except FileExistsError:
+            number += 1
+        except OSError as error:
+            refuse("output folder", [("", f"cannot create {folder}: {error.strerror}")])

@@ -8,7 +8,6 @@ without a physical outcome (status other than separated or captured) is still wr
 """
 
 import time
-from datetime import datetime
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -23,14 +22,18 @@ from .._run.impacts import Result
 from .._run.simulate import simulate
 from .._scene.errors import SceneError
 from .._scene.overrides import apply_overrides
-from .._scene.scene import Scene, load_scene, read_yaml, scene_yaml
+from .._scene.reading import read_yaml
+from .._scene.scene import Scene, load_scene, scene_yaml
 from .console import out, refuse, say, warn
-from .folders import check_output, make_folder, removed_on_failure
+from .folders import check_output, fresh_folder, make_folder, removed_on_failure
+from .long_runs import interruptible
 from .tables import facts_table, result_table
 
 if TYPE_CHECKING:
     from .._run.indentation import IndentationResult
     from .._run.shear import ShearResult
+
+RUN_FILE = "run.h5"  # the file of a run in its folder
 
 # Indentation tests' modules (their quasi-static march, files and figures) are imported where a
 # run is one: an impact's run loads none of them; h5py is imported where a run is written or shown.
@@ -39,13 +42,14 @@ if TYPE_CHECKING:
 def run_scene(scene_file: Path, output: Path | None, assignments: list[str] | None, overwrite: bool) -> None:
     """`impact run`: run one scene; write run.h5, config.yaml and plots to an output folder."""
     scene = scene_of(scene_file, assignments)
-    folder = output or Path("runs") / scene.name / datetime.now().strftime("%Y%m%d-%H%M%S")
-    check_output(folder, overwrite)
+    if output is not None:
+        check_output(output, overwrite)
     import_ahead()  # matplotlib, for the figures, while the run loads and computes
     start = time.perf_counter()
-    result = simulate(scene)
+    result = interruptible(lambda: simulate(scene))
     wall_time = time.perf_counter() - start
-    write_outputs(result, folder, wall_time, overwrite)
+    folder = output or fresh_folder(Path("runs") / scene.name)
+    write_outputs(result, folder, wall_time, overwrite, created=output is None)
     out.print(result_table(result, wall_time))
     say(f"run written to {folder}")
     if not result.success:
@@ -64,12 +68,16 @@ def validate_scene(scene_file: Path, assignments: list[str] | None) -> None:
 
 
 def show_run(run_file: Path) -> None:
-    """`impact show`: print the summary of a stored run (run.h5)."""
+    """`impact show`: print the summary of a stored run (run.h5, or the run folder holding it)."""
     from .._io.h5md import read_provenance
     from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance
     from .._io.run import read_run
     from .._io.shear import is_shear_run, read_shear, read_shear_provenance
 
+    if run_file.is_dir():
+        if not (run_file / RUN_FILE).is_file():
+            refuse(f"cannot show {run_file}", [("", f"{run_file} is a folder without a {RUN_FILE}")])
+        run_file = run_file / RUN_FILE
     result: Result | IndentationResult | ShearResult
     try:
         if is_indentation_run(run_file):
@@ -101,19 +109,25 @@ def scene_of(scene_file: Path, assignments: list[str] | None) -> Scene:
 
 
 def write_outputs(
-    result: "Result | IndentationResult | ShearResult", folder: Path, wall_time: float, overwrite: bool
+    result: "Result | IndentationResult | ShearResult",
+    folder: Path,
+    wall_time: float,
+    overwrite: bool,
+    created: bool = False,
 ) -> None:
-    """Create the folder and write config.yaml, run.h5 and the plots, each atomically; a folder
-    created here is removed again if a write fails."""
+    """Create the folder (`created`: made already, by `fresh_folder`) and write config.yaml,
+    run.h5 and the plots, each atomically; a folder created for them is removed again if a write
+    fails or is interrupted."""
     from .._run.shear import ShearResult  # a shear test's result, where a run is written
 
-    with removed_on_failure(folder):
-        make_folder(folder, exist_ok=overwrite)
+    with removed_on_failure(folder, created):
+        if not created:
+            make_folder(folder, exist_ok=overwrite)
         write_text(folder / "config.yaml", scene_yaml(result.scene))
         if isinstance(result, Result):
             from .._io.run import write_run
 
-            write_run(result, folder / "run.h5", wall_time=wall_time)
+            write_run(result, folder / RUN_FILE, wall_time=wall_time)
             save_figures(result, folder)
             if result.scene.effects.friction is not None:
                 from .._plots.oblique import save_run_tangential_figure
@@ -129,5 +143,5 @@ def write_outputs(
             from .._io.indentation import write_indentation
             from .._plots.indentation import save_indentation_figures
 
-            write_indentation(result, folder / "run.h5", wall_time=wall_time)
+            write_indentation(result, folder / RUN_FILE, wall_time=wall_time)
             save_indentation_figures(result, folder)

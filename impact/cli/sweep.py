@@ -21,7 +21,6 @@ import time
 from pathlib import Path
 
 import jax
-import typer
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -46,6 +45,7 @@ from .._scene.sweep import load_sweep
 from .._scene.sweep_spec import SweepSpec
 from .console import err, out, refuse, refuse_value, say, warn
 from .folders import make_folder, removed_on_failure
+from .long_runs import interruptible
 from .tables import OUTCOMES, outcome_counts, sticking_table, sweep_table
 
 FIGURE = "restitution.png"
@@ -190,10 +190,13 @@ def _join(coordinator, num_processes, process_id) -> tuple[int, int]:
 
 def _ask_devices(devices: int) -> None:
     """On CPU, make `devices` host devices visible if the backend has not started yet (JAX
-    refuses the setting once it has: the devices there are then what the sweep gets)."""
+    refuses the setting once it has: the devices there are then what the sweep gets). The
+    setting is read as an attribute of `jax.config` (`jax.config.read` refuses a setting that
+    has a context manager; −1 where neither it nor JAX_NUM_CPU_DEVICES is set); a larger
+    JAX_NUM_CPU_DEVICES is kept."""
     if devices < 1:
         refuse_value("--devices", devices, "be >= 1")
-    if devices > jax.config.read("jax_num_cpu_devices"):
+    if devices > jax.config.jax_num_cpu_devices:  # type: ignore[attr-defined] # a setting, not in the stubs
         with contextlib.suppress(RuntimeError):
             jax.config.update("jax_num_cpu_devices", devices)
 
@@ -243,16 +246,16 @@ def _writer(path: Path, plan: Plan, resume: bool, overwrite: bool, **layout) -> 
 
 def _solve(plan: Plan, writer: SweepWriter, expected: int, **options) -> dict:
     """Run the points left to this process with a progress bar on stderr; each finished chunk
-    goes to the writer. Ctrl-C keeps the finished chunks and exits with code 130."""
+    goes to the writer. Ctrl-C keeps the finished chunks and exits with code 130 at once (the
+    chunk in progress is lost, as after a kill: see `long_runs`)."""
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), _PointsPerSecond())
     timing = (TimeElapsedColumn(), TextColumn("eta"), TimeRemainingColumn())
     with Progress(*columns, *timing, console=err, transient=False) as progress:
         bar = _Bar(progress, expected, writer.rows)
-        try:
-            return execute(plan, skip=writer.rows, on_chunk=writer.append, progress=bar, **options)
-        except KeyboardInterrupt:
-            warn(f"interrupted: the finished chunks are in {writer.path}; run the same command again to resume")
-            raise typer.Exit(130) from None
+        interrupted = f"interrupted: the finished chunks are in {writer.path}; run the same command again to resume"
+        return interruptible(
+            lambda: execute(plan, skip=writer.rows, on_chunk=writer.append, progress=bar, **options), interrupted
+        )
 
 
 def merge_shards(shards: list[Path], output: Path, overwrite: bool) -> None:

@@ -103,14 +103,13 @@ def indentation_table(result: "IndentationResult", wall_time: float | None) -> T
 def impact_table(result: Result, wall_time: float | None) -> Table:
     """The key results of an impact."""
     stats = result.stats
-    contact_time = result.contact_time
     tabor = result.tabor_parameter
     effects = result.scene.effects
     rows = [
-        ("restitution e", f"{result.restitution:.8g}"),
+        ("restitution e", _restitution(result)),
         ("stuck", "yes" if result.stuck else "no"),
         ("status", result.status),
-        ("contact time", quantity(contact_time, "s") if math.isfinite(contact_time) else "∞ (never let go)"),
+        ("contact time", _contact_time(result)),
         ("max indentation", quantity(result.max_indentation, "m")),
         ("max force", compressive(result.max_force)),
         ("min force", quantity(result.min_force, "N")),
@@ -134,6 +133,25 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         _wall_time(wall_time),
     ]
     return key_value_table(f"{result.scene.name}", rows)
+
+
+def _restitution(result: Result) -> str:
+    """e of the first contact (0 where it captured the body; so said where more contacts
+    followed), or why there is none."""
+    if math.isnan(result.restitution):
+        return f"— (no physical outcome: {result.status})"
+    first = f" (of the first of {result.bounces} contacts)" if result.bounces > 1 else ""
+    return f"{result.restitution:.8g}{first}"
+
+
+def _contact_time(result: Result) -> str:
+    """The first contact's duration, or why it has none."""
+    duration = result.contact_time
+    if math.isfinite(duration):
+        return quantity(duration, "s")
+    if math.isnan(duration):
+        return "— (never touched)"
+    return "∞ (never let go)" if result.success else f"— (ended in contact: {result.status})"
 
 
 def _two_body_rows(result: Result) -> list[tuple[str, str]]:

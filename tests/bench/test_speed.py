@@ -126,6 +126,18 @@ def test_split_parts_add_up_to_timed_calls(tiny):
 
 
 @pytest.mark.parametrize(
+    ("stages", "parts"),
+    [((2.0, 7.0, 9.0), (2.0, 5.0, 2.0)), ((2.0, 9.0, 7.0), (2.0, 5.0, 0.0))],
+    ids=["nested", "solve stage longer than the whole"],
+)
+def test_the_split_never_reports_a_negative_post_process(stages, parts):
+    """A solve stage that took longer than the whole point function (measured: attach, the
+    post-process −1.76 µs) leaves post-processing 0, the parts still adding up to the whole."""
+    assert speed.split_times(*stages) == parts
+    assert sum(parts) == stages[2]
+
+
+@pytest.mark.parametrize(
     "options, named",
     [
         (["--points", "0"], "--points"),

@@ -216,6 +216,34 @@ BAD_SCENES = [
     ("mass and density", {"body.density": 2500}, "body", "exactly one of mass"),
     ("springs < 1", {"contact.springs": 0}, "contact.springs", "0 is outside the allowed range [1, 1e9]"),
     ("rtol = 0", {"solver.rtol": 0}, "solver.rtol", "0 is outside the allowed range [1e-16, 0.5]"),
+    (
+        "springs a word",
+        {"contact.springs": "abc"},
+        "contact.springs",
+        "expected 'continuum' or a valid integer, got 'abc'",
+    ),
+    ("section a number", {"effects": 3}, "effects", "expected a mapping of keys (a section), got 3"),
+    ("300-character name", {"name": "a" * 300}, "name", "at most 100 characters (it names the run's folder), got 300"),
+    ("name of dots", {"name": ".."}, "name", "'..' names no folder of its own"),
+    (
+        "tabulated beyond 10⁴ points",
+        {"body.profile": {"shape": "tabulated", "r": [k * 1e-9 for k in range(10001)], "f": [0.0] * 10001}},
+        "body.profile.r",
+        "at most 10000 values, got 10001",
+    ),
+    (
+        "a billion springs",
+        {"contact.springs": 10**9},
+        "contact.springs",
+        "the run would take about 1e+09 solver steps (1000000000 springs × 1 contact(s)), beyond the budget of "
+        "1e+07 (limits.step_budget): raise it, or run with --allow-long",
+    ),
+    (
+        "verlet dt = 1e-30",
+        {"contact.springs": 2000, "solver": {"method": "verlet", "dt": 1e-30}},
+        "solver.dt",
+        "the run would take about 3.8e+22 solver steps (3.8e-08 s of contact in steps of 1e-30 s, and 2000 springs)",
+    ),
 ]
 
 
@@ -298,7 +326,7 @@ def test_scene_that_is_no_text_file_is_refused(kind, tmp_path, monkeypatch):
         ("body.profile.theta=0.1", ["--set", "no field 'body.profile.theta'"]),  # a paraboloid has no theta
         ("initial.velocity=fast", ["initial.velocity", "expected a number", "'fast'"]),
         ("initial.velocity", ["--set", "expected dotted.path=value"]),
-        ("name=[unclosed", ["--set name", "not valid YAML"]),
+        ("name=[unclosed", ["--set name", "invalid YAML in the value of --set name"]),
     ],
 )
 def test_bad_override_is_refused(assignment, phrases, tmp_path, monkeypatch):

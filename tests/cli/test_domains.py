@@ -42,6 +42,11 @@ REFUSALS = [
         "effects.adhesion.work_of_adhesion: 1e-30 J/m² is outside the allowed range 0 or [5.848e-26, 1e4] J/m²: "
         "the detachment length is 4.1e-15 of the indentation, below what float64 resolves (1e-12)",
     ),
+    (  # found by the long fuzzer: the detachment length underflowed to 0 (a ZeroDivisionError)
+        "effects.adhesion={work_of_adhesion: 2.225073858507e-311, approach_work_of_adhesion: 0.0}",
+        "effects.adhesion.work_of_adhesion: 2.22507e-311 J/m² is outside the allowed range 0 or [5.848e-26, 1e4] "
+        "J/m²: the detachment length is 0 of the indentation, below what float64 resolves (1e-12)",
+    ),
     (
         "body.profile={shape: power_law, n: 2, c: 1e300}",
         "body: the scene's radial unit 1e-200 (SI) is outside the allowed range [1e-150, 1e150]",

@@ -99,12 +99,31 @@ ADHESION = "effects.adhesion.work_of_adhesion"
 SIGMAS = {"restitution": {"sigma": "restitution_sigma"}}
 
 
-def _nan_in_row_3(text: str) -> str:
-    lines = text.splitlines()
-    fields = lines[6].split(",")  # three comment lines, the header, then rows 1, 2 and 3
-    fields[1] = "nan"
-    lines[6] = ",".join(fields)
-    return "\n".join(lines) + "\n"
+def _in_row_3(column: int, value: str):
+    """A change of the data text: `value` in `column` of data row 3."""
+
+    def changed(text: str) -> str:
+        lines = text.splitlines()
+        fields = lines[6].split(",")  # three comment lines, the header, then rows 1, 2 and 3
+        fields[column] = value
+        lines[6] = ",".join(fields)
+        return "\n".join(lines) + "\n"
+
+    return changed
+
+
+def _restitution_twice(text: str) -> str:
+    return "\n".join(line if line.startswith("#") else f"{line},{line.split(',')[1]}" for line in text.splitlines())
+
+
+def _one_row(text: str) -> str:
+    return "\n".join(text.splitlines()[:5])  # three comment lines, the header and row 1
+
+
+VELOCITY_RANGE = (
+    "m/s is outside the allowed range 0 or [1e-20, 1e4] m/s: 0 for a body dropped by gravity; above 10 km/s an "
+    "impact is no elastic contact"
+)
 
 
 @pytest.mark.parametrize(
@@ -135,7 +154,40 @@ def _nan_in_row_3(text: str) -> str:
             "observables.max_force.sigma",
             "must be > 0, got -0.02",
         ),
-        ({}, _nan_in_row_3, "data", "column 'restitution' holds nan in row 3"),
+        ({}, _in_row_3(1, "nan"), "data", "column 'restitution' holds nan in row 3"),
+        (
+            {},
+            _in_row_3(0, "-0.35"),
+            "data",
+            f"column 'initial.velocity', data row 3: -0.35 is refused by initial.velocity: -0.35 {VELOCITY_RANGE}",
+        ),
+        (
+            {},
+            _in_row_3(0, "1e300"),
+            "data",
+            f"column 'initial.velocity', data row 3: 1e+300 is refused by initial.velocity: 1e+300 {VELOCITY_RANGE}",
+        ),
+        (
+            {},
+            _in_row_3(0, "0"),
+            "data",
+            "data row 3 (initial.velocity = 0.0) makes the scene invalid: initial.velocity: must be > 0 (or name "
+            "gravity and a gap > 0 to drop the body)",
+        ),
+        (
+            {},
+            _one_row,
+            "data",
+            "1 data row(s) × 2 observable(s) = 2 measured value(s) for 2 parameter(s): a fit needs more measured "
+            "values than parameters (at least 3), to leave degrees of freedom for χ² and the standard errors",
+        ),
+        (
+            {},
+            _in_row_3(2, "1e-300"),
+            "observables.restitution",
+            "(model − measured)/σ is 2.3e+299 in data row 3 at the parameters' start: beyond 1e+150, χ² overflows "
+            "float64; check the measured value 0.668837 and its σ",
+        ),
         (
             {"parameters": {ADHESION: {"start": 2.0, "min": 1.0e-4, "max": 1.0, "scale": "log"}}},
             None,
@@ -143,10 +195,29 @@ def _nan_in_row_3(text: str) -> str:
             "2 lies outside the bounds (0.0001, 1)",
         ),
     ],
-    ids=["unknown path", "static input", "missing column", "negative sigma", "nan in data", "start outside bounds"],
+    ids=[
+        "unknown path",
+        "static input",
+        "missing column",
+        "negative sigma",
+        "nan in data",
+        "negative velocity",
+        "huge velocity",
+        "zero velocity",
+        "one row",
+        "overflowing residual",
+        "start outside bounds",
+    ],
 )
 def test_bad_fit_files_exit_2_naming_the_field_and_write_nothing(tmp_path, change, csv, field, message):
     _refused(tmp_path, _bad_copy(tmp_path, DROP_TEST, change, csv), field, message)
+
+
+def test_a_column_named_twice_is_refused(tmp_path):
+    """Not the last copy silently: both columns named."""
+    path = _bad_copy(tmp_path, DROP_TEST, csv=_restitution_twice)
+    message = f"{tmp_path / 'drops.csv'}: column 'restitution' appears twice in the header (columns 2 and 5)"
+    _refused(tmp_path, path, "data", message)
 
 
 # --- indentation curves (the AFM use) and --set ----------------------------------------------

@@ -116,6 +116,32 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
     assert int(outcome.status) == RESULT_CODE["solver_failure"]
 
 
+# Found as one point of a 10⁷-point sweep: 1.57e-7 below the sticking velocity (3.51) of the
+# Thornton–Ning scene, the unloading turnaround is a nearly double root of v² (its minimum lies
+# 4e-4 beyond it, at the critical point of the JKR branch).
+JUST_BELOW_STICKING = 0.30317878887891037  # m/s
+ULP = 2.0**-52
+
+
+def test_quadrature_at_the_sticking_velocity_is_a_physical_outcome():
+    """Just below v_s (the point found, ± 4 ulps): captured, e = 0, as dopri8 and the closed form
+    say, not solver_failure; at v_s itself (± 4 ulps): a physical outcome, with e within 1e-7 of
+    (3.50–51) (e² = 1 − v_s²/v² is round-off there) and the deepest indentation to 1e-12."""
+    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    sticking = float(theory.thornton_ning_sticking_velocity(scene.body.mass, scene.body.profile.R, 1e9, 0.05))
+    below = [JUST_BELOW_STICKING * (1.0 + k * ULP) for k in range(-4, 5)]
+    at = [sticking * (1.0 + k * ULP) for k in range(-4, 5)]
+    fast = sweep(scene, {"initial.velocity": below + at}, order="given").results
+    tight = sweep(with_values(scene, TIGHT), {"initial.velocity": below}, order="given").results
+    status, restitution = np.asarray(fast["status"]), np.asarray(fast["restitution"])
+    assert np.all(status[: len(below)] == RESULT_CODE["captured"]) and np.all(restitution[: len(below)] == 0.0)
+    assert np.all(np.asarray(tight["status"]) == RESULT_CODE["captured"])
+    assert set(status[len(below) :]) <= {RESULT_CODE["separated"], RESULT_CODE["captured"]}
+    assert np.all(np.abs(restitution - np.asarray(fast["theory_restitution"])) <= 1e-7)
+    deepest = np.asarray(fast["max_indentation"])[: len(below)]
+    assert np.allclose(deepest, np.asarray(tight["max_indentation"]), rtol=1e-12, atol=0.0)
+
+
 @pytest.mark.parametrize("mode", ["reverse", "forward"])
 def test_derivatives_are_thornton_nings(mode):
     """`impact.as_function` differentiates through the quadrature: de/dΔγ and de/dv0 are those

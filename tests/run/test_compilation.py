@@ -4,9 +4,13 @@ process load the traced program and its executable instead of tracing and compil
 same results to the bit; a cache directory that cannot be written only warns."""
 
 import copy
+import dataclasses
+import hashlib
+import math
 import os
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import equinox as eqx
@@ -15,14 +19,17 @@ import jax.numpy as jnp
 import numpy as np
 import platformdirs
 import pytest
+from jax import export
 
 import impact
+from impact._core import stored
 from impact._core.cache import cache_directory, directory_in_use, use_cache
-from impact._core.stored import EXPORTED, call_stored
+from impact._core.stored import EXPORTED, StoredProgramWarning, call_stored
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve, solve_by_field
-from impact._scene.scene import read_yaml
+from impact._scene.reading import read_yaml
 from impact._scene.sweep import load_sweep
+from impact.cli.console import show_warning
 
 ROOT = Path(__file__).parents[2]
 THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
@@ -351,3 +358,80 @@ def test_a_program_that_cannot_be_stored_is_traced_in_its_process(tmp_path, rest
     with jax.enable_x64(True):
         assert float(call_stored(logged, jnp.asarray(1.5))["value"]) == 3.0
     assert list((tmp_path / "jax").rglob("*.jaxexport")) == []
+
+
+def _doubled_sine(x):
+    return {"value": 2.0 * jnp.sin(x)}
+
+
+def _stored_value(x: float) -> float:
+    """`_doubled_sine(x)` through `call_stored`, as a fresh process would call it (no program of
+    this process kept), from one call site (the stored program's locations name it)."""
+    stored._loaded.clear()
+    with jax.enable_x64(True):
+        return float(call_stored(_doubled_sine, jnp.asarray(x))["value"])
+
+
+@pytest.fixture
+def stored_program(tmp_path, monkeypatch, restore_cache) -> Path:
+    """The stored file of `_doubled_sine` in a cache of its own (this process's programs kept aside)."""
+    monkeypatch.setattr(stored, "_loaded", {})
+    use_cache(tmp_path / "jax")
+    assert _stored_value(0.5) == 2.0 * math.sin(0.5)
+    (path,) = (tmp_path / "jax" / EXPORTED).iterdir()
+    return path
+
+
+def test_a_flipped_bit_anywhere_in_a_stored_program_is_discarded_and_traced_anew(stored_program):
+    """One bit flipped at any of 64 positions spread over the file (its SHA-256 and the program;
+    unchecked, some flips fail to deserialize or lower and one hung the StableHLO reader): one
+    warning, the traced value, and the program stored again, sound."""
+    good = stored_program.read_bytes()
+    positions = sorted({round(k * (len(good) - 1) / 63) for k in range(64)})
+    assert len(positions) == 64
+    for k, position in enumerate(positions):
+        damaged = bytearray(good)
+        damaged[position] ^= 1 << (k % 8)
+        stored_program.write_bytes(bytes(damaged))
+        with pytest.warns(StoredProgramWarning) as caught:
+            assert _stored_value(0.5) == 2.0 * math.sin(0.5), position
+        assert [str(warning.message) for warning in caught] == [
+            f"stored program {stored_program.name} discarded and traced anew: its SHA-256 does not match "
+            "(the file is damaged)"
+        ], position
+        assert _loads_without_warning(), position
+
+
+def _loads_without_warning() -> bool:
+    """Whether the stored program of `_doubled_sine` loads (again) without a warning and gives its value."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StoredProgramWarning)
+        return _stored_value(0.75) == 2.0 * math.sin(0.75)
+
+
+def _signed(program: bytes) -> bytes:
+    return hashlib.sha256(program).digest() + program
+
+
+@pytest.mark.parametrize("damage", ["not a program", "cut short", "StableHLO damaged"])
+def test_a_stored_program_that_fails_to_load_or_lower_is_discarded_and_traced_anew(damage, stored_program):
+    """A file whose digest matches but whose program fails (to deserialize, or to lower: the
+    StableHLO inside a sound flatbuffer) is discarded with one warning and traced anew."""
+    good = stored_program.read_bytes()
+    program = good[hashlib.sha256().digest_size :]
+    if damage == "not a program":
+        program = b"not a program"
+    elif damage == "cut short":
+        program = program[: len(program) // 2]
+    else:
+        exported = export.deserialize(bytearray(program))
+        program = bytes(dataclasses.replace(exported, mlir_module_serialized=b"ML\xefR damaged").serialize())
+    stored_program.write_bytes(_signed(program))
+    with pytest.warns(StoredProgramWarning, match=f"stored program {stored_program.name} discarded and traced anew: "):
+        assert _stored_value(0.25) == 2.0 * math.sin(0.25)
+    assert _loads_without_warning()
+
+
+def test_a_python_warning_is_one_line_on_the_command_line(capsys):
+    show_warning(StoredProgramWarning("stored program k.jaxexport discarded"), StoredProgramWarning, "stored.py", 1)
+    assert capsys.readouterr().err == "warning: stored program k.jaxexport discarded\n"

@@ -115,6 +115,33 @@ def test_linear_model_meets_ordinary_least_squares(scene, known_sigma):
     assert result.sigma_source.startswith("given" if known_sigma else "scatter")
 
 
+def _undefined_above_one(x):
+    """`_line`, but no number where the input exceeds 1 (as a simulation without a physical outcome)."""
+    return jnp.where(x[2] > 1.0, jnp.nan, _line(x))
+
+
+def test_a_model_without_a_number_at_the_start_is_refused_not_fitted(scene):
+    """χ² would be NaN: refused before the solve, the rows named (not a fit "NOT converged")."""
+    x = np.linspace(0.5, 2.0, 10)
+    with pytest.raises(impact.FitError) as caught:
+        impact.fit(
+            scene,
+            {"initial.velocity": x, "restitution": 0.3 + 0.2 * x},
+            {ADHESION: {"start": 0.1}, MODULUS: {"start": 0.1}},
+            {"restitution": {"sigma": 0.01}},
+            ["initial.velocity"],
+            model=_undefined_above_one,
+        )
+    assert caught.value.problems == [
+        (
+            "observables.restitution",
+            f"the model gives no number at the parameters' start ({ADHESION} = 0.1, {MODULUS} = 0.1) in data rows "
+            "5, 6, 7, 8 and 2 more: change the start or the data (with model simulation, the run of such a row ends "
+            "without a physical outcome there: `impact run` its scene with the row's inputs to see why)",
+        )
+    ]
+
+
 def test_a_bound_holds_where_the_data_pull_beyond_it(scene):
     x = np.linspace(0.5, 2.0, 10)
     result = impact.fit(

@@ -381,6 +381,21 @@ def test_two_devices_give_the_results_of_one(grid, jobs):
     assert_same(two, grid.results, names=CLOSE, rtol=1e-11)
 
 
+def test_the_devices_option_shards_the_sweep_over_that_many_cpu_devices(tmp_path, cache_env):
+    """`impact sweep --devices 2` starts two host devices (jax 0.10 refuses `jax.config.read`
+    of a setting that has a context manager: it is read as an attribute of jax.config)."""
+    sweep_file = write_sweep(tmp_path / "tiny.yaml", {"initial.velocity": [0.5, 1.0, 2.0, 4.0]})
+    done = subprocess.run(
+        sweep_cli("sweep", sweep_file, "-o", tmp_path / "out", "--devices", 2),
+        env=cache_env,
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    with h5py.File(tmp_path / "out" / "sweep.h5", "r") as file:
+        assert int(file["sweep"].attrs["last_devices"]) == 2
+
+
 def h5_columns(path: Path) -> dict:
     with h5py.File(path, "r") as file:
         group = file["sweep"]

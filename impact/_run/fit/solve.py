@@ -25,7 +25,7 @@ import optimistix as optx
 
 from ..._core.runtime import float64
 from ..._core.stored import call_stored
-from ..._scene.fit_spec import FUNCTION, FitSpec, make_fit_spec
+from ..._scene.fit_spec import FUNCTION, FitError, FitSpec, make_fit_spec
 from .bounds import Bounds
 from .models import DESCRIBED, Model, simulation_model, theory_model
 from .uncertainty import uncertainty
@@ -196,7 +196,9 @@ def fit_spec(
     # The scale a placeholder until the start's residuals (which do not use it) give it.
     data = Measurements(bounds, *(jnp.asarray(array) for array in (rows, measured, sigma, np.float64(1.0))))
     start = jnp.asarray(bounds.internal([entry.start for entry in spec.parameters.values()]))
-    data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(_start_residuals(residuals, start, data) ** 2)))
+    at_start = np.asarray(_start_residuals(residuals, start, data))
+    _check_start(spec, at_start.reshape(measured.shape))
+    data = dataclasses.replace(data, scale=jnp.sqrt(jnp.mean(at_start**2)))
     solved = {name: np.asarray(value) for name, value in _compiled(_solve, residuals, max_steps, start, data).items()}
     scale = float(data.scale)
     if progress is not None:
@@ -222,6 +224,49 @@ def fit_spec(
         sigma=sigma,
         jacobian=jacobian,
     )
+
+
+# A weighted residual above this makes χ² (a sum of up to 10⁸ squares) overflow float64.
+_LARGEST_RESIDUAL = 1e150
+
+
+def _check_start(spec: FitSpec, weighted: np.ndarray) -> None:
+    """FitError where the weighted residuals [rows, observables] at the parameters' start are
+    not all numbers (the model gives none for a row there) or so large that χ² overflows: each
+    observable's first rows named."""
+    start = ", ".join(f"{path} = {entry.start:g}" for path, entry in spec.parameters.items())
+    problems = []
+    for column, name in enumerate(spec.observables):
+        values = weighted[:, column]
+        missing, huge = np.flatnonzero(np.isnan(values)), np.flatnonzero(~(np.abs(values) <= _LARGEST_RESIDUAL))
+        if missing.size:
+            problems.append(
+                (
+                    f"observables.{name}",
+                    f"the model gives no number at the parameters' start ({start}) in {_rows(missing)}: change the "
+                    "start or the data (with model simulation, the run of such a row ends without a physical "
+                    "outcome there: `impact run` its scene with the row's inputs to see why)",
+                )
+            )
+        elif huge.size:
+            row = huge[0]
+            problems.append(
+                (
+                    f"observables.{name}",
+                    f"(model − measured)/σ is {values[row]:.3g} in {_rows(huge)} at the parameters' start: beyond "
+                    f"{_LARGEST_RESIDUAL:g}, χ² overflows float64; check the measured value "
+                    f"{spec.data[name][row]:g} and its σ",
+                )
+            )
+    if problems:
+        raise FitError(problems)
+
+
+def _rows(indices: np.ndarray) -> str:
+    """'data row 3', 'data rows 1, 2, 5' or 'data rows 1, 2, 5, 7 and 26 more'."""
+    shown = ", ".join(str(index + 1) for index in indices[:4].tolist())
+    more = f" and {indices.size - 4} more" if indices.size > 4 else ""
+    return f"data row{'s' if indices.size > 1 else ''} {shown}{more}"
 
 
 def _model(spec: FitSpec, model: "Model | str") -> Model:
