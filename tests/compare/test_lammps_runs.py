@@ -6,7 +6,6 @@ onto LAMMPS's force law. Each LAMMPS run is a few particles for a few thousand s
 
 import csv
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,10 +17,10 @@ from impact._compare.lammps_batch import run_batch
 from impact._compare.lammps_model import lammps_model
 from impact._scene.scene import load_scene
 from impact.cli import app
+from tests.scenes import CONFIGS
 
 pytest.importorskip("lammps")
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 STEPS_PER_CONTACT = 200  # a coarse step: LAMMPS's error stands well above impact's (1e-9)
 
 

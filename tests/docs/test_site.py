@@ -19,11 +19,11 @@ import pytest
 import yaml
 
 import impact
+from tests.scenes import ROOT
 
 if importlib.util.find_spec("mkdocs") is None and not os.environ.get("CI"):
     pytest.skip("the docs extra is not installed: pip install -e '.[docs]'", allow_module_level=True)
 
-ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "docs" / "mkdocs.yml"
 RESULT_CLASSES = ("Result", "SweepResult", "IndentationResult", "FitResult")
 # Members of the result classes that are no physical quantity (the scene, names, flags, counts,

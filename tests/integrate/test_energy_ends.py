@@ -2,8 +2,6 @@
 balance puts it, so the restitution and the deepest indentation are exact to round-off at any
 tolerance, while the times still come from the solver (to about its rtol)."""
 
-from pathlib import Path
-
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -16,8 +14,8 @@ from impact import theory
 from impact._integrate.codes import RESULT_CODE
 from impact._run.parameters import options_for
 from impact.cli import app
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 LOOSE = {"rtol": 1e-6, "atol": 1e-8}
 
 
@@ -125,56 +123,6 @@ def test_a_tiny_approach_work_loaded_in_time_is_exact():
         expected = impact.simulate(tight).restitution
         assert abs(loose.restitution - expected) <= 1e-13
         assert abs(impact.simulate(located).restitution - expected) > 1e-8
-
-
-@pytest.mark.parametrize(
-    ("change", "why"),
-    [
-        (
-            {"contact": {"springs": 64}},
-            "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly",
-        ),
-        (
-            {"effects": {"adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 3.7e7}}},
-            "not with adhesion model 'maugis_dugdale': its phases end where the solver locates them",
-        ),
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "plasticity": {"yield_pressure": 3e8}}},
-            "not with effects.plasticity: its phases end where the solver locates them",
-        ),
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
-            "not with effects.damping: a damped phase does not keep its energy",
-        ),
-    ],
-)
-def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data.update(change)
-    data["solver"] = {"phase_ends": "energy"}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.phase_ends"] == why
-
-
-@pytest.mark.parametrize(
-    ("field", "value", "why"),
-    [
-        ("phase_ends", "exact", "unknown phase_ends 'exact'; expected one of: integrated, energy"),
-        (
-            "method",
-            "rk4",
-            "unknown method 'rk4'; expected one of: "
-            "tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet, quadrature",
-        ),
-    ],
-)
-def test_an_unknown_solver_choice_is_refused(field, value, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data["solver"] = {field: value}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)[f"solver.{field}"] == why
 
 
 def test_derivatives_are_thornton_nings():

@@ -1,13 +1,10 @@
 """`solver.method: quadrature`: each contact phase ended by its energy balance and timed by
 Gauss quadrature of dt = dd/v, against the same impacts integrated by dopri8 at rtol 1e-13."""
 
-from pathlib import Path
-
 import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
-import yaml
 from typer.testing import CliRunner
 
 import impact
@@ -20,8 +17,8 @@ from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact.cli import app
 from tests.run.passive import assert_passive
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 QUADRATURE = {"solver.method": "quadrature"}
 TIGHT = {"solver.method": "dopri8", "solver.rtol": 1e-13, "solver.atol": 1e-15}
 # Velocities (m/s) of each scene: about its sticking velocity (Thornton–Ning: v_s = 0.3032 m/s,
@@ -145,39 +142,6 @@ def _status(integrator, options, scene) -> int:
     """The run's result code, traced afresh (a cached program would not see a patched constant)."""
     _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
     return int(outcome.status)
-
-
-@pytest.mark.parametrize(
-    ("change", "why"),
-    [
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
-            "'quadrature' not with effects.damping: a damped phase does not keep its energy",
-        ),
-        (
-            {"body": {"profile": {"shape": "sphere", "R": 1e-6}, "mass": 1.0472e-14}},
-            "'quadrature' needs a profile of the form g = A·xⁿ (paraboloid, cone, power_law), not 'sphere'",
-        ),
-        (
-            {"body": {"profile": {"shape": "power_law", "n": 0.8, "c": 1e3}, "mass": 1.0472e-14}},
-            "'quadrature' needs a power law with n >= 1 (not 0.8) and, with adhesion, approach_work_of_adhesion "
-            "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope",
-        ),
-        ({"limits": {"duration": 1e-6}}, "'quadrature' does not stop a phase midway: leave limits.duration out"),
-        (
-            {"solver": {"method": "quadrature", "phase_ends": "integrated"}},
-            "'quadrature' ends every phase from its energy balance: leave solver.phase_ends out (or set it to "
-            "'energy')",
-        ),
-    ],
-)
-def test_quadrature_is_refused_where_it_does_not_apply(change, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data.update(change)
-    data.setdefault("solver", {})["method"] = "quadrature"
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.method"] == why
 
 
 def test_validate_shows_the_quadrature():

@@ -4,7 +4,6 @@ within round-off of the exact sum over millions of attach and detach events."""
 
 import functools
 import math
-from pathlib import Path
 
 import equinox as eqx
 import jax
@@ -19,8 +18,8 @@ from impact._integrate.springs import SpringArrayProblem
 from impact._law.springs import Attached
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve
+from tests.scenes import HARD
 
-HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
 COUNTS = (10, 1_000_000)
 
 

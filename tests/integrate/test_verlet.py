@@ -14,27 +14,19 @@ from impact._integrate.problem import build_problem
 from impact._integrate.springs import SpringArray, build_array
 from impact._integrate.verlet import Verlet
 from impact._law.springs import Attached
-from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.parameters import options_for, physics_for
 from impact._run.programs import solve
-from impact._scene.scene import SceneError, load_scene, scene_yaml
+from impact._scene.scene import load_scene, scene_yaml
 from impact.cli import app
+from tests.scenes import E_STAR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1e-6, 1e9, 0.05, 1.0472e-14
 COUNT = 300
 STEPS = np.geomspace(1e-2, 1e-5, 13)  # scaled time
 
 
 def scene(velocity_factor=2.0, **extra):
     v_s = float(theory.thornton_ning_sticking_velocity(MASS, R, E_STAR, WORK))
-    data = dict(
-        name="verlet",
-        body=dict(profile=dict(shape="paraboloid", R=R), mass=MASS),
-        material=dict(E_star=E_STAR),
-        initial=dict(velocity=velocity_factor * v_s),
-        effects=dict(adhesion=dict(work_of_adhesion=WORK)),
-    )
-    data.update(extra)
-    return data
+    return micro_sphere(velocity_factor * v_s, {"adhesion": {"work_of_adhesion": WORK}}, name="verlet", **extra)
 
 
 @pytest.fixture(scope="module")
@@ -131,32 +123,6 @@ def test_below_the_sticking_velocity_verlet_captures():
     data = scene(0.5, contact={"springs": COUNT}, solver={"method": "verlet", "dt": 1e-11})
     result = simulate(data)
     assert result.status == "captured" and result.stuck and result.restitution == 0.0
-
-
-@pytest.mark.parametrize(
-    "extra, path, words",
-    [
-        ({"solver": {"method": "verlet", "dt": 1e-11}}, "contact.springs", "number of springs"),
-        ({"solver": {"method": "verlet"}, "contact": {"springs": 100}}, "solver.dt", "time step"),
-        ({"solver": {"method": "tsit5", "dt": 1e-11}}, "solver.dt", "only for method 'verlet'"),
-        (
-            {"solver": {"method": "verlet", "dt": -1.0}, "contact": {"springs": 100}},
-            "solver.dt",
-            "-1 s is outside the allowed range [1e-30, 1] s",
-        ),
-    ],
-    ids=["continuum", "no step", "adaptive with a step", "negative step"],
-)
-def test_scene_refuses_verlet_misuse(extra, path, words):
-    with pytest.raises(SceneError) as caught:
-        load_scene(scene(**extra))
-    assert any(p == path and words in message for p, message in caught.value.problems), caught.value.problems
-
-
-def test_verlet_scene_accepts_a_yaml_string_step():
-    loaded = load_scene(scene(solver={"method": "verlet", "dt": "1e-11"}, contact={"springs": 100}))
-    assert loaded.solver.dt == 1e-11
-    assert integrator_for(loaded) == Verlet(dt=1e-11)
 
 
 def test_validate_prints_the_verlet_step_not_tolerances(tmp_path):

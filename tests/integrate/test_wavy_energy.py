@@ -9,8 +9,6 @@ moved the body deeper at no cost; the case 11_wavy_strong rebounded with e = 1.7
 −4.47e-12 J against 2.09e-12 J at touch).
 """
 
-from pathlib import Path
-
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -21,8 +19,9 @@ from impact._integrate import transitions
 from impact._integrate.problem import build_problem
 from impact._run.parameters import options_for, physics_for
 from impact._scene.scene import load_scene
+from tests.scenes import HARD
 
-CASE = Path(__file__).parents[2] / "configs" / "hard" / "11_wavy_strong.yaml"
+CASE = HARD / "11_wavy_strong.yaml"
 
 
 def wavy_scene(velocity: float, approach: float | None = None) -> dict:

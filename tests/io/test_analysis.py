@@ -36,18 +36,15 @@ from impact._scene.errors import SweepError
 from impact._scene.scene import scene_yaml
 from impact._scene.sweep import make_spec
 from impact.cli import app
+from tests.scenes import CONFIGS, E_STAR, MASS, THORNTON_NING, R
 
-ROOT = Path(__file__).parents[2]
-THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
-INDENTATION = ROOT / "configs" / "indentation_paraboloid.yaml"
+INDENTATION = CONFIGS / "indentation_paraboloid.yaml"
 VELOCITY, WORK = "initial.velocity", "effects.adhesion.work_of_adhesion"
 VELOCITIES = [0.25, 0.6, 2.0]  # v_s = 0.303 m/s at Δγ = 0.05: captured at 0.25; 0.184 m/s at 0.03
 WORKS = [0.03, 0.05]
 GRID = {VELOCITY: VELOCITIES, WORK: WORKS}
 ZIPPED = {VELOCITY: [0.3, 0.5, 0.8, 1.3, 2.1, 3.4], WORK: [0.01, 0.02, 0.03, 0.05, 0.08, 0.13]}
 CHUNK = 8
-# The Thornton–Ning particle: R = 1 µm, m = 1.0472e-14 kg, E* = 1 GPa.
-RADIUS, MASS, MODULUS = 1e-6, 1.0472e-14, 1e9
 AXIS_UNITS = {VELOCITY: "m s-1", WORK: "J m-2"}
 
 
@@ -124,7 +121,7 @@ def test_a_grid_has_one_dimension_per_axis_with_units_and_every_result(grid):
     assert {key: ds.attrs[key] for key in versions} == versions
     # Selected by value, a point is the closed form (3.50–3.51) to the quadrature's round-off.
     e = float(ds.restitution.sel({VELOCITY: 0.6, WORK: 0.05}))
-    assert abs(e - float(theory.thornton_ning_restitution(0.6, MASS, RADIUS, MODULUS, 0.05))) < 1e-12
+    assert abs(e - float(theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, 0.05))) < 1e-12
     assert math.isclose(e, 0.8629448823, abs_tol=1e-10)
 
 
@@ -136,7 +133,7 @@ def test_a_zipped_sweep_is_one_dimension_with_the_paths_as_coordinates(zipped):
         assert ds[path].attrs["units"] == AXIS_UNITS[path]
     assert ds.attrs["mode"] == "zip"
     velocities, works = np.array(ZIPPED[VELOCITY]), np.array(ZIPPED[WORK])
-    expected = theory.thornton_ning_restitution(velocities, MASS, RADIUS, MODULUS, works)
+    expected = theory.thornton_ning_restitution(velocities, MASS, R, E_STAR, works)
     np.testing.assert_allclose(ds.restitution.values, expected, rtol=0, atol=1e-12)
 
 
@@ -318,7 +315,7 @@ def test_a_run_is_its_time_series_with_units(run, tmp_path):
     for name, unit in series.items():
         assert np.array_equal(ds[name].values, getattr(run, name)) and ds[name].attrs["units"] == unit
     assert float(ds.restitution) == run.restitution and ds.contact_time.attrs["units"] == "s"
-    assert abs(float(ds.restitution) - float(theory.thornton_ning_restitution(0.6, MASS, RADIUS, MODULUS, 0.05))) < 1e-9
+    assert abs(float(ds.restitution) - float(theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, 0.05))) < 1e-9
     assert float(ds.adhesion_hysteresis) == run.adhesion_hysteresis and ds.adhesion_hysteresis.attrs["units"] == "J"
     assert decoded_status(ds.status) == "separated"
     assert ds.event_kind.values.tolist() == [kind for _, kind in run.events]

@@ -13,7 +13,9 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-PACKAGE = Path(__file__).parents[2] / "impact"
+from tests.scenes import ROOT
+
+PACKAGE = ROOT / "impact"
 
 # A child that rewrites one text file and one HDF5 file as fast as it can, each version whole
 # and self-checking (its number at both ends; the HDF5 dataset filled with its number).

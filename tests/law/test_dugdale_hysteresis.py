@@ -23,11 +23,7 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep.closed_forms import closed_form_name
 from impact._run.sweep.plan import physics_with, static_choices
 from impact._scene.scene import SceneError
-
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-A_C = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # JKR units (3.170)
-D_C = A_C**2 / (3 * R)
-F_C = 1.5 * math.pi * R * WORK
+from tests.scenes import A_JKR, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
 
 def scene(tabor=1.0, share=0.5, velocity=0.6, profile=None, stress=None, **extra):
@@ -39,14 +35,10 @@ def scene(tabor=1.0, share=0.5, velocity=0.6, profile=None, stress=None, **extra
     }
     if share is not None:
         adhesion["approach_work_of_adhesion"] = share * WORK
-    return {
-        "name": "md_hysteresis",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": adhesion},
-        **extra,
-    }
+    spec = micro_sphere(velocity, {"adhesion": adhesion}, name="md_hysteresis", **extra)
+    if profile is not None:
+        spec["body"]["profile"] = profile
+    return spec
 
 
 _build = eqx.filter_jit(lambda integrator, physics, options: integrator.build(physics, options))
@@ -122,14 +114,14 @@ def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
     np.testing.assert_array_equal(zone, b)
     for i in range(points.shape[0]):
         d_ref, f_ref, _ = frozen_reference(g, float(radius[i]), b, stress)
-        assert abs(depth[i] - d_ref) <= 1e-10 * D_C
-        assert abs(force[i] - f_ref) <= 1e-10 * F_C
+        assert abs(depth[i] - d_ref) <= 1e-10 * D_JKR
+        assert abs(force[i] - f_ref) <= 1e-10 * F_JKR
     h = WORK / stress
     for end, gap in ((radius[0], h), (radius[-1], share * h)):
         root = brentq(
             lambda a, gap=gap: frozen_reference(g, a, b, stress)[2] - gap, 1e-6 * b, b * (1 - 1e-12), xtol=1e-20
         )
-        assert abs(end - root) <= 1e-10 * A_C
+        assert abs(end - root) <= 1e-10 * A_JKR
 
 
 @pytest.mark.parametrize(

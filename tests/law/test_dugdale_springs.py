@@ -23,11 +23,8 @@ from impact._run.impacts import solve_scene
 from impact._run.indentation import indentation_loading, indentation_numerics
 from impact._run.parameters import options_for
 from impact.profiles import Paraboloid
+from tests.scenes import A_JKR, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
 COUNTS = (64, 128, 256)  # one compiled capacity: 256
 
 
@@ -42,13 +39,7 @@ def adhesion(tabor):
 def impact_scene(tabor):
     """The benchmark paraboloid at v0 = 0.6 m/s with Maugis–Dugdale adhesion at Tabor parameter
     `tabor` (continuum law; add a `contact` section for an array)."""
-    return {
-        "name": "md-springs",
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": 0.6},
-        "effects": {"adhesion": adhesion(tabor)},
-    }
+    return micro_sphere(0.6, {"adhesion": adhesion(tabor)}, name="md-springs")
 
 
 def order(counts, errors):

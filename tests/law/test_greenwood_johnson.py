@@ -3,7 +3,6 @@
 pull-off force, Thornton–Ning as k grows, the reversible DMT side, sweeps and refusals."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,21 +15,16 @@ from impact import load_scene, simulate, theory
 from impact._io.run import read_run
 from impact._scene.scene import SceneError
 from impact.cli import app
+from tests.scenes import CONFIGS, E_STAR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-CONFIG = Path(__file__).parents[2] / "configs" / "greenwood_johnson.yaml"
+CONFIG = CONFIGS / "greenwood_johnson.yaml"
 
 
 def gj_scene(k=10.0, velocity=0.6, profile=None, **extra):
-    scene = {
-        "name": "gj",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": k}},
-    }
-    scene.update(extra)
-    return load_scene(scene)
+    scene = micro_sphere(velocity, {"adhesion": {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": k}})
+    if profile is not None:
+        scene["body"]["profile"] = profile
+    return load_scene({"name": "gj", **scene, **extra})
 
 
 def loop_area(k):

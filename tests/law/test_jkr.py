@@ -1,7 +1,8 @@
-"""Impacts against the chapter's closed forms and our own references (issue: core)."""
+"""Impacts on the continuum JKR law (and without adhesion, Hertz's) against the chapter's closed
+forms and our own references: Thornton–Ning, power laws and cones, capture, the spring array,
+attach on touch, gravity."""
 
 import dataclasses
-from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
@@ -11,12 +12,11 @@ from impact import simulate, theory
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for
 from impact._scene.scene import load_scene
-
-CONFIGS = Path(__file__).parents[2] / "configs"
+from tests.scenes import CONFIGS, E_STAR, MASS, WORK, R
 
 MATERIALS = {
     # micro-particle on a stiff polymer, and a softer, stickier pair
-    "micro": dict(R=1e-6, E_star=1e9, work_of_adhesion=0.05, mass=1.0472e-14),
+    "micro": dict(R=R, E_star=E_STAR, work_of_adhesion=WORK, mass=MASS),
     "soft": dict(R=5e-5, E_star=2e7, work_of_adhesion=0.2, mass=2.0e-9),
 }
 TIGHT = dict(method="tsit5", rtol=1e-11, atol=1e-13)
@@ -154,7 +154,6 @@ def power_law_scene(n, c, velocity, approach=None):
 
 def tip_constant(n):
     """c for f = c·rⁿ through the paraboloid's f at r = R (keeps the contact micro-sized)."""
-    R = MATERIALS["micro"]["R"]
     return R ** (1.0 - n) / 2.0
 
 

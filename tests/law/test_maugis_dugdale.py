@@ -3,7 +3,6 @@
 Λ grows, the reversible DMT side)."""
 
 import math
-from pathlib import Path
 
 import equinox as eqx
 import jax.numpy as jnp
@@ -21,8 +20,8 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._scene.errors import SweepError
 from impact._scene.scene import SceneError
 from impact.cli import app
+from tests.scenes import A_JKR, CONFIGS, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
 TABORS = (0.1, 0.3, 1.0, 3.0, 10.0)
 
 
@@ -34,15 +33,10 @@ def md_scene(tabor=1.0, velocity=0.6, profile=None, E_star=E_STAR, stress=None, 
         adhesion["stress"] = float(
             stress if stress is not None else theory.maugis_adhesive_stress(tabor, R, WORK, E_star)
         )
-    scene = {
-        "name": "md",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_star},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": adhesion},
-    }
-    scene.update(extra)
-    return load_scene(scene)
+    scene = micro_sphere(velocity, {"adhesion": adhesion}, material={"E_star": E_star})
+    if profile is not None:
+        scene["body"]["profile"] = profile
+    return load_scene({"name": "md", **scene, **extra})
 
 
 _build = eqx.filter_jit(lambda integrator, physics, options: integrator.build(physics, options))
@@ -66,8 +60,7 @@ def si_contact(problem, share):
 
 def jkr_units():
     """a_c, |d_c|, F_A of (3.170)."""
-    a_c = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)
-    return a_c, a_c**2 / (3 * R), 1.5 * math.pi * R * WORK
+    return A_JKR, D_JKR, F_JKR
 
 
 def pull_off(problem):
@@ -380,7 +373,7 @@ def test_gravity_drop_bounces_then_is_captured():
 
 
 def test_cli_runs_a_dugdale_scene_stores_tabor_and_refuses_bad_parameters(tmp_path):
-    config = str(Path(__file__).parents[2] / "configs" / "maugis_dugdale.yaml")
+    config = str(CONFIGS / "maugis_dugdale.yaml")
     facts = CliRunner().invoke(app, ["validate", config])
     assert facts.exit_code == 0
     assert "Maugis–Dugdale adhesion" in facts.output and "σ0 = 3.7411e+07 Pa" in facts.output

@@ -9,23 +9,16 @@ import pytest
 import impact
 from impact import simulate, theory
 from impact._scene.scene import load_scene
+from tests.scenes import E_STAR, MASS, WORK, R, micro_sphere
 
-# The Thornton–Ning particle (1 µm, E* = 1 GPa, Δγ = 0.05 J/m²) with p_y = 0.1 GPa: v_y = 2.92 m/s
-R, E_STAR, WORK, MASS, P_Y = 1e-6, 1e9, 0.05, 1.0472e-14, 1e8
+P_Y = 1e8  # Pa: the micro-sphere yields at v_y = 2.92 m/s
 YIELD_VELOCITY = float(theory.adhesive_plastic_yield_velocity(MASS, R, E_STAR, WORK, P_Y))
 
 
 def particle(velocity: float, plastic: bool = True, yield_pressure: float = P_Y, **effects) -> dict:
-    return {
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {
-            "adhesion": {"work_of_adhesion": WORK},
-            **({"plasticity": {"yield_pressure": yield_pressure}} if plastic else {}),
-            **effects,
-        },
-    }  # tsit5 at rtol 1e-10 (the default): the elastic program is shared with other tests
+    plasticity = {"plasticity": {"yield_pressure": yield_pressure}} if plastic else {}
+    # tsit5 at rtol 1e-10 (the default): the elastic program is shared with other tests
+    return micro_sphere(velocity, {"adhesion": {"work_of_adhesion": WORK}, **plasticity, **effects})
 
 
 def run(velocity: float, plastic: bool = True, yield_pressure: float = P_Y):

@@ -57,8 +57,8 @@ from impact._run.sweep.plan import plan_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 # (scene, its changes, lowest and highest velocity in m/s, points): captured and separated
 # points. Each call size compiles once: chunk 1 runs calls of 2 (a point and its copy), chunk 7
 # calls of 6, chunks 64 and the default one call; a curve law's program takes ~10 s to compile,

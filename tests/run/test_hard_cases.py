@@ -5,8 +5,6 @@ runaway shows there, on any machine: no wall-time bound, which a loaded machine 
 the physics check its YAML names.
 """
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import yaml
@@ -18,8 +16,7 @@ from impact import load_scene, simulate, theory
 from impact._integrate.base import AbstractAdaptiveIntegrator
 from impact._run.parameters import integrator_for, options_for
 from tests.run.passive import assert_passive
-
-HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
+from tests.scenes import HARD
 
 
 def run_case(name: str):

@@ -21,8 +21,8 @@ from impact._run.sweep import plan_sweep, result_names, run_spec
 from impact._scene.paths import with_values
 from impact._scene.sweep import load_sweep, make_spec
 from impact.cli.tables import sweep_table
+from tests.scenes import SWEEPS
 
-SWEEPS = Path(__file__).parents[2] / "configs" / "sweeps"
 LOSSES = ("plastic_work", "viscous_work", "adhesion_hysteresis", "unrecovered_elastic_energy")
 # Imbalance over the energy turned over, ½mv₀² + Σ|named losses| (a captured Wall particle's plastic
 # work and adhesive energy are 30 times its ½mv₀²): measured ≤ 7.4e-11 on the whole damped example,

@@ -1,10 +1,9 @@
 """Physical ranges and what the scaled problem can represent: each scene value outside its
 domain, or a scene whose units float64 cannot carry, is refused before any work (exit 2, the
-field, its value and the allowed range; nothing written). Also: unusable output folders, flags
-in `--help`, and a run without compressive force."""
+field, its value and the allowed range; nothing written), for a scene as for each point of a
+sweep."""
 
 import gc
-from pathlib import Path
 
 import pytest
 import yaml
@@ -17,9 +16,7 @@ from impact._scene.paths import assign, resolve_field
 from impact._scene.representable import limits_of
 from impact._scene.sweep import load_sweep
 from impact.cli import app
-
-CONFIGS = Path(__file__).parents[2] / "configs"
-THORNTON_NING = CONFIGS / "thornton_ning.yaml"
+from tests.scenes import CONFIGS, THORNTON_NING
 
 
 def invoke(*args):
@@ -83,34 +80,6 @@ def test_every_example_scene_and_sweep_validates():
         assert impact.load_scene(scene).name
     for sweep in sorted((CONFIGS / "sweeps").glob("*.yaml")):
         assert load_sweep(sweep).paths
-
-
-@pytest.mark.parametrize("place", ["file", "file parent"])
-def test_unusable_output_folder_is_refused_before_simulating(place, tmp_path):
-    (tmp_path / "taken").write_text("a file")
-    folder = tmp_path / "taken" if place == "file" else tmp_path / "taken" / "run"
-    result = invoke("run", THORNTON_NING, "-o", folder)
-    assert result.exit_code == 2, result.output
-    expected = "exists and is not a folder" if place == "file" else "taken is a file, not a folder"
-    assert expected in " ".join(result.output.split())
-    assert "restitution" not in result.output  # refused before the simulation
-
-
-def test_help_shows_no_bool_beside_flags():
-    for command in ([], ["run"], ["validate"], ["show"], ["sweep"], ["merge"], ["bench"]):
-        result = invoke(*command, "--help")
-        assert result.exit_code == 0
-        assert "<bool>" not in result.output
-        assert "--help" in result.output
-
-
-def test_a_run_without_compressive_force_says_so(tmp_path):
-    # n = 1/2 below the threshold: the contact grows without limit while the force stays adhesive
-    scene = CONFIGS / "hard" / "08_power_law_n05_below_threshold.yaml"
-    result = invoke("run", scene, "-o", tmp_path / "out")
-    assert result.exit_code == 1, result.output
-    assert "no compressive force" in result.output
-    assert "unbounded_contact" in result.output
 
 
 SWEPT_REFUSALS = {

@@ -18,12 +18,7 @@ from impact import theory as th
 from impact._integrate.quasistatic import march
 from impact._run.indentation import IndentationResult, indentation_loading, indentation_numerics
 from impact._scene.scene import load_scene
-
-R, E_STAR, WORK = 1e-6, 1e9, 0.05  # m, Pa, J/m²
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
-CONTROLS = [("force", 3), ("displacement", 1)]
+from tests.scenes import A_JKR, CONTROLS, D_JKR, E_STAR, F_JKR, WORK, R
 
 
 def spec(tabor, control, share=None, model="maugis_dugdale", **program):

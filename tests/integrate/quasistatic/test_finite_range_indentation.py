@@ -21,12 +21,8 @@ from impact._io.indentation import read_indentation, write_indentation
 from impact._plots.indentation import dmt_limit, save_indentation_figures
 from impact._run.indentation import IndentationResult
 from impact._scene.scene import SceneError, load_scene
+from tests.scenes import A_JKR, CONTROLS, D_JKR, E_STAR, F_JKR, WORK, R
 
-R, E_STAR, WORK = 1e-6, 1e9, 0.05  # m, Pa, J/m²
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
-CONTROLS = [("force", 3), ("displacement", 1)]
 TABORS = [0.05, 0.3, 1.0, 3.0, 10.0]
 
 

@@ -3,7 +3,6 @@ few steps, a linear model meets ordinary least squares exactly, bounds hold, and
 the data cannot separate is reported in words."""
 
 import math
-from pathlib import Path
 
 import jax.numpy as jnp
 import numpy as np
@@ -13,10 +12,10 @@ import impact
 from impact._run.fit.bounds import Bounds
 from impact._run.fit.uncertainty import uncertainty
 from impact._scene.fit_spec import ParameterSpec
-from tests.run.fit_examples import fit_script
-from tests.run.test_compilation import Compiles
+from tests.compilations import Compiles
+from tests.run.fit.fit_examples import fit_script
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 ADHESION, MODULUS = "effects.adhesion.work_of_adhesion", "material.E_star"
 PARAMETERS = {
     ADHESION: {"start": 0.02, "min": 1.0e-4, "max": 1.0, "scale": "log"},

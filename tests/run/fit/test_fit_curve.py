@@ -14,8 +14,8 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
-from tests.run.fit_examples import FITS, fit_script
-from tests.run.test_compilation import Compiles
+from tests.compilations import Compiles
+from tests.run.fit.fit_examples import FITS, fit_script
 
 ADHESION, MODULUS, RADIUS = "effects.adhesion.work_of_adhesion", "material.E_star", "body.profile.R"
 

@@ -12,7 +12,7 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
-from tests.run.fit_examples import FITS, fit_script
+from tests.run.fit.fit_examples import FITS, fit_script
 
 ADHESION, APPROACH, MODULUS = (
     "effects.adhesion.work_of_adhesion",
