@@ -18,16 +18,13 @@ from typer.testing import CliRunner
 
 from impact import theory
 from impact._io.run import read_run
-from impact._scene.scene import load_scene, scene_yaml
+from impact._scene.scene import scene_yaml
 from impact.cli import app
+from tests.command import invoke
 from tests.scenes import CONFIGS, THORNTON_NING
 
 OUTPUTS = {"run.h5", "config.yaml", "time.png", "force_indentation.png"}
 DELETE = object()
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +44,7 @@ def test_help_lists_every_command():
         assert command in result.output
 
 
-def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
+def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end, thornton_ning_scene):
     folder, process = end_to_end
     assert process.returncode == 0, process.stderr
     assert "Traceback" not in process.stderr
@@ -56,7 +53,7 @@ def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
     assert {entry.name for entry in folder.iterdir()} == OUTPUTS
     for plot in ("time.png", "force_indentation.png"):
         assert (folder / plot).read_bytes().startswith(b"\x89PNG")
-    scene = load_scene(THORNTON_NING)
+    scene = thornton_ning_scene
     assert (folder / "config.yaml").read_text() == scene_yaml(scene)
     result = read_run(folder / "run.h5")
     assert result.scene == scene

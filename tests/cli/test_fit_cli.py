@@ -8,19 +8,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact._io.fit import fit_summary, read_fit
 from impact._run.fit import fit_spec
 from impact._scene.fit_spec import load_fit, read_table
-from impact.cli import app
+from tests.command import invoke
 from tests.scenes import FITS
 
 DROP_TEST = FITS / "drop_test.yaml"
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")

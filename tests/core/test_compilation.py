@@ -301,8 +301,8 @@ def test_a_failed_runtime_check_in_a_stored_program_gives_nan(cache, tmp_path, r
     assert bool(cache) == (tmp_path / "jax" / EXPORTED).is_dir()
 
 
-def test_stored_program_gives_the_traced_results_bit_for_bit():
-    scene = impact.load_scene(THORNTON_NING)
+def test_stored_program_gives_the_traced_results_bit_for_bit(thornton_ning_scene):
+    scene = thornton_ning_scene
     arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)
     with jax.enable_x64(True):
         stored = solve_by_field(*arguments)

@@ -176,10 +176,10 @@ def test_phases_end_from_the_energy_by_default_where_it_applies(config, phase_en
     assert ("phase ends from the energy" in result.output) == (phase_ends == "energy")
 
 
-def test_the_default_restitution_is_thornton_nings_to_round_off():
+def test_the_default_restitution_is_thornton_nings_to_round_off(thornton_ning_scene):
     """The default scene (rtol 1e-10) ends its phases from the energy: (3.50–51) to 1e-13 at
     velocities where the located ends miss it by more than that."""
-    base = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    base = thornton_ning_scene
     assert base.solver.phase_ends is None
     mass, radius, modulus, work = parameters(base)
     located = 0.0

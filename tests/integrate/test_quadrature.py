@@ -87,8 +87,8 @@ def test_a_quadrature_trajectory_is_the_tight_one(config):
         assert np.max(np.abs(mine - theirs)) <= 1e-3 * np.max(np.abs(getattr(tight, name))), name
 
 
-def test_a_sweep_point_does_not_depend_on_its_batch():
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+def test_a_sweep_point_does_not_depend_on_its_batch(thornton_ning_scene):
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     axes = {"initial.velocity": list(np.geomspace(0.2, 20.0, 13))}
     whole = sweep(scene, axes, order="given").results
     for chunk in (1, 7):
@@ -97,10 +97,10 @@ def test_a_sweep_point_does_not_depend_on_its_batch():
             assert np.array_equal(np.asarray(parts[name]), np.asarray(whole[name]), equal_nan=True), (chunk, name)
 
 
-def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch):
+def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """A leg that ran past its turnaround (here: its end pushed 1e-3 beyond the root) meets v² < 0
     at its nodes: the run ends with solver_failure."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     ended = quadrature._Leg.end
 
     def overshoots(self):
@@ -114,10 +114,10 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
 
 
 @pytest.mark.parametrize("mode", ["reverse", "forward"])
-def test_derivatives_are_thornton_nings(mode):
+def test_derivatives_are_thornton_nings(mode, thornton_ning_scene):
     """`impact.as_function` differentiates through the quadrature: de/dΔγ and de/dv0 are those
     of (3.50–51) to 1e-10."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     restitution = impact.as_function(scene, ["effects.adhesion.work_of_adhesion", "initial.velocity"], "restitution")
     mass, radius = scene.body.resolved_mass, scene.body.profile.R
     modulus, work = scene.material.E_star, scene.effects.adhesion.work_of_adhesion
@@ -127,11 +127,11 @@ def test_derivatives_are_thornton_nings(mode):
     np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
 
 
-def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch):
+def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """With one Illinois step instead of 12 the turnaround lies off the root of v² (by far more
     than 1e-9 of the leg's energies): the run ends with solver_failure, not a restitution that
     lost that energy."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
     assert _status(integrator, options, scene) == RESULT_CODE["separated"]
     monkeypatch.setattr(quadrature, "_ILLINOIS_STEPS", 1)

@@ -20,7 +20,6 @@ import pandas as pd
 import pytest
 import xarray as xr
 import yaml
-from typer.testing import CliRunner
 
 import impact
 from impact import theory
@@ -35,7 +34,7 @@ from impact._scene.domains import udunits
 from impact._scene.errors import SweepError
 from impact._scene.scene import scene_yaml
 from impact._scene.sweep import make_spec
-from impact.cli import app
+from tests.command import invoke
 from tests.scenes import CONFIGS, E_STAR, MASS, THORNTON_NING, R
 
 INDENTATION = CONFIGS / "indentation_paraboloid.yaml"
@@ -46,10 +45,6 @@ GRID = {VELOCITY: VELOCITIES, WORK: WORKS}
 ZIPPED = {VELOCITY: [0.3, 0.5, 0.8, 1.3, 2.1, 3.4], WORK: [0.01, 0.02, 0.03, 0.05, 0.08, 0.13]}
 CHUNK = 8
 AXIS_UNITS = {VELOCITY: "m s-1", WORK: "J m-2"}
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 def said(result) -> str:
@@ -154,7 +149,7 @@ def test_the_data_frame_has_one_row_a_point(grid):
     assert "status" not in frame.attrs["units"] and "stuck" not in frame.attrs["units"]
 
 
-def test_units_of_swept_fields_come_from_their_domains():
+def test_units_of_swept_fields_come_from_their_domains(thornton_ning_scene):
     assert [udunits(u) for u in ("m/s", "J/m²", "kg/m³", "N s/m", "m/s²", "1/m", "Pa", "")] == [
         "m s-1",
         "J m-2",
@@ -166,7 +161,7 @@ def test_units_of_swept_fields_come_from_their_domains():
         "",
     ]
     axes = {"body.profile.R": [1e-6], "material.E_star": [1e9], "body.mass": [1e-14], "solver.rtol": [1e-9]}
-    made = make_spec(impact.load_scene(THORNTON_NING), axes, "grid", "given")
+    made = make_spec(thornton_ning_scene, axes, "grid", "given")
     assert {axis.path: axis.unit for axis in made.axes} == {
         "body.profile.R": "m",
         "material.E_star": "Pa",

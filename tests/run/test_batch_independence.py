@@ -57,6 +57,7 @@ from impact._run.sweep.plan import plan_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
+from tests.run.bitwise import assert_bitwise
 from tests.scenes import CONFIGS
 
 # (scene, its changes, lowest and highest velocity in m/s, points): captured and separated
@@ -85,14 +86,6 @@ CLOSE = {
     "dissipated_energy": 1e-12,  # ∮F dd cancels
     "adhesion_hysteresis": 1e-12,  # all of it here
 }
-
-
-def assert_bitwise(results: dict, reference: dict, label: str) -> None:
-    assert results.keys() == reference.keys(), label
-    for name in reference:
-        mine, theirs = np.asarray(results[name]), np.asarray(reference[name])
-        differ = np.flatnonzero(~((mine == theirs) | (np.isnan(mine) & np.isnan(theirs))))
-        assert differ.size == 0, f"{label}: {name} differs at points {differ.tolist()}"
 
 
 @pytest.mark.parametrize("law", LAWS)
@@ -199,7 +192,7 @@ def test_a_gpu_compiles_without_the_cpu_options(monkeypatch):
     assert compiler_options() == {}
 
 
-def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
+def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch, thornton_ning_scene):
     """A batch given CPU devices on a machine whose default device is a GPU still compiles with
     XLA:CPU's options, and one on GPUs without them."""
     monkeypatch.setattr(runtime, "contracts_multiply_adds", lambda: True)  # options to tell apart
@@ -211,7 +204,7 @@ def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
     compiled_with = []
     monkeypatch.setattr(batch_module, "_COMPILED", {})  # nothing kept for later tests
     monkeypatch.setattr(batch_module, "compile_stored", lambda *arguments: compiled_with.append(arguments[-1]))
-    plan = plan_sweep(make_spec(load_scene(CONFIGS / "thornton_ning.yaml"), {"initial.velocity": [0.5, 1.0]}))
+    plan = plan_sweep(make_spec(thornton_ning_scene, {"initial.velocity": [0.5, 1.0]}))
     batch_module.compiled_batch(plan.choices[0], plan.physics, 2, jax.devices("cpu")[:1])
     assert compiled_with == [on_cpu]
 

@@ -22,7 +22,6 @@ import jax
 import numpy as np
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact import simulate, theory
 from impact._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK
@@ -36,7 +35,7 @@ from impact._scene import sweep as scene_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
-from impact.cli import app
+from tests.command import invoke
 from tests.scenes import CONFIGS, THORNTON_NING
 
 CHUNK = 8
@@ -60,10 +59,6 @@ EXACT = (
 # and the loop work ∮F dd (a small difference of large works) by a few 1e-12.
 CLOSE = ("max_force", "min_force", "max_indentation", "dissipated_energy")
 PRELUDE = "from impact.cli import main; main()"
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
@@ -132,7 +127,7 @@ def test_sweep_equals_simulate_point_by_point(grid):
     assert grid.max_theory_error() < 1e-8
 
 
-def test_grid_and_zip_shapes(grid):
+def test_grid_and_zip_shapes(grid, thornton_ning_scene):
     velocity = grid.params["initial.velocity"]
     work = grid.params["effects.adhesion.work_of_adhesion"]
     assert velocity.shape == work.shape == grid.restitution.shape == (4, 2)
@@ -149,7 +144,7 @@ def test_grid_and_zip_shapes(grid):
     )
     assert zipped.shape == (8,) and zipped.restitution.shape == (8,)
     flat = {name: column.reshape(-1)[::-1] for name, column in grid.results.items()}
-    assert zipped.results.keys() == flat.keys() == set(result_names(load_scene(THORNTON_NING)))
+    assert zipped.results.keys() == flat.keys() == set(result_names(thornton_ning_scene))
     assert_same(zipped.results, flat, names=tuple(flat))
 
 
@@ -227,14 +222,14 @@ def test_a_failing_point_gets_its_code_and_the_sweep_goes_on():
     assert np.allclose(result.restitution[names == "separated"], 0.862944882, atol=1e-8)
 
 
-def test_the_figure_draws_the_closed_form_beside_the_points(grid):
+def test_the_figure_draws_the_closed_form_beside_the_points(grid, thornton_ning_scene):
     figure = restitution_figure(grid)
     top = figure.axes[0]
     assert top.get_xscale() == "log"
     simulated = [line for line in top.get_lines() if line.get_gid() == "simulated"]
     curves = [line for line in top.get_lines() if line.get_gid() == "theory"]
     assert len(simulated) == len(curves) == len(WORKS)
-    mass = load_scene(THORNTON_NING).body.resolved_mass
+    mass = thornton_ning_scene.body.resolved_mass
     for curve, work in zip(curves, WORKS, strict=True):
         v, e = curve.get_xdata(), curve.get_ydata()
         assert len(v) >= 500 and v.min() <= min(VELOCITIES) and v.max() >= max(VELOCITIES)

@@ -8,20 +8,14 @@ import gc
 import pytest
 import yaml
 from pydantic import BaseModel, model_validator
-from typer.testing import CliRunner
 
 import impact
 from impact._scene import sweep_points
 from impact._scene.paths import assign, resolve_field
 from impact._scene.representable import limits_of
 from impact._scene.sweep import load_sweep
-from impact.cli import app
+from tests.command import invoke
 from tests.scenes import CONFIGS, THORNTON_NING
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
-
 
 # (override, the refusal's line): the three known failures first (a ZeroDivisionError traceback,
 # unbounded_contact with −inf m, solver_failure at 4e111 Gm), then the checks across fields.
@@ -155,7 +149,7 @@ class Probed(BaseModel):
         return self
 
 
-def test_only_the_validators_that_read_a_swept_field_run_per_point():
+def test_only_the_validators_that_read_a_swept_field_run_per_point(thornton_ning_scene):
     """A validator runs per point when running it on the base reads a swept field: directly,
     through getattr with a default, or through a dump; one that reads none is left out, and the
     tracking leaves the class as it found it."""
@@ -169,7 +163,7 @@ def test_only_the_validators_that_read_a_swept_field_run_per_point():
     assert "__getattribute__" not in Probed.__dict__
     probed.__dict__["swept"] = -1.0
     assert sweep_points._validators_problem(checks) == "section: swept must be > 0"
-    scene = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    scene = thornton_ning_scene
     initial = scene.initial
     names = [v.__name__ for _, _, v in sweep_points._reading_checks([("", scene)], [(initial, "velocity")])]
     assert "_reaches_the_surface" in names and "_energy_ends_supported" not in names

@@ -20,11 +20,11 @@ def problems(data):
     return error.value.problems
 
 
-def test_schema_kind_control_program():
+def test_schema_kind_control_program(thornton_ning_scene):
     indentation = load_scene(base())
     assert indentation.kind == "indentation" and indentation.initial is None and indentation.body.mass is None
     assert load_scene(base(program={"peak": "1e-7", "cycles": 2, "unload_to": 0})).program.peak == 1e-7
-    impact_scene = load_scene(CONFIGS / "thornton_ning.yaml")
+    impact_scene = thornton_ning_scene
     assert impact_scene.kind == "impact" and impact_scene.control is None
     assert load_scene(yaml.safe_load(scene_yaml(indentation))) == indentation  # resolved YAML round-trips
     assert "solver" not in scene_yaml(indentation) and "initial" not in scene_yaml(indentation)

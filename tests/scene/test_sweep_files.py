@@ -3,18 +3,12 @@ field named and nothing written; the example sweeps valid."""
 
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact._run.sweep import sweep
 from impact._scene.errors import SweepError
 from impact._scene.sweep import load_sweep
-from impact.cli import app
+from tests.command import invoke
 from tests.scenes import CONFIGS, THORNTON_NING
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
-
 
 BAD_SWEEPS = [
     ("unknown dotted path", {"axes": {"initial.speed": [1.0]}}, "axes.initial.speed", "no field 'initial.speed'"),
