@@ -104,7 +104,7 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
     assert abs(errors[-1]) < 5e-4
     # Λ = 3 (the same program): 32 springs put under 2 across the zone, a march refused at its start
     stress = theory.maugis_adhesive_stress(3.0, R, WORK, E_STAR)
-    coarse = eqx.tree_at(lambda x: (x.spring_count, x.adhesion.adhesive_stress), loading, (jnp.asarray(32), stress))
+    coarse = eqx.tree_at(lambda x: (x.spring_count, x.law.adhesive_stress), loading, (jnp.asarray(32), stress))
     _, outcome = march(coarse, numerics)
     assert int(outcome.status) == RESULT_CODE["unresolved_zone"]
 
