@@ -44,6 +44,7 @@ def test_help_lists_every_command():
         assert command in result.output
 
 
+@pytest.mark.slow
 def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end, thornton_ning_scene):
     folder, process = end_to_end
     assert process.returncode == 0, process.stderr
@@ -63,6 +64,7 @@ def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end, thornton
         assert bool(file["parameters/config.yaml"].attrs["x64"])  # main() enabled float64
 
 
+@pytest.mark.slow
 def test_show_prints_the_stored_summary(end_to_end):
     folder, _ = end_to_end
     result = invoke("show", folder / "run.h5")
@@ -106,6 +108,7 @@ def test_unsuccessful_run_is_written_and_exits_1(tmp_path):
     assert read_run(tmp_path / "out" / "run.h5").status == "time_limit"
 
 
+@pytest.mark.slow
 def test_energy_drift_is_written_and_explained(tmp_path):
     """hard/08 with the located ends at rtol 1e-6: the solver's speed drifts from the energy
     balance; the run is written with that status, and the warning says what to do."""
@@ -348,6 +351,7 @@ def test_help_shows_no_bool_beside_flags():
         assert "--help" in result.output
 
 
+@pytest.mark.slow
 def test_a_run_without_compressive_force_says_so(tmp_path):
     # n = 1/2 below the threshold: the contact grows without limit while the force stays adhesive
     scene = CONFIGS / "hard" / "08_power_law_n05_below_threshold.yaml"

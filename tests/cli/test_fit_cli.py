@@ -193,6 +193,7 @@ def test_bad_indentation_fit_files_exit_2_naming_the_field_and_write_nothing(tmp
     _refused(tmp_path, _bad_copy(tmp_path, AFM_CURVE, change, csv), field, message)
 
 
+@pytest.mark.slow
 def test_the_afm_example_fits_with_set_overrides(tmp_path):
     """`--set` changes a start and a σ of the fit file; the fit finds the true values of
     make_afm_data.py and fit.h5 stores the fit file as overridden."""

@@ -15,6 +15,7 @@ import os
 import tempfile
 from pathlib import Path
 
+import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -109,6 +110,7 @@ def _settings(examples: int):
     )
 
 
+@pytest.mark.slow
 @_settings(VALIDATE_EXAMPLES)
 @given(content=mutated_scene())
 def test_validate_ends_with_0_or_2(content):

@@ -29,6 +29,7 @@ def within_step_error(ours, theirs, half):
     return np.abs(theirs - ours) <= STEP_ERROR_FACTOR * np.abs(theirs - half)
 
 
+@pytest.mark.slow
 def test_hertz_agrees_to_the_time_step_error_and_writes_the_comparison(tmp_path):
     """configs/hard/01_no_adhesion.yaml at 3 speeds, dt = Hertz's contact time at 1 m/s / 200:
     restitution, contact time and largest force by LAMMPS's hertz/material within
@@ -102,6 +103,7 @@ def test_lammps_jkr_loses_the_energy_of_the_branch_cut_at_the_force_controlled_p
     assert float(theory.thornton_ning_restitution(approach[0], scene.reduced_mass, R, model.E_star, dgamma)) == 0
 
 
+@pytest.mark.slow
 def test_viscoelastic_damping_is_lammps_viscoelastic_force_law():
     """A micro-sphere without adhesion, damped viscoelastically (A = 2e-10 s): with η₀ = 2E*A/m
     LAMMPS's force η₀·a·m·v_n is the scene's 2E*·a·A·ḋ, so the largest force (reached before

@@ -174,6 +174,7 @@ def twice(script: str, scene: Path, cache: Path) -> tuple[list[str], list[str]]:
     return first, second
 
 
+@pytest.mark.slow
 def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
     def run() -> list[str]:
         return fresh_process(PROCESS, THORNTON_NING, tmp_path / "cache")
@@ -203,6 +204,7 @@ print({COUNTS}, "diffrax" in sys.modules, *[value.hex() for value in result.rest
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
     """A sweep's compiled batch is stored as a traced program too: a second process of the same
     structure neither traces (no diffrax) nor compiles it, and gets the same bits."""
@@ -224,6 +226,7 @@ print({COUNTS}, programs.count("march") + programs.count("traced"), result.pull_
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path):
     """An indentation test's march is stored traced as an impact's solve is: a second process
     neither traces nor compiles it, and gets the same bits."""
@@ -248,6 +251,7 @@ print({COUNTS}, programs.count("traced"), *[value.hex() for value in result.valu
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_fit_instead_of_tracing_it(tmp_path):
     """A fit's programs (the residuals at the start, the whole Levenberg–Marquardt solve) are
     stored traced: a second process neither traces nor compiles them, and fits the same bits."""
@@ -271,6 +275,7 @@ print({COUNTS}, programs.count("jit(flat)"), value.hex(), slope.hex())
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_functions_programs_instead_of_tracing_them(tmp_path):
     """`impact.as_function`'s programs (its value and its forward-mode Jacobian, on concrete
     inputs) are stored traced: a second process neither traces nor compiles them, and gets the
@@ -301,6 +306,7 @@ def test_a_failed_runtime_check_in_a_stored_program_gives_nan(cache, tmp_path, r
     assert bool(cache) == (tmp_path / "jax" / EXPORTED).is_dir()
 
 
+@pytest.mark.slow
 def test_stored_program_gives_the_traced_results_bit_for_bit(thornton_ning_scene):
     scene = thornton_ning_scene
     arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)

@@ -35,6 +35,7 @@ def parameters(s: impact.Scene) -> tuple:
     return s.body.mass, s.body.profile.R, s.material.E_star, 0.0 if adhesion is None else adhesion.work_of_adhesion
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.01, 2.0, 30.0])
 def test_thornton_ning_is_exact_at_a_loose_tolerance(factor):
     """At rtol 1e-6 the energy ends give Thornton–Ning (3.50–51) to 1e-13 where the solver's
@@ -65,6 +66,7 @@ def test_attach_on_touch_holds_and_is_exact():
         assert abs(result.restitution - expected) <= 1e-13, velocity
 
 
+@pytest.mark.slow
 def test_hertz_keeps_its_energy_and_takes_its_time_from_the_solver():
     """Without adhesion e = 1 to round-off and the deepest indentation is Hertz's; the contact
     time, from the solver at rtol 1e-6, is Hertz's within 1e-5."""
@@ -82,6 +84,7 @@ def test_hertz_keeps_its_energy_and_takes_its_time_from_the_solver():
     assert 1e-9 < abs(result.contact_time / contact - 1.0) <= 1e-5
 
 
+@pytest.mark.slow
 def test_gravity_bounces_as_the_tight_integration_does():
     """Under gravity the bead bounces the same number of times, is captured alike, and every
     contact's restitution is the one of the solver's own ends at rtol 1e-12 to 1e-11."""
@@ -92,6 +95,7 @@ def test_gravity_bounces_as_the_tight_integration_does():
     assert abs(loose.restitution - tight.restitution) <= 1e-11
 
 
+@pytest.mark.slow
 def test_a_steep_tip_loaded_in_time_is_exact():
     """A power law n = 0.75 without adhesion loads from a = 0 in time (its radius cannot ride
     h' → ∞): its turnaround comes from the energy too, so e = 1 to round-off at rtol 1e-6, where
@@ -111,6 +115,7 @@ def test_a_steep_tip_loaded_in_time_is_exact():
         assert abs(impact.simulate(steep(velocity, "integrated")).restitution - 1.0) > 1e-6
 
 
+@pytest.mark.slow
 def test_a_tiny_approach_work_loaded_in_time_is_exact():
     """Δγa/Δγ = 4e-142 on a cone puts the jump-in below the smallest float: loading runs in time
     from a = 0. At rtol 1e-6 its restitution is that of rtol 1e-12 to 1e-13; the located ends
@@ -125,6 +130,7 @@ def test_a_tiny_approach_work_loaded_in_time_is_exact():
         assert abs(impact.simulate(located).restitution - expected) > 1e-8
 
 
+@pytest.mark.slow
 def test_derivatives_are_thornton_nings():
     """`impact.as_function` differentiates through the energy ends (forward mode, the value and
     its Jacobian): de/dΔγ and de/dv0 at rtol 1e-6 are those of (3.50–51) to 1e-10."""
@@ -176,6 +182,7 @@ def test_phases_end_from_the_energy_by_default_where_it_applies(config, phase_en
     assert ("phase ends from the energy" in result.output) == (phase_ends == "energy")
 
 
+@pytest.mark.slow
 def test_the_default_restitution_is_thornton_nings_to_round_off(thornton_ning_scene):
     """The default scene (rtol 1e-10) ends its phases from the energy: (3.50–51) to 1e-13 at
     velocities where the located ends miss it by more than that."""
@@ -192,6 +199,7 @@ def test_the_default_restitution_is_thornton_nings_to_round_off(thornton_ning_sc
     assert located > 1e-13
 
 
+@pytest.mark.slow
 def test_a_sweep_point_is_the_simulated_one():
     """The sweep's batch and `impact.simulate` end the phases alike: the same restitution."""
     base = scene("thornton_ning.yaml")
@@ -201,6 +209,7 @@ def test_a_sweep_point_is_the_simulated_one():
     np.testing.assert_array_equal(np.asarray(swept), np.asarray(simulated))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "power_law.yaml"])
 def test_the_energy_decides_the_outcome_at_a_loose_tolerance(config):
     """At rtol 1e-2, just above the sticking velocity the solver's speed may cross zero before
@@ -230,6 +239,7 @@ def test_the_energy_decides_the_outcome_at_a_loose_tolerance(config):
     assert np.max(np.abs(restitution - closed_form)) <= 1e-10
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "power_law.yaml"])
 def test_the_located_ends_at_a_loose_tolerance_are_not_flagged(config):
     """`solver.phase_ends: integrated` at rtol 1e-3: the check of the phases' speeds against their
@@ -248,6 +258,7 @@ def test_the_located_ends_at_a_loose_tolerance_are_not_flagged(config):
     assert 1e-6 < np.max(np.abs(restitution - closed_form)) <= 1e-2
 
 
+@pytest.mark.slow
 def test_energy_drift_is_a_sweep_point_s_status():
     """In a batch, a point whose located ends drift from the energy balance gets `energy_drift`
     (hard/08 at its velocity, rtol 1e-6) beside a point that does not (100 times faster, where the

@@ -22,6 +22,7 @@ def _status(scene) -> int:
     return int(outcome.status)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("config", "changes"),
     [

@@ -32,6 +32,7 @@ CASES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", sorted(CASES))
 def test_quadrature_is_the_tight_integration(config):
     """Statuses equal; restitution, deepest indentation and force extremes to 1e-12; contact
@@ -60,6 +61,7 @@ def test_quadrature_is_the_tight_integration(config):
         assert np.all(np.abs(mine[finite] - theirs[finite]) <= tolerance * scale), name
 
 
+@pytest.mark.slow
 def test_gravity_bounces_as_the_tight_integration_does():
     """Several contacts under gravity (each a jump-in, a ride in and out, a flight), then captured."""
     scene = load_scene(CONFIGS / "gravity_bounces.yaml")
@@ -73,6 +75,7 @@ def test_gravity_bounces_as_the_tight_integration_does():
     assert_passive(fast)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "attach_on_touch.yaml", "cone.yaml"])
 def test_a_quadrature_trajectory_is_the_tight_one(config):
     """A passive body's (`assert_passive`: time never runs back, the loop is dissipative), whose
@@ -87,6 +90,7 @@ def test_a_quadrature_trajectory_is_the_tight_one(config):
         assert np.max(np.abs(mine - theirs)) <= 1e-3 * np.max(np.abs(getattr(tight, name))), name
 
 
+@pytest.mark.slow
 def test_a_sweep_point_does_not_depend_on_its_batch(thornton_ning_scene):
     scene = with_values(thornton_ning_scene, QUADRATURE)
     axes = {"initial.velocity": list(np.geomspace(0.2, 20.0, 13))}
@@ -97,6 +101,7 @@ def test_a_sweep_point_does_not_depend_on_its_batch(thornton_ning_scene):
             assert np.array_equal(np.asarray(parts[name]), np.asarray(whole[name]), equal_nan=True), (chunk, name)
 
 
+@pytest.mark.slow
 def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """A leg that ran past its turnaround (here: its end pushed 1e-3 beyond the root) meets v² < 0
     at its nodes: the run ends with solver_failure."""
@@ -113,6 +118,7 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
     assert int(outcome.status) == RESULT_CODE["solver_failure"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mode", ["reverse", "forward"])
 def test_derivatives_are_thornton_nings(mode, thornton_ning_scene):
     """`impact.as_function` differentiates through the quadrature: de/dΔγ and de/dv0 are those
@@ -127,6 +133,7 @@ def test_derivatives_are_thornton_nings(mode, thornton_ning_scene):
     np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
 
 
+@pytest.mark.slow
 def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """With one Illinois step instead of 12 the turnaround lies off the root of v² (by far more
     than 1e-9 of the leg's energies): the run ends with solver_failure, not a restitution that

@@ -63,6 +63,7 @@ def test_compiled_memory_is_small_for_any_n(case):
         assert int(outcome.status) == 0  # separated
 
 
+@pytest.mark.slow
 def test_one_compilation_serves_every_n(case):
     """`solve` with N traced gives the results of a program compiled for each N, from one
     compilation."""
@@ -83,6 +84,7 @@ def test_one_compilation_serves_every_n(case):
     assert traced._cache_size() == 1
 
 
+@pytest.mark.slow
 def test_running_sum_stays_exact_over_millions_of_events(case):
     """S_k after sweeps up and down a 10⁶-spring array (3·10⁶ events) and a random walk of 10⁶
     events: within 4 ulps of S_k summed exactly (math.fsum of the same float64 terms).

@@ -50,6 +50,7 @@ def restitution(outcome):
     return float(outcome.separation_velocity) / float(outcome.touch_velocity)
 
 
+@pytest.mark.slow
 def test_every_step_size_separates(sweep):
     _, outcomes, _ = sweep
     assert all(int(o.status) == 0 for o in outcomes)  # separated
@@ -87,6 +88,7 @@ def test_loop_work_converges_to_the_exact_dissipation(sweep):
     assert errors[-1] < 1e-3
 
 
+@pytest.mark.slow
 def test_scene_runs_verlet_with_its_step_in_seconds():
     """`solver: {method: verlet, dt}` with `contact.springs` runs the same stepper (dt in s)."""
     loaded = load_scene(scene())
@@ -106,6 +108,7 @@ def test_scene_runs_verlet_with_its_step_in_seconds():
     assert result.contact_time == pytest.approx(result.events[-1][0] - result.events[0][0])
 
 
+@pytest.mark.slow
 def test_without_adhesion_the_bounce_is_elastic():
     """Δγ = 0: e → 1 and the Hertz contact time, to the spatial and time-stepping errors."""
     velocity = 0.5
@@ -119,6 +122,7 @@ def test_without_adhesion_the_bounce_is_elastic():
     assert result.contact_time == pytest.approx(float(theory.hertz_contact_time(velocity, MASS, R, E_STAR)), rel=1e-3)
 
 
+@pytest.mark.slow
 def test_below_the_sticking_velocity_verlet_captures():
     data = scene(0.5, contact={"springs": COUNT}, solver={"method": "verlet", "dt": 1e-11})
     result = simulate(data)

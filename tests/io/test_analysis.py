@@ -96,6 +96,7 @@ def decoded_status(variable: xr.DataArray) -> np.ndarray:
 # --- a sweep in memory ------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_a_grid_has_one_dimension_per_axis_with_units_and_every_result(grid):
     ds = grid.to_xarray()
     assert ds.restitution.dims == (VELOCITY, WORK) and ds.sizes == {VELOCITY: 3, WORK: 2}
@@ -120,6 +121,7 @@ def test_a_grid_has_one_dimension_per_axis_with_units_and_every_result(grid):
     assert math.isclose(e, 0.8629448823, abs_tol=1e-10)
 
 
+@pytest.mark.slow
 def test_a_zipped_sweep_is_one_dimension_with_the_paths_as_coordinates(zipped):
     ds = zipped.to_xarray()
     assert ds.restitution.dims == ("point",) and ds.sizes == {"point": 6}
@@ -173,6 +175,7 @@ def test_units_of_swept_fields_come_from_their_domains(thornton_ning_scene):
 # --- a sweep read back ------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_open_sweep_gives_back_the_same_dataset(grid, zipped, stored):
     for mode, result in (("grid", grid), ("zip", zipped)):
         opened = impact.open_sweep(stored[mode] / "sweep.h5")

@@ -96,6 +96,7 @@ def frozen_reference(g, a, b, sigma):
     return d, force, gap
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor, share", [(1.0, 0.5), (10.0, 0.1)])
 def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
     """d(a), F(a) along the frozen zone of the paraboloid and its two switches, where the gap at
@@ -173,6 +174,7 @@ def balance(result):
     return 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2), result.dissipated_energy
 
 
+@pytest.mark.slow
 def test_equal_works_reproduce_the_reversible_law():
     """Δγa = Δγ on the hysteretic path (its frozen zone empty) gives the reversible program's
     impact to round-off (measured: bit for bit, with and without trajectory samples): the same
@@ -186,6 +188,7 @@ def test_equal_works_reproduce_the_reversible_law():
     np.testing.assert_allclose([t for t, _ in hysteretic.events], [t for t, _ in plain.events], rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_energy_balance_events_and_restitution_against_the_approach_work():
     """Δγa/Δγ = 0.9 … 0.3 at Λ = 1 (one compiled program): every impact loses ∮F dd of kinetic
     energy (≤ 1e-8 relative; measured ≤ 2e-10) over touch, max_indentation, detach_start,
@@ -205,6 +208,7 @@ def test_energy_balance_events_and_restitution_against_the_approach_work():
     assert np.all(np.diff(restitutions) < 0.0), restitutions
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "tabor, share, velocity, status, kinds",
     [
@@ -248,6 +252,7 @@ def test_large_tabor_tends_to_the_jkr_hysteresis_law():
     assert -1.1 < order < -0.9
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """The bead of the reversible gravity test (Λ = 3) with Δγa = 0.9Δγ: every bounce lands on
     the approach curve again (the memory cleared in flight) and unloads over a frozen zone onto

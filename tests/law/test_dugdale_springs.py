@@ -71,6 +71,7 @@ def test_a_piece_through_a_continuum_state_is_that_state(tabor):
     np.testing.assert_allclose(float(F) * float(scales.force) - force, midpoint, rtol=1e-8)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control", ["force", "displacement"])
 def test_quasi_static_pull_off_converges_at_second_order(control):
     """Λ = 1: the pull-off of N springs tends to the exact critical state of (3.171) as N⁻², its
@@ -109,6 +110,7 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
     assert int(outcome.status) == RESULT_CODE["unresolved_zone"]
 
 
+@pytest.mark.slow
 def test_impact_restitution_converges_at_second_order_with_energy_balance():
     """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 1.3e-4 …
     8.7e-6 at N = 64 … 256, slope 1.95); the loop's work is the kinetic energy lost (to 1e-7 of

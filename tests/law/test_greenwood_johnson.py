@@ -50,6 +50,7 @@ def loop_area(k):
     return -fixed_quad(integrand, turn, jump_in, n=200)[0]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k", [1e-3, 0.3, 3.0, 1e3])
 def test_energy_balance_loop_area_and_pull_off(k):
     """Kinetic energy lost = ∮F dd (1e-7 of the impact energy) = the curve's loop area by
@@ -92,6 +93,7 @@ def test_dmt_side_is_reversible(k):
     assert result.force[first] == pytest.approx(onset_force, rel=1e-8)
 
 
+@pytest.mark.slow
 def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     """Below the sticking speed the body is captured; a sphere's tip is its paraboloid r²/(2R):
     the same restitution to 1e-9 (its units differ: round-off)."""
@@ -102,6 +104,7 @@ def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     assert sphere.restitution == pytest.approx(paraboloid.restitution, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """A bead dropped onto the double-Hertz surface (k = 10): the bounces lose energy in the
     jumps until it is captured, each bounce logged with its touch."""
@@ -124,6 +127,7 @@ def test_gravity_drop_bounces_then_is_captured():
     assert 0.0 < result.restitution < 1.0
 
 
+@pytest.mark.slow
 def test_sweep_over_k_balances_energy_and_equals_simulate():
     """`impact.sweep` over k ∈ [1e-3, 1e3] (one compiled group: k is traced): energy balance at
     every point (1e-7 of the impact energy), simulate's values (rtol 1e-12), Thornton–Ning as the

@@ -55,6 +55,7 @@ def tn_restitution(material, velocity):
 VELOCITY_FACTORS = np.geomspace(1.001, 50.0, 24)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("material", sorted(MATERIALS))
 @pytest.mark.parametrize("solver, tolerance", [(None, 1e-6), (TIGHT, 1e-9)], ids=["default", "tight"])
 def test_thornton_ning_restitution(material, solver, tolerance):
@@ -105,6 +106,7 @@ NEVER_TIMED = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", NEVER_TIMED)
 def test_a_scene_that_never_loads_in_time_runs_as_the_general_program_does(case):
     """Where loading is never integrated in time (`Options.timed_loading` false: a body
@@ -194,6 +196,7 @@ def test_below_sticking_velocity_the_body_is_captured(factor):
     assert np.isfinite(result.events[-1][0]) and result.stats["steps"] < 1000
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("adhesion", [None, 0.0], ids=["not named", "zero"])
 def test_no_adhesion_is_elastic_hertz(adhesion):
     """Δγ = 0: e = 1 within 1e-9, contact time 2.868…(m²/(R E*² v0))^(1/5) within 1e-6."""
@@ -282,6 +285,7 @@ def test_gravity_touchdown_time():
     assert result.touch_velocity == pytest.approx(np.sqrt(2 * g * gap), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_gravity_sticky_bounces_end_captured():
     """Dropped to touch at 2·v_s, the body bounces a few times and is captured, in bounded steps."""
     g = 9.81

@@ -78,6 +78,7 @@ def pull_off(problem):
     return -min(found.fun, forces[best]) * float(problem.scales.force)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor", TABORS)
 def test_paraboloid_states_solve_the_normalized_relations_3_171(tabor):
     problem = problem_of(md_scene(tabor))
@@ -125,6 +126,7 @@ def test_zone_without_contact_and_its_junction(tabor):
     assert contact[2] == 0.0 and contact[3] == pytest.approx(junction, rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "profile, n, c",
     [
@@ -182,6 +184,7 @@ def test_rigid_limit_is_bradley_3_141():
     assert errors[1] < 1e-4 and errors[1] < errors[0] / 10
 
 
+@pytest.mark.slow
 def test_power_law_dmt_pull_off_3_195():
     """A stiff half-space under a power-law body pulls off at πΔγ h^((2−n)/n)/c^(2/n)."""
     n, c = 1.5, 2.0e2
@@ -203,6 +206,7 @@ def kinetic_energy_balance(result):
     return lost, result.dissipated_energy
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor", TABORS)
 def test_impact_energy_balance_and_reported_tabor(tabor):
     result = simulate(md_scene(tabor))
@@ -307,6 +311,7 @@ def test_jkr_refuses_dugdale_parameters():
     assert error.value.problems == [("effects.adhesion.range", "only for model 'maugis_dugdale' (jkr has zero range)")]
 
 
+@pytest.mark.slow
 def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
     """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values;
     sweeping σ0 over a scene that gives h makes invalid points, refused before anything runs."""
@@ -344,6 +349,7 @@ def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limi
         assert [line.get_gid() for line in axes.get_lines() if line.get_gid()] == ["maugis", "maugis", "limit", "limit"]
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """A bead dropped onto the Maugis–Dugdale surface (Λ = 3): the bounces lose energy in the
     jumps until an outward turnaround in range captures it, in finite time."""

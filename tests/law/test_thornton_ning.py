@@ -29,6 +29,7 @@ def closed_form(velocity: float, yield_pressure: float = P_Y) -> float:
     return float(theory.adhesive_plastic_restitution(velocity, MASS, R, E_STAR, WORK, yield_pressure))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [0.6, 0.999 * YIELD_VELOCITY])
 def test_below_the_yield_velocity_it_is_the_elastic_adhesive_impact_to_the_bit(velocity):
     plastic, elastic = run(velocity), run(velocity, plastic=False)
@@ -37,6 +38,7 @@ def test_below_the_yield_velocity_it_is_the_elastic_adhesive_impact_to_the_bit(v
     assert plastic.events == elastic.events and plastic.plastic_work == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [3.0, 10.0, 100.0])
 def test_above_it_the_restitution_meets_the_closed_form(velocity):
     result = run(velocity)
@@ -114,6 +116,7 @@ def test_two_bodies_meet_the_closed_form_with_effective_parameters():
     assert after == pytest.approx(before, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_bounces_under_gravity_keep_the_dent():
     """The second contact lands in the dent of the first, stays elastic (no yield) and loses only the
     jump-in and snap-off of the dent's JKR branch: its rebound speed (from the flight that follows)

@@ -98,6 +98,7 @@ def integral(fun, x, kinks, nodes=200):
     return np.array(out)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_g_matches_mdr_transform_of_f(name):
     p = make(name)
@@ -114,6 +115,7 @@ def test_G_is_integral_of_g(name):
     np.testing.assert_allclose(evaluate(p, x)[1], quadrature, rtol=1e-10, atol=0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_values_at_zero_and_wall(name):
     f0, g0, G0, scale, ext, f_ext, f_past, g_ext, G_ext = values(make(name))
@@ -131,6 +133,7 @@ def test_spheroids_at_their_equator():
         np.testing.assert_allclose(G_ext, G_end, rtol=1e-15)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_derivatives_finite(name):
     p = make(name)
@@ -138,6 +141,7 @@ def test_derivatives_finite(name):
     assert all(np.all(np.isfinite(leaf)) for leaf in jax.tree.leaves(derivatives(p, x)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_jit_and_vmap_over_parameters(name):
     """Profiles built inside jit / vmap from traced parameters agree with the plain evaluation."""

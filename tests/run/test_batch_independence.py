@@ -88,6 +88,7 @@ CLOSE = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law", LAWS)
 def test_a_points_result_does_not_depend_on_its_batch(law):
     config, changes, low, high, points = LAWS[law]
@@ -124,6 +125,7 @@ def assert_simulated(law: str, scene, swept, point: int) -> None:
         np.testing.assert_allclose(getattr(single, name), swept.results[name][point], rtol=rtol, err_msg=name)
 
 
+@pytest.mark.slow
 def test_a_power_law_point_does_not_depend_on_its_place_in_a_batch():
     """Three points, repeated in one call of 7 (7·3 state components: without the padding the
     last lane's time falls in the row left over from the 4-row tiles, and its restitution

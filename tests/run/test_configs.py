@@ -210,6 +210,7 @@ def test_every_config_is_checked():
     assert {path.stem for path in CONFIGS.glob("*.yaml")} == set(CHECKS)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(CHECKS))
 def test_config_runs_and_meets_its_reference(name):
     result = impact.simulate(CONFIGS / f"{name}.yaml")

@@ -201,7 +201,11 @@ def assert_conforms(case: Case, result: Result, status: str) -> None:
             assert abs(sampled_loop_work(result) - result.dissipated_energy) <= tolerance * touch
 
 
-@pytest.mark.parametrize("name", CASES)
+# The cases of the fast tier (`pytest -m "not slow"`): programs its other tests compile too.
+FAST = ("JKR · tsit5 · energy ends", "JKR · quadrature")
+
+
+@pytest.mark.parametrize("name", [pytest.param(name, marks=() if name in FAST else pytest.mark.slow) for name in CASES])
 def test_every_law_on_every_integrator_balances_its_energy_and_creates_none(name):
     case = CASES[name]
     scene = case.scene()

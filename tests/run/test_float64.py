@@ -42,6 +42,7 @@ def test_simulate_answers_in_float64():
     assert result.restitution == pytest.approx(thornton_ning(scene.start.velocity), rel=1e-8)
 
 
+@pytest.mark.slow
 def test_sweep_answers_in_float64():
     velocities = [0.5, 0.6]
     result = impact.sweep(SCENE, {"initial.velocity": velocities}, chunk=2)

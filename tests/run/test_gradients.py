@@ -55,6 +55,7 @@ def jkr_max_force(x):
     return A * a**3 - B * a**1.5
 
 
+@pytest.mark.slow
 def test_derivatives_match_thornton_ning(thornton_ning):
     """e and F_max and their derivatives w.r.t. (Δγ, v0, E*, R, m): values against (3.50–51)
     and the energy balance to 1e-8; jax.jacfwd and jax.grad against those closed forms
@@ -87,6 +88,7 @@ def test_derivatives_match_thornton_ning(thornton_ning):
     np.testing.assert_allclose(np.asarray(gradient, np.float64), exact, rtol=1e-5)
 
 
+@pytest.mark.slow
 def test_vmap_and_jit_equal_single_calls(thornton_ning):
     """jax.vmap(f) over 8 velocities equals 8 calls of f (to round-off); jax.jit(f) equals f.
     f of the test above: its single calls reuse the compiled value."""
@@ -101,6 +103,7 @@ def test_vmap_and_jit_equal_single_calls(thornton_ning):
     np.testing.assert_allclose(single, e_theory, rtol=1e-8)
 
 
+@pytest.mark.slow
 def test_power_law_derivatives_match_the_closed_form():
     """de/d(n, c, v0) of a power-law body against (3.81–82) differentiated with jax: ≤ 1e-6
     relative (measured 3.5e-9)."""
@@ -153,6 +156,7 @@ FINITE_DIFFERENCE_CASES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(FINITE_DIFFERENCE_CASES))
 def test_jacfwd_matches_finite_differences(case):
     """jax.jacfwd against central differences of the simulation (relative step 1e-4: the

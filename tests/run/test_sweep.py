@@ -96,6 +96,7 @@ def assert_same(a, b, names=EXACT, rtol=0.0):
 # --- the API --------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_sweep_equals_simulate_point_by_point(grid):
     assert grid.shape == (4, 2) and grid.stats["points"] == 8
     for i, velocity in enumerate(VELOCITIES):
@@ -127,6 +128,7 @@ def test_sweep_equals_simulate_point_by_point(grid):
     assert grid.max_theory_error() < 1e-8
 
 
+@pytest.mark.slow
 def test_grid_and_zip_shapes(grid, thornton_ning_scene):
     velocity = grid.params["initial.velocity"]
     work = grid.params["effects.adhesion.work_of_adhesion"]
@@ -222,6 +224,7 @@ def test_a_failing_point_gets_its_code_and_the_sweep_goes_on():
     assert np.allclose(result.restitution[names == "separated"], 0.862944882, atol=1e-8)
 
 
+@pytest.mark.slow
 def test_the_figure_draws_the_closed_form_beside_the_points(grid, thornton_ning_scene):
     figure = restitution_figure(grid)
     top = figure.axes[0]
@@ -365,6 +368,7 @@ def jobs(tmp_path_factory, cache_env):
     started.close()
 
 
+@pytest.mark.slow
 def test_two_devices_give_the_results_of_one(grid, jobs):
     _, err = jobs.two_devices.communicate(timeout=400)
     assert jobs.two_devices.returncode == 0, err
@@ -395,6 +399,7 @@ def assert_same_files(mine: Path, theirs: Path) -> None:
             assert a[key] == b[key], key
 
 
+@pytest.mark.slow
 def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, jobs):
     jobs.kill_midway()
     # The journal holds every finished chunk; the HDF5 file as many or one fewer (the kill may
@@ -433,6 +438,7 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, jobs):
     assert again.exit_code == 2 and "finished" in again.output and "--overwrite" in again.output
 
 
+@pytest.mark.slow
 def test_two_processes_write_shards_that_merge_into_the_single_process_file(grid, tmp_path, jobs):
     for process in jobs.shards:
         out, err = process.communicate(timeout=400)

@@ -15,6 +15,7 @@ def pair():
     return simulate(two_spheres())
 
 
+@pytest.mark.slow
 def test_same_restitution_as_the_wall_impact_with_effective_parameters(pair):
     scene = pair.scene
     m1, m2 = scene.body.resolved_mass, scene.counterpart.resolved_mass
@@ -63,6 +64,7 @@ def test_a_rigid_flat_at_rest_is_the_default():
     assert wall.body_velocity_after == -wall.separation_velocity
 
 
+@pytest.mark.slow
 def test_a_sweep_over_the_counterpart_meets_thornton_ning_with_effective_parameters():
     result = impact.sweep(two_spheres(), {"counterpart.velocity": [0.0, 0.2], "counterpart.profile.R": [1e-5, 4e-5]})
     assert result.restitution.shape == (2, 2)

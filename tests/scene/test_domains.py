@@ -67,6 +67,7 @@ def test_a_drop_too_high_names_the_gap():
     assert error.value.problems[0][1].startswith("100 m is outside the allowed range [0, ")
 
 
+@pytest.mark.slow
 def test_every_example_scene_and_sweep_validates():
     scenes = sorted(CONFIGS.glob("*.yaml")) + sorted((CONFIGS / "hard").glob("*.yaml"))
     assert len(scenes) == 48

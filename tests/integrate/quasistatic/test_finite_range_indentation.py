@@ -143,6 +143,7 @@ def test_maugis_displacement_loop_dissipates_the_area_of_its_jumps():
     assert up == pytest.approx(down, rel=1e-3)  # linear between the 33 samples of a piece
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n, c", [(1.0, math.tan(0.3)), (1.5, 1e3)])
 def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
     """f = c·rⁿ, the cone (n = 1, c = tan θ) and n = 1.5, one compilation: at σ0 = 1e11 Pa the
@@ -168,6 +169,7 @@ def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
 # ---------------------------------------------------------------- Greenwood–Johnson
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_double_hertz_pull_off_matches_the_closed_form(control, xi):
     """k ∈ {0.1, 1, 3, 30}: (a, d, F) of `double_hertz_pull_off` to 1e-8 (measured ≤ 2e-15);

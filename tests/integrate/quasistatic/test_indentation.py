@@ -92,6 +92,7 @@ def test_paraboloid_pull_off_and_universal_curves(control, xi):
     assert result.max_force == pytest.approx(loaded_past(critical, xi), rel=1e-12) if xi == 3 else True
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_flat_punch(control, xi):
     """(3.37): held at its wall, the punch lets go at d_c = −√(2πaΔγ/E*) under either control."""
@@ -104,6 +105,7 @@ def test_flat_punch(control, xi):
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_cone(control, xi):
     """(3.40)–(3.41); the states on (3.43) (= (3.78) with n = 1) in force-control units."""
@@ -121,6 +123,7 @@ def test_cone(control, xi):
 # ---------------------------------------------------------------- sphere, ellipsoid, power law
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_sphere_and_ellipsoid(control, xi):
     """(3.54)–(3.56) for the sphere (α = a_c/R up to ~0.35) and (3.57) with (3.54) for the ellipsoid."""
@@ -133,6 +136,7 @@ def test_sphere_and_ellipsoid(control, xi):
     assert_pull_off(run(dict(shape="ellipsoid", R=R, k=k), control, loaded_past(critical, xi)), critical)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_power_laws(control, xi):
     """(3.74)–(3.76) for n in (1/2, 4]; the curve on (3.78) for n = 3. d_c = 0 for n = 3/2 under
@@ -192,6 +196,7 @@ def scan(profile, beta_of_work, pull_off_of_work, betas, control, xi, rtol=KINK_
     return results
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_truncated_cone_both_sides_of_its_threshold(control, xi):
     """(3.87)–(3.90). Below β = 2.1219 (printed 2.125) the flat tip (3.90); just above it the
@@ -226,6 +231,7 @@ def test_truncated_cone_both_sides_of_its_threshold(control, xi):
     assert high.pull_off.contact_radius > 2 * b
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_truncated_paraboloid_both_sides_of_its_threshold(control, xi):
     """(3.95)–(3.97) around β = 3.095, as for the truncated cone."""
@@ -281,6 +287,7 @@ def test_capped_flat_punch_three_regimes(control, xi):
     assert edges == ([False, True, True] if xi == 3 else [False, False, True])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_capped_cone_regimes(control, xi):
     """(3.110)–(3.113): below β = 1.797 (printed 1.795) the cap's JKR state; between 1.797 and 2
@@ -334,6 +341,7 @@ def test_capped_paraboloid_regimes(control, xi):
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_rounded_flat_punch(control, xi):
     """(3.129)–(3.131): one critical radius for every β, tending to b as β → 0."""
@@ -361,6 +369,7 @@ def wavy_reference(a_hat, h_hat, gamma_bar):
     return d_hat, F_hat
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_wavy_paraboloid(control, xi):
     """(3.134)–(3.138) with ĥ = 0.5, Δγ̄ = 100: every state on the curves, the force oscillating

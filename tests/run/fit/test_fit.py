@@ -174,6 +174,7 @@ def test_a_relative_sigma_of_a_zero_value_is_refused(scene):
     assert caught.value.problems == [("observables.max_force.relative", "σ·|value| is 0 in row 5")]
 
 
+@pytest.mark.slow
 def test_the_simulation_fits_as_the_closed_form_does_and_a_second_fit_reuses_its_programs(scene, drop_fit):
     """model 'simulation' (impact.as_function through Levenberg–Marquardt, vmapped over the rows
     under optimistix's jit) finds the closed-form fit of the same data (`drop_fit`); a second
