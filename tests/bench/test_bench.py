@@ -24,6 +24,7 @@ def quick(tmp_path_factory):
     return folder, result
 
 
+@pytest.mark.slow
 def test_quick_bench_writes_its_outputs(quick):
     folder, result = quick
     assert result.exit_code == 0, result.output
@@ -36,6 +37,7 @@ def test_quick_bench_writes_its_outputs(quick):
     assert "benchmark written to" in result.output
 
 
+@pytest.mark.slow
 def test_markdown_fragment_holds_the_runs_tables(quick):
     """--markdown FILE writes the two tables the docs include, from the run's own numbers: the
     cheapest setting of each target error (its targets in order), then one row per solver × rtol

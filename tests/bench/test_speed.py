@@ -33,6 +33,7 @@ def tiny(tmp_path_factory):
     return folder, result, rows
 
 
+@pytest.mark.slow
 def test_one_row_per_workload_and_points_count(tiny):
     folder, result, rows = tiny
     assert result.exit_code == 0, result.output
@@ -52,6 +53,7 @@ def _cells(line: str) -> list[str]:
     return [cell.strip() for cell in line.strip().strip("|").split("|")]
 
 
+@pytest.mark.slow
 def test_markdown_fragment_holds_the_runs_table(tiny):
     """--markdown FILE writes the table the docs include: the command that measured it, one row
     per workload × points count in the CSV's order, each with the run's own numbers (to the

@@ -1,5 +1,7 @@
 """The command line: one end-to-end run in a subprocess, then runs, overrides, stored runs and
-refusals of bad input through typer's runner (exit code 2, dotted path, no traceback, no files)."""
+refusals of bad input through typer's runner (exit code 2, dotted path, no traceback, no files);
+unusable output folders, flags in `--help`, a run without compressive force, an indentation
+test."""
 
 import copy
 import math
@@ -16,17 +18,13 @@ from typer.testing import CliRunner
 
 from impact import theory
 from impact._io.run import read_run
-from impact._scene.scene import load_scene, scene_yaml
+from impact._scene.scene import scene_yaml
 from impact.cli import app
+from tests.command import invoke
+from tests.scenes import CONFIGS, THORNTON_NING
 
-CONFIGS = Path(__file__).parents[2] / "configs"
-THORNTON_NING = CONFIGS / "thornton_ning.yaml"
 OUTPUTS = {"run.h5", "config.yaml", "time.png", "force_indentation.png"}
 DELETE = object()
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +44,8 @@ def test_help_lists_every_command():
         assert command in result.output
 
 
-def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
+@pytest.mark.slow
+def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end, thornton_ning_scene):
     folder, process = end_to_end
     assert process.returncode == 0, process.stderr
     assert "Traceback" not in process.stderr
@@ -55,7 +54,7 @@ def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
     assert {entry.name for entry in folder.iterdir()} == OUTPUTS
     for plot in ("time.png", "force_indentation.png"):
         assert (folder / plot).read_bytes().startswith(b"\x89PNG")
-    scene = load_scene(THORNTON_NING)
+    scene = thornton_ning_scene
     assert (folder / "config.yaml").read_text() == scene_yaml(scene)
     result = read_run(folder / "run.h5")
     assert result.scene == scene
@@ -65,6 +64,7 @@ def test_end_to_end_run_writes_the_run_its_config_and_plots(end_to_end):
         assert bool(file["parameters/config.yaml"].attrs["x64"])  # main() enabled float64
 
 
+@pytest.mark.slow
 def test_show_prints_the_stored_summary(end_to_end):
     folder, _ = end_to_end
     result = invoke("show", folder / "run.h5")
@@ -108,6 +108,7 @@ def test_unsuccessful_run_is_written_and_exits_1(tmp_path):
     assert read_run(tmp_path / "out" / "run.h5").status == "time_limit"
 
 
+@pytest.mark.slow
 def test_energy_drift_is_written_and_explained(tmp_path):
     """hard/08 with the located ends at rtol 1e-6: the solver's speed drifts from the energy
     balance; the run is written with that status, and the warning says what to do."""
@@ -360,3 +361,49 @@ def test_matplotlib_is_imported_ahead_by_a_thread_that_prints_nothing(matplotlib
     process = subprocess.run(command, capture_output=True, text=True, cwd=CONFIGS.parent)
     assert process.returncode == 0 and process.stderr == ""
     assert process.stdout.split() == imported
+
+
+@pytest.mark.parametrize("place", ["file", "file parent"])
+def test_unusable_output_folder_is_refused_before_simulating(place, tmp_path):
+    (tmp_path / "taken").write_text("a file")
+    folder = tmp_path / "taken" if place == "file" else tmp_path / "taken" / "run"
+    result = invoke("run", THORNTON_NING, "-o", folder)
+    assert result.exit_code == 2, result.output
+    expected = "exists and is not a folder" if place == "file" else "taken is a file, not a folder"
+    assert expected in " ".join(result.output.split())
+    assert "restitution" not in result.output  # refused before the simulation
+
+
+def test_help_shows_no_bool_beside_flags():
+    for command in ([], ["run"], ["validate"], ["show"], ["sweep"], ["merge"], ["bench"]):
+        result = invoke(*command, "--help")
+        assert result.exit_code == 0
+        assert "<bool>" not in result.output
+        assert "--help" in result.output
+
+
+@pytest.mark.slow
+def test_a_run_without_compressive_force_says_so(tmp_path):
+    # n = 1/2 below the threshold: the contact grows without limit while the force stays adhesive
+    scene = CONFIGS / "hard" / "08_power_law_n05_below_threshold.yaml"
+    result = invoke("run", scene, "-o", tmp_path / "out")
+    assert result.exit_code == 1, result.output
+    assert "no compressive force" in result.output
+    assert "unbounded_contact" in result.output
+
+
+def test_an_indentation_test_runs_shows_and_validates(tmp_path):
+    folder = tmp_path / "run"
+    runner = CliRunner()
+    output = runner.invoke(app, ["run", str(CONFIGS / "indentation_paraboloid.yaml"), "-o", str(folder)])
+    assert output.exit_code == 0, output.output
+    for phrase in ("pull-off force", "-23.56 nN", "force (ξ = 3)", "separated"):
+        assert phrase in output.output
+    assert {p.name for p in folder.iterdir()} == {"run.h5", "config.yaml", "force_indentation.png", "normalized.png"}
+    assert (folder / "normalized.png").read_bytes().startswith(b"\x89PNG")
+    shown = runner.invoke(app, ["show", str(folder / "run.h5")])
+    assert shown.exit_code == 0 and "-23.56 nN" in shown.output
+    checked = runner.invoke(app, ["validate", str(CONFIGS / "indentation_wavy.yaml")])
+    assert checked.exit_code == 0 and "displacement control" in checked.output
+    refused = runner.invoke(app, ["run", str(CONFIGS / "indentation_wavy.yaml"), "--set", "initial.velocity=1"])
+    assert refused.exit_code == 2 and "not for kind 'indentation'" in refused.output

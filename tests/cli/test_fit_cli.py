@@ -8,19 +8,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact._io.fit import fit_summary, read_fit
 from impact._run.fit import fit_spec
 from impact._scene.fit_spec import load_fit, read_table
-from impact.cli import app
+from tests.command import invoke
+from tests.scenes import FITS
 
-FITS = Path(__file__).parents[2] / "configs" / "fits"
 DROP_TEST = FITS / "drop_test.yaml"
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
@@ -269,6 +264,7 @@ def test_bad_indentation_fit_files_exit_2_naming_the_field_and_write_nothing(tmp
     _refused(tmp_path, _bad_copy(tmp_path, AFM_CURVE, change, csv), field, message)
 
 
+@pytest.mark.slow
 def test_the_afm_example_fits_with_set_overrides(tmp_path):
     """`--set` changes a start and a σ of the fit file; the fit finds the true values of
     make_afm_data.py and fit.h5 stores the fit file as overridden."""

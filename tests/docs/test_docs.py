@@ -13,8 +13,8 @@ from mkdocs_config import mkdocs_config
 from pydantic import BaseModel
 
 import impact
+from tests.scenes import ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
 PAGES = DOCS / "src"
 README = ROOT / "README.md"

@@ -19,11 +19,12 @@ import pytest
 from mkdocs_config import mkdocs_config
 
 import impact
+from tests.scenes import ROOT
 
 if importlib.util.find_spec("mkdocs") is None and not os.environ.get("CI"):
     pytest.skip("the docs extra is not installed: pip install -e '.[docs]'", allow_module_level=True)
 
-ROOT = Path(__file__).resolve().parents[2]
+pytestmark = pytest.mark.slow  # the site's build
 CONFIG = ROOT / "docs" / "mkdocs.yml"
 RESULT_CLASSES = ("Result", "SweepResult", "IndentationResult", "FitResult")
 # Members of the result classes that are no physical quantity (the scene, names, flags, counts,
@@ -95,6 +96,7 @@ def _context(text: str, position: int) -> str:
     return " ".join(_text(text[max(0, position - 80) : position + 60]).split())
 
 
+@pytest.mark.slow
 def test_the_site_has_every_page(site):
     names = {page.name for page in _pages(site)}
     assert {"index.html", "api.html", "theory.html", "finite-range.html", "scene-reference.html"} <= names

@@ -3,8 +3,6 @@ the contact radius that landed elsewhere) ends the run with the status `off_bran
 restitution: before 828eadd the wavy paraboloid's cascades landed 0.08–0.2 (scaled) off and the
 impact created energy (e = 1.77)."""
 
-from pathlib import Path
-
 import jax
 import pytest
 
@@ -14,8 +12,7 @@ from impact._law.branches import Branch
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
-
-CONFIGS = Path(__file__).parents[2] / "configs"
+from tests.scenes import CONFIGS
 
 
 def _status(scene) -> int:
@@ -25,6 +22,7 @@ def _status(scene) -> int:
     return int(outcome.status)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("config", "changes"),
     [

@@ -1,13 +1,10 @@
 """`solver.method: quadrature`: each contact phase ended by its energy balance and timed by
 Gauss quadrature of dt = dd/v, against the same impacts integrated by dopri8 at rtol 1e-13."""
 
-from pathlib import Path
-
 import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
-import yaml
 from typer.testing import CliRunner
 
 import impact
@@ -20,8 +17,8 @@ from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact.cli import app
 from tests.run.passive import assert_passive
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 QUADRATURE = {"solver.method": "quadrature"}
 TIGHT = {"solver.method": "dopri8", "solver.rtol": 1e-13, "solver.atol": 1e-15}
 # Velocities (m/s) of each scene: about its sticking velocity (Thornton–Ning: v_s = 0.3032 m/s,
@@ -35,6 +32,7 @@ CASES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", sorted(CASES))
 def test_quadrature_is_the_tight_integration(config):
     """Statuses equal; restitution, deepest indentation and force extremes to 1e-12; contact
@@ -63,6 +61,7 @@ def test_quadrature_is_the_tight_integration(config):
         assert np.all(np.abs(mine[finite] - theirs[finite]) <= tolerance * scale), name
 
 
+@pytest.mark.slow
 def test_gravity_bounces_as_the_tight_integration_does():
     """Several contacts under gravity (each a jump-in, a ride in and out, a flight), then captured."""
     scene = load_scene(CONFIGS / "gravity_bounces.yaml")
@@ -76,6 +75,7 @@ def test_gravity_bounces_as_the_tight_integration_does():
     assert_passive(fast)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "attach_on_touch.yaml", "cone.yaml"])
 def test_a_quadrature_trajectory_is_the_tight_one(config):
     """A passive body's (`assert_passive`: time never runs back, the loop is dissipative), whose
@@ -90,8 +90,9 @@ def test_a_quadrature_trajectory_is_the_tight_one(config):
         assert np.max(np.abs(mine - theirs)) <= 1e-3 * np.max(np.abs(getattr(tight, name))), name
 
 
-def test_a_sweep_point_does_not_depend_on_its_batch():
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+@pytest.mark.slow
+def test_a_sweep_point_does_not_depend_on_its_batch(thornton_ning_scene):
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     axes = {"initial.velocity": list(np.geomspace(0.2, 20.0, 13))}
     whole = sweep(scene, axes, order="given").results
     for chunk in (1, 7):
@@ -100,10 +101,11 @@ def test_a_sweep_point_does_not_depend_on_its_batch():
             assert np.array_equal(np.asarray(parts[name]), np.asarray(whole[name]), equal_nan=True), (chunk, name)
 
 
-def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch):
+@pytest.mark.slow
+def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """A leg that ran past its turnaround (here: its end pushed 1e-3 beyond the root) meets v² < 0
     at its nodes: the run ends with solver_failure."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     ended = quadrature._Leg.end
 
     def overshoots(self):
@@ -142,11 +144,12 @@ def test_quadrature_at_the_sticking_velocity_is_a_physical_outcome():
     assert np.allclose(deepest, np.asarray(tight["max_indentation"]), rtol=1e-12, atol=0.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mode", ["reverse", "forward"])
-def test_derivatives_are_thornton_nings(mode):
+def test_derivatives_are_thornton_nings(mode, thornton_ning_scene):
     """`impact.as_function` differentiates through the quadrature: de/dΔγ and de/dv0 are those
     of (3.50–51) to 1e-10."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     restitution = impact.as_function(scene, ["effects.adhesion.work_of_adhesion", "initial.velocity"], "restitution")
     mass, radius = scene.body.resolved_mass, scene.body.profile.R
     modulus, work = scene.material.E_star, scene.effects.adhesion.work_of_adhesion
@@ -156,11 +159,12 @@ def test_derivatives_are_thornton_nings(mode):
     np.testing.assert_allclose(np.asarray(derivatives), np.asarray(expected), rtol=1e-10)
 
 
-def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch):
+@pytest.mark.slow
+def test_a_turnaround_whose_search_did_not_settle_is_a_failure_not_a_number(monkeypatch, thornton_ning_scene):
     """With one Illinois step instead of 12 the turnaround lies off the root of v² (by far more
     than 1e-9 of the leg's energies): the run ends with solver_failure, not a restitution that
     lost that energy."""
-    scene = with_values(load_scene(CONFIGS / "thornton_ning.yaml"), QUADRATURE)
+    scene = with_values(thornton_ning_scene, QUADRATURE)
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
     assert _status(integrator, options, scene) == RESULT_CODE["separated"]
     monkeypatch.setattr(quadrature, "_ILLINOIS_STEPS", 1)
@@ -171,39 +175,6 @@ def _status(integrator, options, scene) -> int:
     """The run's result code, traced afresh (a cached program would not see a patched constant)."""
     _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
     return int(outcome.status)
-
-
-@pytest.mark.parametrize(
-    ("change", "why"),
-    [
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
-            "'quadrature' not with effects.damping: a damped phase does not keep its energy",
-        ),
-        (
-            {"body": {"profile": {"shape": "sphere", "R": 1e-6}, "mass": 1.0472e-14}},
-            "'quadrature' needs a profile of the form g = A·xⁿ (paraboloid, cone, power_law), not 'sphere'",
-        ),
-        (
-            {"body": {"profile": {"shape": "power_law", "n": 0.8, "c": 1e3}, "mass": 1.0472e-14}},
-            "'quadrature' needs a power law with n >= 1 (not 0.8) and, with adhesion, approach_work_of_adhesion "
-            "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope",
-        ),
-        ({"limits": {"duration": 1e-6}}, "'quadrature' does not stop a phase midway: leave limits.duration out"),
-        (
-            {"solver": {"method": "quadrature", "phase_ends": "integrated"}},
-            "'quadrature' ends every phase from its energy balance: leave solver.phase_ends out (or set it to "
-            "'energy')",
-        ),
-    ],
-)
-def test_quadrature_is_refused_where_it_does_not_apply(change, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data.update(change)
-    data.setdefault("solver", {})["method"] = "quadrature"
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.method"] == why
 
 
 def test_validate_shows_the_quadrature():

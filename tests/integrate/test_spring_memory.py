@@ -4,7 +4,6 @@ within round-off of the exact sum over millions of attach and detach events."""
 
 import functools
 import math
-from pathlib import Path
 
 import equinox as eqx
 import jax
@@ -19,8 +18,8 @@ from impact._integrate.springs import SpringArrayProblem
 from impact._law.springs import Attached
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.programs import solve
+from tests.scenes import HARD
 
-HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
 COUNTS = (10, 1_000_000)
 
 
@@ -64,6 +63,7 @@ def test_compiled_memory_is_small_for_any_n(case):
         assert int(outcome.status) == 0  # separated
 
 
+@pytest.mark.slow
 def test_one_compilation_serves_every_n(case):
     """`solve` with N traced gives the results of a program compiled for each N, from one
     compilation."""
@@ -84,6 +84,7 @@ def test_one_compilation_serves_every_n(case):
     assert traced._cache_size() == 1
 
 
+@pytest.mark.slow
 def test_running_sum_stays_exact_over_millions_of_events(case):
     """S_k after sweeps up and down a 10⁶-spring array (3·10⁶ events) and a random walk of 10⁶
     events: within 4 ulps of S_k summed exactly (math.fsum of the same float64 terms).

@@ -14,27 +14,19 @@ from impact._integrate.problem import build_problem
 from impact._integrate.springs import SpringArray, build_array
 from impact._integrate.verlet import Verlet
 from impact._law.springs import Attached
-from impact._run.parameters import integrator_for, options_for, physics_for
+from impact._run.parameters import options_for, physics_for
 from impact._run.programs import solve
-from impact._scene.scene import SceneError, load_scene, scene_yaml
+from impact._scene.scene import load_scene, scene_yaml
 from impact.cli import app
+from tests.scenes import E_STAR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1e-6, 1e9, 0.05, 1.0472e-14
 COUNT = 300
 STEPS = np.geomspace(1e-2, 1e-5, 13)  # scaled time
 
 
 def scene(velocity_factor=2.0, **extra):
     v_s = float(theory.thornton_ning_sticking_velocity(MASS, R, E_STAR, WORK))
-    data = dict(
-        name="verlet",
-        body=dict(profile=dict(shape="paraboloid", R=R), mass=MASS),
-        material=dict(E_star=E_STAR),
-        initial=dict(velocity=velocity_factor * v_s),
-        effects=dict(adhesion=dict(work_of_adhesion=WORK)),
-    )
-    data.update(extra)
-    return data
+    return micro_sphere(velocity_factor * v_s, {"adhesion": {"work_of_adhesion": WORK}}, name="verlet", **extra)
 
 
 @pytest.fixture(scope="module")
@@ -58,6 +50,7 @@ def restitution(outcome):
     return float(outcome.separation_velocity) / float(outcome.touch_velocity)
 
 
+@pytest.mark.slow
 def test_every_step_size_separates(sweep):
     _, outcomes, _ = sweep
     assert all(int(o.status) == 0 for o in outcomes)  # separated
@@ -95,6 +88,7 @@ def test_loop_work_converges_to_the_exact_dissipation(sweep):
     assert errors[-1] < 1e-3
 
 
+@pytest.mark.slow
 def test_scene_runs_verlet_with_its_step_in_seconds():
     """`solver: {method: verlet, dt}` with `contact.springs` runs the same stepper (dt in s)."""
     loaded = load_scene(scene())
@@ -114,6 +108,7 @@ def test_scene_runs_verlet_with_its_step_in_seconds():
     assert result.contact_time == pytest.approx(result.events[-1][0] - result.events[0][0])
 
 
+@pytest.mark.slow
 def test_without_adhesion_the_bounce_is_elastic():
     """Δγ = 0: e → 1 and the Hertz contact time, to the spatial and time-stepping errors."""
     velocity = 0.5
@@ -127,36 +122,11 @@ def test_without_adhesion_the_bounce_is_elastic():
     assert result.contact_time == pytest.approx(float(theory.hertz_contact_time(velocity, MASS, R, E_STAR)), rel=1e-3)
 
 
+@pytest.mark.slow
 def test_below_the_sticking_velocity_verlet_captures():
     data = scene(0.5, contact={"springs": COUNT}, solver={"method": "verlet", "dt": 1e-11})
     result = simulate(data)
     assert result.status == "captured" and result.stuck and result.restitution == 0.0
-
-
-@pytest.mark.parametrize(
-    "extra, path, words",
-    [
-        ({"solver": {"method": "verlet", "dt": 1e-11}}, "contact.springs", "number of springs"),
-        ({"solver": {"method": "verlet"}, "contact": {"springs": 100}}, "solver.dt", "time step"),
-        ({"solver": {"method": "tsit5", "dt": 1e-11}}, "solver.dt", "only for method 'verlet'"),
-        (
-            {"solver": {"method": "verlet", "dt": -1.0}, "contact": {"springs": 100}},
-            "solver.dt",
-            "-1 s is outside the allowed range [1e-30, 1] s",
-        ),
-    ],
-    ids=["continuum", "no step", "adaptive with a step", "negative step"],
-)
-def test_scene_refuses_verlet_misuse(extra, path, words):
-    with pytest.raises(SceneError) as caught:
-        load_scene(scene(**extra))
-    assert any(p == path and words in message for p, message in caught.value.problems), caught.value.problems
-
-
-def test_verlet_scene_accepts_a_yaml_string_step():
-    loaded = load_scene(scene(solver={"method": "verlet", "dt": "1e-11"}, contact={"springs": 100}))
-    assert loaded.solver.dt == 1e-11
-    assert integrator_for(loaded) == Verlet(dt=1e-11)
 
 
 def test_validate_prints_the_verlet_step_not_tolerances(tmp_path):

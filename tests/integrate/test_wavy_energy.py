@@ -9,8 +9,6 @@ moved the body deeper at no cost; the case 11_wavy_strong rebounded with e = 1.7
 −4.47e-12 J against 2.09e-12 J at touch).
 """
 
-from pathlib import Path
-
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -21,8 +19,9 @@ from impact._integrate import transitions
 from impact._integrate.problem import build_problem
 from impact._run.parameters import options_for, physics_for
 from impact._scene.scene import load_scene
+from tests.scenes import HARD
 
-CASE = Path(__file__).parents[2] / "configs" / "hard" / "11_wavy_strong.yaml"
+CASE = HARD / "11_wavy_strong.yaml"
 
 
 def wavy_scene(velocity: float, approach: float | None = None) -> dict:
@@ -33,6 +32,7 @@ def wavy_scene(velocity: float, approach: float | None = None) -> dict:
     return scene
 
 
+@pytest.mark.slow
 def test_every_rising_segment_of_the_wavy_edge_has_its_root():
     """h(a) = d on each rising segment, also those that end at a turning point (all but the
     last), at levels across the segment; and the jump-in at touch lands where h = 0."""
@@ -54,6 +54,7 @@ def test_every_rising_segment_of_the_wavy_edge_has_its_root():
     assert float(touch.radius) < float(attach.nodes[touch.segment + 1])  # not the segment's top
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("approach", [None, 0.025, 0.0])
 @pytest.mark.parametrize("velocity", [0.5, 2.0, 5.0, 20.0])
 def test_a_wavy_impact_never_gains_energy_and_jumps_at_constant_depth(velocity, approach):

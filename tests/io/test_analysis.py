@@ -20,7 +20,6 @@ import pandas as pd
 import pytest
 import xarray as xr
 import yaml
-from typer.testing import CliRunner
 
 import impact
 from impact import theory
@@ -35,24 +34,17 @@ from impact._scene.domains import udunits
 from impact._scene.errors import SweepError
 from impact._scene.scene import scene_yaml
 from impact._scene.sweep import make_spec
-from impact.cli import app
+from tests.command import invoke
+from tests.scenes import CONFIGS, E_STAR, MASS, THORNTON_NING, R
 
-ROOT = Path(__file__).parents[2]
-THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
-INDENTATION = ROOT / "configs" / "indentation_paraboloid.yaml"
+INDENTATION = CONFIGS / "indentation_paraboloid.yaml"
 VELOCITY, WORK = "initial.velocity", "effects.adhesion.work_of_adhesion"
 VELOCITIES = [0.25, 0.6, 2.0]  # v_s = 0.303 m/s at Δγ = 0.05: captured at 0.25; 0.184 m/s at 0.03
 WORKS = [0.03, 0.05]
 GRID = {VELOCITY: VELOCITIES, WORK: WORKS}
 ZIPPED = {VELOCITY: [0.3, 0.5, 0.8, 1.3, 2.1, 3.4], WORK: [0.01, 0.02, 0.03, 0.05, 0.08, 0.13]}
 CHUNK = 8
-# The Thornton–Ning particle: R = 1 µm, m = 1.0472e-14 kg, E* = 1 GPa.
-RADIUS, MASS, MODULUS = 1e-6, 1.0472e-14, 1e9
 AXIS_UNITS = {VELOCITY: "m s-1", WORK: "J m-2"}
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 def said(result) -> str:
@@ -104,6 +96,7 @@ def decoded_status(variable: xr.DataArray) -> np.ndarray:
 # --- a sweep in memory ------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_a_grid_has_one_dimension_per_axis_with_units_and_every_result(grid):
     ds = grid.to_xarray()
     assert ds.restitution.dims == (VELOCITY, WORK) and ds.sizes == {VELOCITY: 3, WORK: 2}
@@ -124,10 +117,11 @@ def test_a_grid_has_one_dimension_per_axis_with_units_and_every_result(grid):
     assert {key: ds.attrs[key] for key in versions} == versions
     # Selected by value, a point is the closed form (3.50–3.51) to the quadrature's round-off.
     e = float(ds.restitution.sel({VELOCITY: 0.6, WORK: 0.05}))
-    assert abs(e - float(theory.thornton_ning_restitution(0.6, MASS, RADIUS, MODULUS, 0.05))) < 1e-12
+    assert abs(e - float(theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, 0.05))) < 1e-12
     assert math.isclose(e, 0.8629448823, abs_tol=1e-10)
 
 
+@pytest.mark.slow
 def test_a_zipped_sweep_is_one_dimension_with_the_paths_as_coordinates(zipped):
     ds = zipped.to_xarray()
     assert ds.restitution.dims == ("point",) and ds.sizes == {"point": 6}
@@ -136,7 +130,7 @@ def test_a_zipped_sweep_is_one_dimension_with_the_paths_as_coordinates(zipped):
         assert ds[path].attrs["units"] == AXIS_UNITS[path]
     assert ds.attrs["mode"] == "zip"
     velocities, works = np.array(ZIPPED[VELOCITY]), np.array(ZIPPED[WORK])
-    expected = theory.thornton_ning_restitution(velocities, MASS, RADIUS, MODULUS, works)
+    expected = theory.thornton_ning_restitution(velocities, MASS, R, E_STAR, works)
     np.testing.assert_allclose(ds.restitution.values, expected, rtol=0, atol=1e-12)
 
 
@@ -157,7 +151,7 @@ def test_the_data_frame_has_one_row_a_point(grid):
     assert "status" not in frame.attrs["units"] and "stuck" not in frame.attrs["units"]
 
 
-def test_units_of_swept_fields_come_from_their_domains():
+def test_units_of_swept_fields_come_from_their_domains(thornton_ning_scene):
     assert [udunits(u) for u in ("m/s", "J/m²", "kg/m³", "N s/m", "m/s²", "1/m", "Pa", "")] == [
         "m s-1",
         "J m-2",
@@ -169,7 +163,7 @@ def test_units_of_swept_fields_come_from_their_domains():
         "",
     ]
     axes = {"body.profile.R": [1e-6], "material.E_star": [1e9], "body.mass": [1e-14], "solver.rtol": [1e-9]}
-    made = make_spec(impact.load_scene(THORNTON_NING), axes, "grid", "given")
+    made = make_spec(thornton_ning_scene, axes, "grid", "given")
     assert {axis.path: axis.unit for axis in made.axes} == {
         "body.profile.R": "m",
         "material.E_star": "Pa",
@@ -181,6 +175,7 @@ def test_units_of_swept_fields_come_from_their_domains():
 # --- a sweep read back ------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_open_sweep_gives_back_the_same_dataset(grid, zipped, stored):
     for mode, result in (("grid", grid), ("zip", zipped)):
         opened = impact.open_sweep(stored[mode] / "sweep.h5")
@@ -318,7 +313,7 @@ def test_a_run_is_its_time_series_with_units(run, tmp_path):
     for name, unit in series.items():
         assert np.array_equal(ds[name].values, getattr(run, name)) and ds[name].attrs["units"] == unit
     assert float(ds.restitution) == run.restitution and ds.contact_time.attrs["units"] == "s"
-    assert abs(float(ds.restitution) - float(theory.thornton_ning_restitution(0.6, MASS, RADIUS, MODULUS, 0.05))) < 1e-9
+    assert abs(float(ds.restitution) - float(theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, 0.05))) < 1e-9
     assert float(ds.adhesion_hysteresis) == run.adhesion_hysteresis and ds.adhesion_hysteresis.attrs["units"] == "J"
     assert decoded_status(ds.status) == "separated"
     assert ds.event_kind.values.tolist() == [kind for _, kind in run.events]

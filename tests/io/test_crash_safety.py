@@ -12,8 +12,11 @@ from pathlib import Path
 
 import h5py
 import numpy as np
+import pytest
 
-PACKAGE = Path(__file__).parents[2] / "impact"
+from tests.scenes import ROOT
+
+PACKAGE = ROOT / "impact"
 
 # A child that rewrites one text file and one HDF5 file as fast as it can, each version whole
 # and self-checking (its number at both ends; the HDF5 dataset filled with its number).
@@ -44,6 +47,7 @@ def _check_h5(path: Path) -> int:
     return int(values[0])
 
 
+@pytest.mark.slow
 def test_sigkill_at_random_moments_leaves_a_whole_old_or_new_file(tmp_path):
     text_path, h5_path = tmp_path / "speed.csv", tmp_path / "fit.h5"
     text_path.write_text("0\n" + "x" * 2_000_000 + "\n0\n")

@@ -1,8 +1,8 @@
-"""HDF5 runs: lossless round trip, the H5MD 1.1 layout, atomic writes, refusal of foreign files."""
+"""HDF5 runs: lossless round trip (of an impact and of an indentation test), the H5MD 1.1 layout,
+atomic writes, refusal of foreign files."""
 
 import dataclasses
 import math
-from pathlib import Path
 
 import h5py
 import numpy as np
@@ -10,10 +10,10 @@ import pytest
 
 import impact
 from impact._io.h5md import read_provenance
+from impact._io.indentation import is_indentation_run, read_indentation, write_indentation
 from impact._io.run import read_run, write_run
 from impact._scene.scene import load_scene, scene_yaml
-
-THORNTON_NING = Path(__file__).parents[2] / "configs" / "thornton_ning.yaml"
+from tests.scenes import CONFIGS, THORNTON_NING
 
 
 @pytest.fixture(scope="module")
@@ -129,3 +129,14 @@ def test_read_refuses_what_is_not_a_run(tmp_path):
         file["data"] = 1.0
     with pytest.raises(ValueError, match="not an impact run"):
         read_run(tmp_path / "other.h5")
+
+
+def test_an_indentation_test_round_trips(tmp_path):
+    result = impact.simulate(CONFIGS / "indentation_paraboloid.yaml")
+    path = write_indentation(result, tmp_path / "run.h5", wall_time=1.5)
+    assert is_indentation_run(path) and not is_indentation_run(tmp_path / "missing.h5")
+    back = read_indentation(path)
+    assert back.scene == result.scene and back.status == result.status and back.pull_off == result.pull_off
+    for name in ("contact_radius", "indentation", "force", "leg"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(result, name))
+    assert back.events == result.events and back.stats == result.stats

@@ -57,8 +57,9 @@ from impact._run.sweep.plan import plan_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
+from tests.run.bitwise import assert_bitwise
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 # (scene, its changes, lowest and highest velocity in m/s, points): captured and separated
 # points. Each call size compiles once: chunk 1 runs calls of 2 (a point and its copy), chunk 7
 # calls of 6, chunks 64 and the default one call; a curve law's program takes ~10 s to compile,
@@ -87,14 +88,7 @@ CLOSE = {
 }
 
 
-def assert_bitwise(results: dict, reference: dict, label: str) -> None:
-    assert results.keys() == reference.keys(), label
-    for name in reference:
-        mine, theirs = np.asarray(results[name]), np.asarray(reference[name])
-        differ = np.flatnonzero(~((mine == theirs) | (np.isnan(mine) & np.isnan(theirs))))
-        assert differ.size == 0, f"{label}: {name} differs at points {differ.tolist()}"
-
-
+@pytest.mark.slow
 @pytest.mark.parametrize("law", LAWS)
 def test_a_points_result_does_not_depend_on_its_batch(law):
     config, changes, low, high, points = LAWS[law]
@@ -131,6 +125,7 @@ def assert_simulated(law: str, scene, swept, point: int) -> None:
         np.testing.assert_allclose(getattr(single, name), swept.results[name][point], rtol=rtol, err_msg=name)
 
 
+@pytest.mark.slow
 def test_a_power_law_point_does_not_depend_on_its_place_in_a_batch():
     """Three points, repeated in one call of 7 (7·3 state components: without the padding the
     last lane's time falls in the row left over from the 4-row tiles, and its restitution
@@ -199,7 +194,7 @@ def test_a_gpu_compiles_without_the_cpu_options(monkeypatch):
     assert compiler_options() == {}
 
 
-def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
+def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch, thornton_ning_scene):
     """A batch given CPU devices on a machine whose default device is a GPU still compiles with
     XLA:CPU's options, and one on GPUs without them."""
     monkeypatch.setattr(runtime, "contracts_multiply_adds", lambda: True)  # options to tell apart
@@ -211,7 +206,7 @@ def test_a_sweeps_batch_takes_the_options_of_its_devices_platform(monkeypatch):
     compiled_with = []
     monkeypatch.setattr(batch_module, "_COMPILED", {})  # nothing kept for later tests
     monkeypatch.setattr(batch_module, "compile_stored", lambda *arguments: compiled_with.append(arguments[-1]))
-    plan = plan_sweep(make_spec(load_scene(CONFIGS / "thornton_ning.yaml"), {"initial.velocity": [0.5, 1.0]}))
+    plan = plan_sweep(make_spec(thornton_ning_scene, {"initial.velocity": [0.5, 1.0]}))
     batch_module.compiled_batch(plan.choices[0], plan.physics, 2, jax.devices("cpu")[:1])
     assert compiled_with == [on_cpu]
 

@@ -1,7 +1,6 @@
 """Every example scene in configs/ runs, succeeds, and meets its closed form where one exists."""
 
 import math
-from pathlib import Path
 
 import pytest
 
@@ -9,8 +8,7 @@ import impact
 from impact import theory
 from impact._run.impacts import Result
 from tests.run.passive import assert_passive
-
-CONFIGS = Path(__file__).parents[2] / "configs"
+from tests.scenes import CONFIGS
 
 
 def thornton_ning(scene, velocity):
@@ -237,6 +235,7 @@ def test_every_config_is_checked():
     assert {path.stem for path in CONFIGS.glob("*.yaml")} == set(CHECKS)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(CHECKS))
 def test_config_runs_and_meets_its_reference(name):
     result = impact.simulate(CONFIGS / f"{name}.yaml")

@@ -2,7 +2,6 @@
 fresh interpreter that never called `impact.configure()`), and leaves the flag as it found it."""
 
 import math
-from pathlib import Path
 
 import jax
 import numpy as np
@@ -10,9 +9,9 @@ import pytest
 
 import impact
 from impact import theory
+from tests.scenes import E_STAR, MASS, THORNTON_NING, WORK, R
 
-SCENE = Path(__file__).parents[2] / "configs" / "thornton_ning.yaml"
-MASS, RADIUS, E_STAR, WORK = 1.0472e-14, 1e-6, 1e9, 0.05
+SCENE = THORNTON_NING
 
 
 @pytest.fixture(autouse=True)
@@ -26,12 +25,12 @@ def float32_process():
 
 def thornton_ning(velocity: float) -> float:
     """(3.50–51) in Python floats: W = (1 + ∛864)/10 · ∛(R⁴(πΔγ)⁵/E*²), e = √(1 − W/(½mv²))."""
-    loss = math.cbrt(RADIUS**4 * (math.pi * WORK) ** 5 / E_STAR**2) * (1 + math.cbrt(864.0)) / 10
+    loss = math.cbrt(R**4 * (math.pi * WORK) ** 5 / E_STAR**2) * (1 + math.cbrt(864.0)) / 10
     return math.sqrt(1 - loss / (0.5 * MASS * velocity**2))
 
 
 def test_closed_forms_answer_in_float64():
-    e = theory.thornton_ning_restitution(0.6, MASS, RADIUS, E_STAR, WORK)
+    e = theory.thornton_ning_restitution(0.6, MASS, R, E_STAR, WORK)
     assert e.dtype == np.float64
     assert float(e) == pytest.approx(thornton_ning(0.6), rel=1e-13)
 
@@ -43,6 +42,7 @@ def test_simulate_answers_in_float64():
     assert result.restitution == pytest.approx(thornton_ning(scene.start.velocity), rel=1e-8)
 
 
+@pytest.mark.slow
 def test_sweep_answers_in_float64():
     velocities = [0.5, 0.6]
     result = impact.sweep(SCENE, {"initial.velocity": velocities}, chunk=2)

@@ -8,8 +8,8 @@ import pytest
 
 import impact
 from impact import theory
+from tests.scenes import CONFIGS, E_STAR, MASS, WORK, R
 
-CONFIGS = "configs/"
 TN_INPUTS = [
     "effects.adhesion.work_of_adhesion",
     "initial.velocity",
@@ -17,14 +17,14 @@ TN_INPUTS = [
     "body.profile.R",
     "body.mass",
 ]
-TN_POINT = np.array([0.05, 0.6, 1e9, 1e-6, 1.0472e-14])  # configs/thornton_ning.yaml
+TN_POINT = np.array([WORK, 0.6, E_STAR, R, MASS])  # configs/thornton_ning.yaml
 
 
 @pytest.fixture(scope="module")
 def thornton_ning():
     """f(Δγ, v0, E*, R, m) = (restitution, max_force) of configs/thornton_ning.yaml; one per
     module, so that its tests share the compiled programs."""
-    return impact.as_function(CONFIGS + "thornton_ning.yaml", TN_INPUTS, ["restitution", "max_force"])
+    return impact.as_function(CONFIGS / "thornton_ning.yaml", TN_INPUTS, ["restitution", "max_force"])
 
 
 def tn_restitution(x):
@@ -55,6 +55,7 @@ def jkr_max_force(x):
     return A * a**3 - B * a**1.5
 
 
+@pytest.mark.slow
 def test_derivatives_match_thornton_ning(thornton_ning):
     """e and F_max and their derivatives w.r.t. (Δγ, v0, E*, R, m): values against (3.50–51)
     and the energy balance to 1e-8; jax.jacfwd and jax.grad against those closed forms
@@ -87,6 +88,7 @@ def test_derivatives_match_thornton_ning(thornton_ning):
     np.testing.assert_allclose(np.asarray(gradient, np.float64), exact, rtol=1e-5)
 
 
+@pytest.mark.slow
 def test_vmap_and_jit_equal_single_calls(thornton_ning):
     """jax.vmap(f) over 8 velocities equals 8 calls of f (to round-off); jax.jit(f) equals f.
     f of the test above: its single calls reuse the compiled value."""
@@ -101,17 +103,18 @@ def test_vmap_and_jit_equal_single_calls(thornton_ning):
     np.testing.assert_allclose(single, e_theory, rtol=1e-8)
 
 
+@pytest.mark.slow
 def test_power_law_derivatives_match_the_closed_form():
     """de/d(n, c, v0) of a power-law body against (3.81–82) differentiated with jax: ≤ 1e-6
     relative (measured 3.5e-9)."""
     inputs = ["body.profile.n", "body.profile.c", "initial.velocity"]
-    f = impact.as_function(CONFIGS + "power_law.yaml", inputs, "restitution")
+    f = impact.as_function(CONFIGS / "power_law.yaml", inputs, "restitution")
     point = np.array([1.5, 300.0, 0.3])
     gradient = np.asarray(jax.jacfwd(f)(point))
 
     def exact(x):
         n, c, velocity = x
-        return theory.power_law_restitution(velocity, 1.0472e-14, n, c, 1e9, 0.05)
+        return theory.power_law_restitution(velocity, MASS, n, c, E_STAR, WORK)
 
     np.testing.assert_allclose(gradient, np.asarray(jax.grad(exact)(jnp.asarray(point))), rtol=1e-6)
 
@@ -153,13 +156,14 @@ FINITE_DIFFERENCE_CASES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(FINITE_DIFFERENCE_CASES))
 def test_jacfwd_matches_finite_differences(case):
     """jax.jacfwd against central differences of the simulation (relative step 1e-4: the
     differences of steps 1e-4 and 1e-3 agree to ~1e-6, the truncation of 1e-3), ≤ 1e-5
     relative (measured ≤ 1e-7)."""
     file, changes, inputs, outputs, step = FINITE_DIFFERENCE_CASES[case]
-    scene = impact.load_scene(CONFIGS + file).model_dump()
+    scene = impact.load_scene(CONFIGS / file).model_dump()
     for section, values in changes.items():
         scene[section].update(values)
     f = impact.as_function(scene, inputs, outputs)
@@ -177,7 +181,7 @@ def _value(scene, path):
 
 def test_a_static_input_is_refused():
     with pytest.raises(impact.SceneError) as error:
-        impact.as_function(CONFIGS + "thornton_ning.yaml", ["solver.rtol", "initial.velocity"], "restitution")
+        impact.as_function(CONFIGS / "thornton_ning.yaml", ["solver.rtol", "initial.velocity"], "restitution")
     assert str(error.value) == (
         "solver.rtol: selects the compiled program (a static choice of the solver, the limits, the "
         "contact or the effects): it cannot be an input; inputs are traced values such as velocities, "
@@ -187,7 +191,7 @@ def test_a_static_input_is_refused():
 
 def test_an_unknown_output_is_refused():
     with pytest.raises(impact.SceneError) as error:
-        impact.as_function(CONFIGS + "thornton_ning.yaml", ["initial.velocity"], ["restitution", "bounciness"])
+        impact.as_function(CONFIGS / "thornton_ning.yaml", ["initial.velocity"], ["restitution", "bounciness"])
     assert str(error.value) == (
         "output: unknown output 'bounciness'; known: restitution, contact_time, max_indentation, "
         "max_force, min_force, touch_velocity, separation_velocity, dissipated_energy, "
@@ -197,7 +201,7 @@ def test_an_unknown_output_is_refused():
 
 
 def test_an_unknown_path_and_a_fixed_step_array_are_refused():
-    scene = impact.load_scene(CONFIGS + "spring_array.yaml").model_dump()
+    scene = impact.load_scene(CONFIGS / "spring_array.yaml").model_dump()
     scene["solver"] = {"method": "verlet", "dt": 1e-10}
     with pytest.raises(impact.SceneError) as error:
         impact.as_function(scene, ["initial.speed"], "restitution")
@@ -208,5 +212,5 @@ def test_an_unknown_path_and_a_fixed_step_array_are_refused():
 
 def test_an_indentation_scene_is_refused():
     with pytest.raises(impact.SceneError) as error:
-        impact.as_function(CONFIGS + "indentation_paraboloid.yaml", ["material.E_star"], "max_force")
+        impact.as_function(CONFIGS / "indentation_paraboloid.yaml", ["material.E_star"], "max_force")
     assert str(error.value) == "kind: as_function runs impacts; the scene is of kind 'indentation'"

@@ -5,8 +5,6 @@ runaway shows there, on any machine: no wall-time bound, which a loaded machine 
 the physics check its YAML names.
 """
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import yaml
@@ -18,8 +16,7 @@ from impact import load_scene, simulate, theory
 from impact._integrate.base import AbstractAdaptiveIntegrator
 from impact._run.parameters import integrator_for, options_for
 from tests.run.passive import assert_passive
-
-HARD = Path(__file__).resolve().parents[2] / "configs" / "hard"
+from tests.scenes import HARD
 
 
 def run_case(name: str):
@@ -48,6 +45,7 @@ def tn_restitution(scene):
     )
 
 
+@pytest.mark.slow
 def test_01_no_adhesion_is_elastic():
     scene, result = run_case("01_no_adhesion")
     profile, mass, E_star, _ = parameters(scene)
@@ -106,6 +104,7 @@ def test_07_cones_follow_the_power_law(name):
     assert abs(result.restitution - expected) <= 1e-6
 
 
+@pytest.mark.slow
 def test_08_power_law_n06():
     scene, result = run_case("08_power_law_n06")
     expected = power_law_restitution(scene, 0.6, scene.body.profile.c)
@@ -113,6 +112,7 @@ def test_08_power_law_n06():
     assert abs(result.restitution - expected) <= 1e-4
 
 
+@pytest.mark.slow
 def test_08_power_law_n06_located_at_a_loose_tolerance_is_flagged_not_answered():
     """The contact grows to ~3e4 jump-in radii, where the energy's terms (~1e9) cancel to ~0.3:
     with the located ends at rtol 1e-6 the solver's v² missed the energy balance by 44 times the
@@ -130,6 +130,7 @@ def test_08_power_law_n06_located_at_a_loose_tolerance_is_flagged_not_answered()
     assert abs(energy.restitution - power_law_restitution(scene, 0.6, scene.body.profile.c)) <= 1e-4
 
 
+@pytest.mark.slow
 def test_08_power_law_n05_above_three_thresholds_is_elastic():
     _, result = run_case("08_power_law_n05_repulsive")
     assert result.status == "separated"
@@ -143,6 +144,7 @@ def test_08_growing_contact_is_reported_not_simulated_as_garbage(name):
     assert not result.success and np.isnan(result.restitution)
 
 
+@pytest.mark.slow
 def test_09_flat_punch():
     scene, result = run_case("09_flat_punch")
     profile, mass, E_star, adhesion = parameters(scene)
@@ -171,6 +173,7 @@ def critical_roots(equation, beta):
     return [brentq(equation, grid[i], grid[i + 1], args=(beta,)) for i in crossings]
 
 
+@pytest.mark.slow
 def test_10_truncated_cone_two_critical_roots():
     scene, result = run_case("10_truncated_cone_beta3")
     profile, _, E_star, adhesion = parameters(scene)
@@ -184,6 +187,7 @@ def test_10_truncated_cone_two_critical_roots():
     assert release_depth(result) == pytest.approx(d_c, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_10_truncated_cone_without_roots_lets_go_at_the_tip():
     scene, result = run_case("10_truncated_cone_beta1p5")
     profile, _, E_star, adhesion = parameters(scene)
@@ -192,6 +196,7 @@ def test_10_truncated_cone_without_roots_lets_go_at_the_tip():
     )  # (3.90)
 
 
+@pytest.mark.slow
 def test_10_capped_cone_two_critical_states():
     scene, result = run_case("10_capped_cone_beta1p9")
     profile, _, E_star, adhesion = parameters(scene)
@@ -208,6 +213,7 @@ def test_10_capped_cone_two_critical_states():
     assert release_depth(result) == pytest.approx(d_c, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_11_wavy_paraboloid_jumps_between_branches_and_balances_energy():
     scene, result = run_case("11_wavy_strong")
     kinds = [kind for _, kind in result.events]
@@ -266,6 +272,7 @@ def log_uniform(low, high):
     return st.floats(np.log10(low), np.log10(high)).map(lambda exponent: 10.0**exponent)
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(
     E_star=log_uniform(1e6, 1e11),
@@ -333,6 +340,7 @@ def run_with_approach_share(name, share, profile=None):
     return result
 
 
+@pytest.mark.slow
 def test_16_tiny_approach_adhesion_attaches_on_touch():
     """Δγa/Δγ = 4e-142 on the power law n = 1: the attach edge turns 144 decades below the
     contact; the impact is attach on touch to within the integration accuracy."""
@@ -344,6 +352,7 @@ def test_16_tiny_approach_adhesion_attaches_on_touch():
     assert abs(result.restitution - on_touch.restitution) <= ATTACH_ON_TOUCH_TOLERANCE
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("share", [1e-20, 1e-100, 1e-300])
 def test_16_vanishing_approach_adhesion_tends_to_attach_on_touch(share):
     """The same power law against its Δγa = 0 run, and a paraboloid (R = 1 cm) against the
@@ -367,6 +376,7 @@ def finite_range_energy_balance(result, scene):
     assert abs(lost - result.dissipated_energy) <= 1e-7 * 0.5 * mass * result.touch_velocity**2
 
 
+@pytest.mark.slow
 def test_17_maugis_dugdale_deep_on_the_dmt_side():
     scene, result = run_case("17_maugis_small_tabor")
     assert result.status == "separated"

@@ -1,6 +1,6 @@
 """Sweeps (issue: restitution sweeps and vmap parameter studies): equal to `simulate` point by
 point, shapes, no recompilation, 2 devices, kill-and-resume, multi-process shards, the figure,
-refusals of bad sweep files.
+refusals of an existing output (bad sweep files: tests/scene/test_sweep_files.py).
 
 Compilation dominates the cost here, so the in-process sweeps share one compiled batch of
 CHUNK points of the Thornton–Ning scene; the subprocesses share a persistent compilation cache.
@@ -22,7 +22,6 @@ import jax
 import numpy as np
 import pytest
 import yaml
-from typer.testing import CliRunner
 
 from impact import simulate, theory
 from impact._core.defaults import ACCELERATOR_CHUNK, DEFAULT_CHUNK
@@ -33,15 +32,12 @@ from impact._run.sweep import empty_results, plan_sweep, result_names, sticking_
 from impact._run.sweep.closed_forms import sticking_velocity
 from impact._run.sweep.execute import chunks_of, default_chunk
 from impact._scene import sweep as scene_sweep
-from impact._scene.errors import SweepError
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
-from impact._scene.sweep import load_sweep, make_spec
-from impact.cli import app
+from impact._scene.sweep import make_spec
+from tests.command import invoke
+from tests.scenes import CONFIGS, THORNTON_NING
 
-ROOT = Path(__file__).parents[2]
-CONFIGS = ROOT / "configs"
-THORNTON_NING = CONFIGS / "thornton_ning.yaml"
 CHUNK = 8
 VELOCITIES = [0.25, 0.45, 0.9, 4.0]  # v_s = 0.303 m/s at Δγ = 0.05: captured, then separated
 WORKS = [0.03, 0.05]
@@ -63,10 +59,6 @@ EXACT = (
 # and the loop work ∮F dd (a small difference of large works) by a few 1e-12.
 CLOSE = ("max_force", "min_force", "max_indentation", "dissipated_energy")
 PRELUDE = "from impact.cli import main; main()"
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
 
 
 @pytest.fixture(scope="module")
@@ -104,6 +96,7 @@ def assert_same(a, b, names=EXACT, rtol=0.0):
 # --- the API --------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_sweep_equals_simulate_point_by_point(grid):
     assert grid.shape == (4, 2) and grid.stats["points"] == 8
     for i, velocity in enumerate(VELOCITIES):
@@ -135,7 +128,8 @@ def test_sweep_equals_simulate_point_by_point(grid):
     assert grid.max_theory_error() < 1e-8
 
 
-def test_grid_and_zip_shapes(grid):
+@pytest.mark.slow
+def test_grid_and_zip_shapes(grid, thornton_ning_scene):
     velocity = grid.params["initial.velocity"]
     work = grid.params["effects.adhesion.work_of_adhesion"]
     assert velocity.shape == work.shape == grid.restitution.shape == (4, 2)
@@ -152,7 +146,7 @@ def test_grid_and_zip_shapes(grid):
     )
     assert zipped.shape == (8,) and zipped.restitution.shape == (8,)
     flat = {name: column.reshape(-1)[::-1] for name, column in grid.results.items()}
-    assert zipped.results.keys() == flat.keys() == set(result_names(load_scene(THORNTON_NING)))
+    assert zipped.results.keys() == flat.keys() == set(result_names(thornton_ning_scene))
     assert_same(zipped.results, flat, names=tuple(flat))
 
 
@@ -230,14 +224,15 @@ def test_a_failing_point_gets_its_code_and_the_sweep_goes_on():
     assert np.allclose(result.restitution[names == "separated"], 0.862944882, atol=1e-8)
 
 
-def test_the_figure_draws_the_closed_form_beside_the_points(grid):
+@pytest.mark.slow
+def test_the_figure_draws_the_closed_form_beside_the_points(grid, thornton_ning_scene):
     figure = restitution_figure(grid)
     top = figure.axes[0]
     assert top.get_xscale() == "log"
     simulated = [line for line in top.get_lines() if line.get_gid() == "simulated"]
     curves = [line for line in top.get_lines() if line.get_gid() == "theory"]
     assert len(simulated) == len(curves) == len(WORKS)
-    mass = load_scene(THORNTON_NING).body.resolved_mass
+    mass = thornton_ning_scene.body.resolved_mass
     for curve, work in zip(curves, WORKS, strict=True):
         v, e = curve.get_xdata(), curve.get_ydata()
         assert len(v) >= 500 and v.min() <= min(VELOCITIES) and v.max() >= max(VELOCITIES)
@@ -373,6 +368,7 @@ def jobs(tmp_path_factory, cache_env):
     started.close()
 
 
+@pytest.mark.slow
 def test_two_devices_give_the_results_of_one(grid, jobs):
     _, err = jobs.two_devices.communicate(timeout=400)
     assert jobs.two_devices.returncode == 0, err
@@ -418,6 +414,7 @@ def assert_same_files(mine: Path, theirs: Path) -> None:
             assert a[key] == b[key], key
 
 
+@pytest.mark.slow
 def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, jobs):
     jobs.kill_midway()
     # The journal holds every finished chunk; the HDF5 file as many or one fewer (the kill may
@@ -456,6 +453,7 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_result(tmp_path, jobs):
     assert again.exit_code == 2 and "finished" in again.output and "--overwrite" in again.output
 
 
+@pytest.mark.slow
 def test_two_processes_write_shards_that_merge_into_the_single_process_file(grid, tmp_path, jobs):
     for process in jobs.shards:
         out, err = process.communicate(timeout=400)
@@ -529,110 +527,6 @@ def test_the_journal_recovers_what_a_kill_inside_a_write_breaks(tmp_path):
 
 
 # --- refusals -------------------------------------------------------------------------------
-
-BAD_SWEEPS = [
-    ("unknown dotted path", {"axes": {"initial.speed": [1.0]}}, "axes.initial.speed", "no field 'initial.speed'"),
-    ("not a field of the shape", {"axes": {"body.profile.theta": [0.1]}}, "axes.body.profile.theta", "no field"),
-    ("non-numeric field", {"axes": {"body.profile.shape": [1.0]}}, "axes.body.profile.shape", "not a numeric field"),
-    ("a section", {"axes": {"effects.adhesion": [1.0]}}, "axes.effects.adhesion", "a section"),
-    ("absent effect", {"axes": {"effects.gravity.g": [9.81]}}, "axes.effects.gravity.g", "not in the base scene"),
-    (
-        "generator without num",
-        {"axes": {"initial.velocity": {"geomspace": [0.1, 1.0]}}},
-        "axes.initial.velocity",
-        "[start, stop, num]",
-    ),
-    (
-        "unknown generator",
-        {"axes": {"initial.velocity": {"range": [0.1, 1.0, 3]}}},
-        "axes.initial.velocity",
-        "exactly one of linspace, geomspace, logspace",
-    ),
-    (
-        "geomspace through 0",
-        {"axes": {"initial.velocity": {"geomspace": [0.0, 1.0, 3]}}},
-        "axes.initial.velocity",
-        "nonzero",
-    ),
-    ("empty list", {"axes": {"initial.velocity": []}}, "axes.initial.velocity", "empty"),
-    ("a word", {"axes": {"initial.velocity": [0.5, "fast"]}}, "axes.initial.velocity", "'fast' (#1) is not a number"),
-    (
-        "negative velocity",
-        {"axes": {"initial.velocity": [0.5, -0.6]}},
-        "axes.initial.velocity",
-        "value -0.6 (#1): -0.6 m/s is outside the allowed range 0 or [1e-20, 1e4] m/s",
-    ),
-    ("zero velocity", {"axes": {"initial.velocity": [0.0, 0.5]}}, "axes.initial.velocity", "must be > 0"),
-    (
-        "approach above work",
-        {"axes": {"effects.adhesion.approach_work_of_adhesion": [0.01, 0.1]}},
-        "axes.effects.adhesion.approach_work_of_adhesion",
-        "value 0.1 makes the scene invalid",
-    ),
-    (
-        "a grid point invalid",
-        {
-            "axes": {
-                "effects.adhesion.approach_work_of_adhesion": [0.01, 0.04],
-                "effects.adhesion.work_of_adhesion": [0.02, 0.05],
-            }
-        },
-        "axes",
-        "approach_work_of_adhesion = 0.04, effects.adhesion.work_of_adhesion = 0.02",
-    ),
-    ("fractional springs", {"axes": {"contact.springs": [100, 150.5]}}, "axes.contact.springs", "fractional part"),
-    (
-        "zip of unequal axes",
-        {"axes": {"initial.velocity": [0.5, 1.0], "initial.gap": [0.0, 1e-9, 2e-9]}, "mode": "zip"},
-        "axes",
-        "initial.velocity has 2, initial.gap has 3",
-    ),
-    ("unknown mode", {"mode": "mesh"}, "mode", "grid, zip"),
-    ("unknown key", {"colour": "red"}, "colour", "unknown key"),
-    ("no axes", {"axes": None}, "axes", "missing"),
-    ("no axis", {"axes": {}}, "axes", "at least one field"),
-    ("missing scene file", {"scene": "absent.yaml"}, "scene", "no such file"),
-    (
-        "set to a bad value",
-        {"set": {"solver.rtol": 0}},
-        "scene.solver.rtol",
-        "0 is outside the allowed range [1e-16, 0.5]",
-    ),
-    ("set below a value", {"set": {"initial.velocity.x": 1}}, "set.initial.velocity.x", "is a value, not a section"),
-    ("bad base scene", {"scene": {"name": "x"}}, "scene.body", "missing"),
-]
-
-
-@pytest.mark.parametrize("case, changes, path, phrase", BAD_SWEEPS, ids=[case[0] for case in BAD_SWEEPS])
-def test_bad_sweep_files_are_refused(case, changes, path, phrase, tmp_path):
-    data = {"scene": str(THORNTON_NING), "axes": {"initial.velocity": [0.5, 1.0]}}
-    for key, value in changes.items():
-        if value is None:
-            del data[key]
-        else:
-            data[key] = value
-    sweep_file = tmp_path / "bad.yaml"
-    sweep_file.write_text(yaml.safe_dump(data, sort_keys=False))
-    result = invoke("sweep", sweep_file, "-o", tmp_path / "out")
-    assert result.exit_code == 2, result.output
-    assert "Traceback" not in result.output
-    assert path in result.output and phrase in " ".join(result.output.split()), result.output
-    assert {entry.name for entry in tmp_path.iterdir()} == {"bad.yaml"}
-
-
-def test_the_example_sweeps_are_valid():
-    specs = {path.stem: load_sweep(path) for path in sorted((CONFIGS / "sweeps").glob("*.yaml"))}
-    assert specs["thornton_ning"].shape == (400, 3)
-    fast = specs["thornton_ning_fast"]
-    assert fast.shape == (10000,) and fast.scene.solver.method == "quadrature"  # `set:` changed the base scene
-    assert fast.scene.phase_ends == "energy"
-    assert specs["attach_on_touch"].paths == ("initial.velocity", "effects.adhesion.approach_work_of_adhesion")
-
-
-def test_api_refuses_bad_axes():
-    with pytest.raises(SweepError) as error:
-        sweep(THORNTON_NING, {"initial.velocity": [-1.0]})
-    assert error.value.problems[0][0] == "axes.initial.velocity"
 
 
 @pytest.mark.parametrize("case", ["finished", "different", "not hdf5", "bad options"])

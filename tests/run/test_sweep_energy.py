@@ -21,8 +21,8 @@ from impact._run.sweep import plan_sweep, result_names, run_spec
 from impact._scene.paths import with_values
 from impact._scene.sweep import load_sweep, make_spec
 from impact.cli.tables import sweep_table
+from tests.scenes import SWEEPS
 
-SWEEPS = Path(__file__).parents[2] / "configs" / "sweeps"
 LOSSES = ("plastic_work", "viscous_work", "adhesion_hysteresis", "unrecovered_elastic_energy")
 # Imbalance over the energy turned over, ½mv₀² + Σ|named losses| (a captured Wall particle's plastic
 # work and adhesive energy are 30 times its ½mv₀²): measured ≤ 7.4e-11 on the whole damped example,
@@ -63,6 +63,7 @@ def energies(result):
     return impact_energy + np.sum(np.abs(named), axis=0), 0.5 * mass * (touch**2 - separation**2), np.sum(named, axis=0)
 
 
+@pytest.mark.slow
 def test_a_damped_sweep_splits_the_lost_energy_into_viscous_work_and_unrecovered_energy(damped):
     _, result = damped
     assert [name for name in LOSSES if name in result.results] == ["viscous_work", "unrecovered_elastic_energy"]
@@ -75,6 +76,7 @@ def test_a_damped_sweep_splits_the_lost_energy_into_viscous_work_and_unrecovered
     assert np.all(unrecovered > 0) and np.all(viscous > 0.9 * lost)
 
 
+@pytest.mark.slow
 def test_a_plastic_sweep_splits_the_lost_energy_into_plastic_work_and_adhesion_hysteresis(plastic):
     spec, result = plastic
     assert [name for name in LOSSES if name in result.results] == ["plastic_work", "adhesion_hysteresis"]
@@ -110,6 +112,7 @@ def file_columns(path: Path) -> dict:
         return {name: (dataset[()], dict(dataset.attrs)) for name, dataset in datasets.items()}
 
 
+@pytest.mark.slow
 def test_the_sweep_file_holds_the_named_losses_and_a_resumed_one_is_the_same(damped, tmp_path):
     spec, result = damped
     plan = plan_sweep(spec)

@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 
 from impact import theory
+from tests.scenes import E_STAR, MASS, WORK, R
 
 # The Thornton–Ning example particle (1 µm, E* = 1 GPa, Δγ = 0.05 J/m²) with p_y = 0.1 GPa
-R, E_STAR, WORK, MASS, P_Y = 1e-6, 1e9, 0.05, 1.0472e-14, 1e8
+P_Y = 1e8  # Pa
 YIELD_VELOCITY = float(theory.adhesive_plastic_yield_velocity(MASS, R, E_STAR, WORK, P_Y))
 
 

@@ -49,6 +49,7 @@ def test_outer_radius_gives_the_work_of_adhesion(k):
         assert work == pytest.approx(DGAMMA, rel=1e-10 + 4 * np.finfo(float).eps * c / width, abs=0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k", FACTORS)
 def test_force_and_indentation_integrate_the_stress(k):
     """F = ∫p·2πr dr and d = w(0) = (2/E*)∫p dr (Boussinesq, the centre's displacement) with the

@@ -18,12 +18,7 @@ from impact import theory as th
 from impact._integrate.quasistatic import march
 from impact._run.indentation import IndentationResult, indentation_loading, indentation_numerics
 from impact._scene.scene import load_scene
-
-R, E_STAR, WORK = 1e-6, 1e9, 0.05  # m, Pa, J/m²
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
-CONTROLS = [("force", 3), ("displacement", 1)]
+from tests.scenes import A_JKR, CONTROLS, D_JKR, E_STAR, F_JKR, WORK, R
 
 
 def spec(tabor, control, share=None, model="maugis_dugdale", **program):
@@ -57,6 +52,7 @@ def pull_off(result):
     return np.array([p.contact_radius, p.indentation, p.force])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_pull_off_is_the_reversible_one_where_unloading_reaches_the_detach_curve(control, xi):
     """Λ ∈ {0.3, 1, 3, 10}, Δγa/Δγ ∈ {0.5, 0.1}: the frozen zone meets the detach curve before its
@@ -73,6 +69,7 @@ def test_pull_off_is_the_reversible_one_where_unloading_reaches_the_detach_curve
             assert kinds[:3] == ["touch", "snap_in", "reversal"] and kinds[-1] == "pull_off"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("share", [0.5, 0.1])
 def test_force_control_lets_go_where_the_frozen_zone_opens(share):
     """Λ = 0.05: the frozen contact opens (a → 0) before the gap at b_max reaches h; without
@@ -120,6 +117,7 @@ def test_cycles_reload_along_the_frozen_zone_onto_the_approach_curve(control, un
     assert np.all(cycled.contact_radius[reload] >= low[0] * (1 - 1e-12))
 
 
+@pytest.mark.slow
 def test_equal_works_reproduce_the_reversible_march():
     """Δγa = Δγ on the hysteretic path (its frozen zone empty): the reversible march's points to
     1e-10 of their largest value (measured 5e-15), its events and pull-off, under both controls."""

@@ -11,51 +11,25 @@ controls) reuse it.
 
 import dataclasses
 import math
-from pathlib import Path
 
 import jax
 import numpy as np
 import pytest
 import scipy.optimize
 import scipy.special
-import yaml
 from pydantic import TypeAdapter
-from typer.testing import CliRunner
 
 import impact
 from impact import profiles as pr
 from impact import theory as th
 from impact._integrate.quasistatic import march
-from impact._io.indentation import is_indentation_run, read_indentation, write_indentation
 from impact._run.indentation import IndentationResult, indentation_loading, indentation_numerics, spring_capacity
 from impact._scene.profiles import ProfileSpec
-from impact._scene.scene import SceneError, load_scene, scene_yaml
-from impact.cli import app
+from impact._scene.scene import load_scene
+from tests.scenes import CONFIGS, CONTROLS, E_STAR, WORK, indentation_scene
 
-E_STAR = 1e9  # Pa
-WORK = 0.05  # Δγ, J/m²
-CONTROLS = [("force", 3), ("displacement", 1)]
-CONFIGS = Path(__file__).parents[2] / "configs"
 RTOL = 1e-10  # most profiles: the pull-off to round-off
 KINK_RTOL = 1e-7  # a flat tip's kink (g ∝ √(a − b)) is found to ~√ulp
-
-
-def scene(profile, control, peak, work=WORK, approach=None, springs="continuum", E_star=E_STAR, **program):
-    effects = {}
-    if work:
-        effects["adhesion"] = {"work_of_adhesion": work}
-        if approach is not None:
-            effects["adhesion"]["approach_work_of_adhesion"] = approach
-    return dict(
-        name="test",
-        kind="indentation",
-        control=control,
-        program=dict(peak=peak, **program),
-        body=dict(profile=profile),
-        material=dict(E_star=E_star),
-        effects=effects,
-        contact=dict(springs=springs),
-    )
 
 
 def loaded_past(critical, xi, factor=4.0):
@@ -65,7 +39,7 @@ def loaded_past(critical, xi, factor=4.0):
 
 
 def run(profile, control, peak, **kw) -> IndentationResult:
-    result = impact.simulate(scene(profile, control, peak, **kw))
+    result = impact.simulate(indentation_scene(profile, control, peak, **kw))
     assert isinstance(result, IndentationResult)
     return result
 
@@ -118,6 +92,7 @@ def test_paraboloid_pull_off_and_universal_curves(control, xi):
     assert result.max_force == pytest.approx(loaded_past(critical, xi), rel=1e-12) if xi == 3 else True
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_flat_punch(control, xi):
     """(3.37): held at its wall, the punch lets go at d_c = −√(2πaΔγ/E*) under either control."""
@@ -130,6 +105,7 @@ def test_flat_punch(control, xi):
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_cone(control, xi):
     """(3.40)–(3.41); the states on (3.43) (= (3.78) with n = 1) in force-control units."""
@@ -147,6 +123,7 @@ def test_cone(control, xi):
 # ---------------------------------------------------------------- sphere, ellipsoid, power law
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_sphere_and_ellipsoid(control, xi):
     """(3.54)–(3.56) for the sphere (α = a_c/R up to ~0.35) and (3.57) with (3.54) for the ellipsoid."""
@@ -159,6 +136,7 @@ def test_sphere_and_ellipsoid(control, xi):
     assert_pull_off(run(dict(shape="ellipsoid", R=R, k=k), control, loaded_past(critical, xi)), critical)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_power_laws(control, xi):
     """(3.74)–(3.76) for n in (1/2, 4]; the curve on (3.78) for n = 3. d_c = 0 for n = 3/2 under
@@ -218,6 +196,7 @@ def scan(profile, beta_of_work, pull_off_of_work, betas, control, xi, rtol=KINK_
     return results
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_truncated_cone_both_sides_of_its_threshold(control, xi):
     """(3.87)–(3.90). Below β = 2.1219 (printed 2.125) the flat tip (3.90); just above it the
@@ -252,6 +231,7 @@ def test_truncated_cone_both_sides_of_its_threshold(control, xi):
     assert high.pull_off.contact_radius > 2 * b
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_truncated_paraboloid_both_sides_of_its_threshold(control, xi):
     """(3.95)–(3.97) around β = 3.095, as for the truncated cone."""
@@ -307,6 +287,7 @@ def test_capped_flat_punch_three_regimes(control, xi):
     assert edges == ([False, True, True] if xi == 3 else [False, False, True])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_capped_cone_regimes(control, xi):
     """(3.110)–(3.113): below β = 1.797 (printed 1.795) the cap's JKR state; between 1.797 and 2
@@ -360,6 +341,7 @@ def test_capped_paraboloid_regimes(control, xi):
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_rounded_flat_punch(control, xi):
     """(3.129)–(3.131): one critical radius for every β, tending to b as β → 0."""
@@ -387,6 +369,7 @@ def wavy_reference(a_hat, h_hat, gamma_bar):
     return d_hat, F_hat
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_wavy_paraboloid(control, xi):
     """(3.134)–(3.138) with ĥ = 0.5, Δγ̄ = 100: every state on the curves, the force oscillating
@@ -530,7 +513,7 @@ CAPACITY = 8192
 
 def spring_pull_off(control, peak, count, length=np.nan):
     """The pull-off (SI) of `count` midpoint springs, through one compiled march for all counts."""
-    data = scene(dict(shape="paraboloid", R=1e-6), control, peak, springs=count)
+    data = indentation_scene(dict(shape="paraboloid", R=1e-6), control, peak, springs=count)
     if np.isfinite(length):
         data["contact"]["length"] = length
     sc = load_scene(data)
@@ -603,95 +586,7 @@ def test_springs_scene():
         assert [k for _, k in result.events][:2] == ["touch", "snap_in"] and result.events[-1][1] == "pull_off"
 
 
-# ---------------------------------------------------------------- scene schema
-
-
-def base(**changes):
-    data = scene(dict(shape="paraboloid", R=1e-6), "force", 1e-7)
-    data.update(changes)
-    return data
-
-
-def problems(data):
-    with pytest.raises(SceneError) as error:
-        load_scene(data)
-    return error.value.problems
-
-
-def test_schema_kind_control_program():
-    indentation = load_scene(base())
-    assert indentation.kind == "indentation" and indentation.initial is None and indentation.body.mass is None
-    assert load_scene(base(program={"peak": "1e-7", "cycles": 2, "unload_to": 0})).program.peak == 1e-7
-    impact_scene = load_scene(CONFIGS / "thornton_ning.yaml")
-    assert impact_scene.kind == "impact" and impact_scene.control is None
-    assert load_scene(yaml.safe_load(scene_yaml(indentation))) == indentation  # resolved YAML round-trips
-    assert "solver" not in scene_yaml(indentation) and "initial" not in scene_yaml(indentation)
-
-
-@pytest.mark.parametrize(
-    "changes, path, message",
-    [
-        ({"initial": {"velocity": 1.0}}, "initial", "not for kind 'indentation'"),
-        ({"body": {"profile": {"shape": "paraboloid", "R": 1e-6}, "mass": 1e-12}}, "body.mass", "needs no mass"),
-        ({"body": {"profile": {"shape": "paraboloid", "R": 1e-6}, "density": 2500}}, "body.density", "needs no mass"),
-        ({"effects": {"gravity": {}}}, "effects.gravity", "not for kind 'indentation'"),
-        ({"solver": {"rtol": 1e-8}}, "solver", "needs no ODE solver"),
-        ({"limits": {"max_bounces": 3}}, "limits", "ends at pull-off"),
-        ({"control": None}, "control", "missing (required for kind 'indentation')"),
-        ({"program": None}, "program", "missing (required for kind 'indentation')"),
-        ({"control": "velocity"}, "control", "Input should be 'force' or 'displacement'"),
-        ({"program": {"peak": -1e-7}}, "program.peak", "-1e-07 N or m is outside the allowed range [0, 1e6] N or m"),
-        ({"program": {"peak": 1e-7, "unload_to": 2e-7}}, "program.unload_to", "below peak"),
-        ({"program": {"peak": 1e-7, "cycles": 0}}, "program.cycles", "0 is outside the allowed range [1, 100]"),
-        ({"kind": "drop"}, "kind", "Input should be 'impact' or 'indentation'"),
-    ],
-)
-def test_schema_refusals(changes, path, message):
-    data = base(**changes)
-    data = {k: v for k, v in data.items() if v is not None}
-    found = problems(data)
-    assert any(p == path and message in m for p, m in found), found
-
-
-def test_schema_impact_scenes_unchanged():
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    assert ("initial", "missing (required)") in problems({k: v for k, v in data.items() if k != "initial"})
-    body = dict(data["body"])
-    del body["mass"]
-    assert ("body", "give exactly one of mass (kg) and density (kg/m³)") in problems({**data, "body": body})
-    assert ("control", "only for kind 'indentation'") in problems({**data, "control": "force"})
-    assert ("program", "only for kind 'indentation'") in problems({**data, "program": {"peak": 1.0}})
-
-
-# ---------------------------------------------------------------- files, command line, configs
-
-
-def test_hdf5_round_trip(tmp_path):
-    result = impact.simulate(CONFIGS / "indentation_paraboloid.yaml")
-    path = write_indentation(result, tmp_path / "run.h5", wall_time=1.5)
-    assert is_indentation_run(path) and not is_indentation_run(tmp_path / "missing.h5")
-    back = read_indentation(path)
-    assert back.scene == result.scene and back.status == result.status and back.pull_off == result.pull_off
-    for name in ("contact_radius", "indentation", "force", "leg"):
-        np.testing.assert_array_equal(getattr(back, name), getattr(result, name))
-    assert back.events == result.events and back.stats == result.stats
-
-
-def test_cli_run_and_show(tmp_path):
-    folder = tmp_path / "run"
-    runner = CliRunner()
-    output = runner.invoke(app, ["run", str(CONFIGS / "indentation_paraboloid.yaml"), "-o", str(folder)])
-    assert output.exit_code == 0, output.output
-    for phrase in ("pull-off force", "-23.56 nN", "force (ξ = 3)", "separated"):
-        assert phrase in output.output
-    assert {p.name for p in folder.iterdir()} == {"run.h5", "config.yaml", "force_indentation.png", "normalized.png"}
-    assert (folder / "normalized.png").read_bytes().startswith(b"\x89PNG")
-    shown = runner.invoke(app, ["show", str(folder / "run.h5")])
-    assert shown.exit_code == 0 and "-23.56 nN" in shown.output
-    checked = runner.invoke(app, ["validate", str(CONFIGS / "indentation_wavy.yaml")])
-    assert checked.exit_code == 0 and "displacement control" in checked.output
-    refused = runner.invoke(app, ["run", str(CONFIGS / "indentation_wavy.yaml"), "--set", "initial.velocity=1"])
-    assert refused.exit_code == 2 and "not for kind 'indentation'" in refused.output
+# ---------------------------------------------------------------- the example configs
 
 
 def test_configs_meet_their_references():

@@ -2,10 +2,9 @@
 no package)."""
 
 import importlib.util
-from pathlib import Path
 from types import ModuleType
 
-FITS = Path(__file__).parents[2] / "configs" / "fits"
+from tests.scenes import FITS
 
 
 def fit_script(name: str) -> ModuleType:

@@ -1,30 +1,21 @@
 """Physical ranges and what the scaled problem can represent: each scene value outside its
 domain, or a scene whose units float64 cannot carry, is refused before any work (exit 2, the
-field, its value and the allowed range; nothing written). Also: unusable output folders, flags
-in `--help`, and a run without compressive force."""
+field, its value and the allowed range; nothing written), for a scene as for each point of a
+sweep."""
 
 import gc
-from pathlib import Path
 
 import pytest
 import yaml
 from pydantic import BaseModel, model_validator
-from typer.testing import CliRunner
 
 import impact
 from impact._scene import sweep_points
 from impact._scene.paths import assign, resolve_field
 from impact._scene.representable import limits_of
 from impact._scene.sweep import load_sweep
-from impact.cli import app
-
-CONFIGS = Path(__file__).parents[2] / "configs"
-THORNTON_NING = CONFIGS / "thornton_ning.yaml"
-
-
-def invoke(*args):
-    return CliRunner().invoke(app, [str(arg) for arg in args])
-
+from tests.command import invoke
+from tests.scenes import CONFIGS, THORNTON_NING
 
 # (override, the refusal's line): the three known failures first (a ZeroDivisionError traceback,
 # unbounded_contact with −inf m, solver_failure at 4e111 Gm), then the checks across fields.
@@ -81,6 +72,7 @@ def test_a_drop_too_high_names_the_gap():
     assert error.value.problems[0][1].startswith("100 m is outside the allowed range [0, ")
 
 
+@pytest.mark.slow
 def test_every_example_scene_and_sweep_validates():
     scenes = sorted(CONFIGS.glob("*.yaml")) + sorted((CONFIGS / "hard").glob("*.yaml"))
     assert len(scenes) == 50
@@ -88,34 +80,6 @@ def test_every_example_scene_and_sweep_validates():
         assert impact.load_scene(scene).name
     for sweep in sorted((CONFIGS / "sweeps").glob("*.yaml")):
         assert load_sweep(sweep).paths
-
-
-@pytest.mark.parametrize("place", ["file", "file parent"])
-def test_unusable_output_folder_is_refused_before_simulating(place, tmp_path):
-    (tmp_path / "taken").write_text("a file")
-    folder = tmp_path / "taken" if place == "file" else tmp_path / "taken" / "run"
-    result = invoke("run", THORNTON_NING, "-o", folder)
-    assert result.exit_code == 2, result.output
-    expected = "exists and is not a folder" if place == "file" else "taken is a file, not a folder"
-    assert expected in " ".join(result.output.split())
-    assert "restitution" not in result.output  # refused before the simulation
-
-
-def test_help_shows_no_bool_beside_flags():
-    for command in ([], ["run"], ["validate"], ["show"], ["sweep"], ["merge"], ["bench"]):
-        result = invoke(*command, "--help")
-        assert result.exit_code == 0
-        assert "<bool>" not in result.output
-        assert "--help" in result.output
-
-
-def test_a_run_without_compressive_force_says_so(tmp_path):
-    # n = 1/2 below the threshold: the contact grows without limit while the force stays adhesive
-    scene = CONFIGS / "hard" / "08_power_law_n05_below_threshold.yaml"
-    result = invoke("run", scene, "-o", tmp_path / "out")
-    assert result.exit_code == 1, result.output
-    assert "no compressive force" in result.output
-    assert "unbounded_contact" in result.output
 
 
 SWEPT_REFUSALS = {
@@ -191,7 +155,7 @@ class Probed(BaseModel):
         return self
 
 
-def test_only_the_validators_that_read_a_swept_field_run_per_point():
+def test_only_the_validators_that_read_a_swept_field_run_per_point(thornton_ning_scene):
     """A validator runs per point when running it on the base reads a swept field: directly,
     through getattr with a default, or through a dump; one that reads none is left out, and the
     tracking leaves the class as it found it."""
@@ -205,7 +169,7 @@ def test_only_the_validators_that_read_a_swept_field_run_per_point():
     assert "__getattribute__" not in Probed.__dict__
     probed.__dict__["swept"] = -1.0
     assert sweep_points._validators_problem(checks) == "section: swept must be > 0"
-    scene = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    scene = thornton_ning_scene
     initial = scene.initial
     names = [v.__name__ for _, _, v in sweep_points._reading_checks([("", scene)], [(initial, "velocity")])]
     assert "_reaches_the_surface" in names and "_energy_ends_supported" not in names

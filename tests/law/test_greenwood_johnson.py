@@ -3,7 +3,6 @@
 pull-off force, Thornton–Ning as k grows, the reversible DMT side, sweeps and refusals."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,21 +15,16 @@ from impact import load_scene, simulate, theory
 from impact._io.run import read_run
 from impact._scene.scene import SceneError
 from impact.cli import app
+from tests.scenes import CONFIGS, E_STAR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-CONFIG = Path(__file__).parents[2] / "configs" / "greenwood_johnson.yaml"
+CONFIG = CONFIGS / "greenwood_johnson.yaml"
 
 
 def gj_scene(k=10.0, velocity=0.6, profile=None, **extra):
-    scene = {
-        "name": "gj",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": k}},
-    }
-    scene.update(extra)
-    return load_scene(scene)
+    scene = micro_sphere(velocity, {"adhesion": {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": k}})
+    if profile is not None:
+        scene["body"]["profile"] = profile
+    return load_scene({"name": "gj", **scene, **extra})
 
 
 def loop_area(k):
@@ -56,6 +50,7 @@ def loop_area(k):
     return -fixed_quad(integrand, turn, jump_in, n=200)[0]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k", [1e-3, 0.3, 3.0, 1e3])
 def test_energy_balance_loop_area_and_pull_off(k):
     """Kinetic energy lost = ∮F dd (1e-7 of the impact energy) = the curve's loop area by
@@ -98,6 +93,7 @@ def test_dmt_side_is_reversible(k):
     assert result.force[first] == pytest.approx(onset_force, rel=1e-8)
 
 
+@pytest.mark.slow
 def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     """Below the sticking speed the body is captured; a sphere's tip is its paraboloid r²/(2R):
     the same restitution to 1e-9 (its units differ: round-off)."""
@@ -108,6 +104,7 @@ def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     assert sphere.restitution == pytest.approx(paraboloid.restitution, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """A bead dropped onto the double-Hertz surface (k = 10): the bounces lose energy in the
     jumps until it is captured, each bounce logged with its touch."""
@@ -130,6 +127,7 @@ def test_gravity_drop_bounces_then_is_captured():
     assert 0.0 < result.restitution < 1.0
 
 
+@pytest.mark.slow
 def test_sweep_over_k_balances_energy_and_equals_simulate():
     """`impact.sweep` over k ∈ [1e-3, 1e3] (one compiled group: k is traced): energy balance at
     every point (1e-7 of the impact energy), simulate's values (rtol 1e-12), Thornton–Ning as the

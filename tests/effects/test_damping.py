@@ -65,6 +65,7 @@ def test_first_order_coefficient_is_schwager_poeschels():
     assert C1 == pytest.approx(1.15345, abs=5e-6)  # Γ(3/5)√π/(2^(1/5)5^(2/5)Γ(21/10))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("damping", "ratio"),
     [
@@ -98,6 +99,7 @@ def test_flat_punch_is_the_exact_spring_dashpot(damping, ratio, tmp_path):
         assert "adhesion_hysteresis" not in file["observables"]
 
 
+@pytest.mark.slow
 def test_viscoelastic_paraboloid_follows_schwager_poeschel():
     # 1 − e = C1·x(1 − (C2/C1)·x + …), x = βv₀^(1/5): the relative error of the first order
     # shrinks like x itself as A → 0, with C2 ≈ 0.798 (Ramírez et al., Phys. Rev. E 60, 4465 (1999)).
@@ -137,6 +139,7 @@ def test_strong_damping_converges_under_tolerance_refinement():
     assert changes[2] < 1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("damping", [viscoelastic(1e-4), {"model": "linear", "coefficient": 0.3}])
 def test_adhesive_damped_energy_balance_closes(damping):
     def adhesive(damping: dict) -> dict:
@@ -152,6 +155,7 @@ def test_adhesive_damped_energy_balance_closes(damping):
     assert result.viscous_work > 0
 
 
+@pytest.mark.slow
 def test_an_overdamped_contact_has_a_named_status():
     # Adhesion with A = 1 s: the body creeps into the adhesive equilibrium without ever turning.
     adhesive = scene(viscoelastic(1.0), adhesion={"work_of_adhesion": 0.5})
@@ -162,6 +166,7 @@ def test_an_overdamped_contact_has_a_named_status():
     assert not result.success
 
 
+@pytest.mark.slow
 def test_a_damped_drop_comes_to_rest():
     dropped = scene(viscoelastic(3e-4), gravity={"g": 9.81})
     dropped["initial"] = {"velocity": 0.0, "gap": 1e-4}
@@ -171,6 +176,7 @@ def test_a_damped_drop_comes_to_rest():
     assert result.restitution > 0  # the first contact let go
 
 
+@pytest.mark.slow
 def test_damping_parameters_are_traced_inputs():
     # de/dc of the flat punch against the derivative of the exact spring–dashpot
     f = impact.as_function(

@@ -9,23 +9,16 @@ import pytest
 import impact
 from impact import simulate, theory
 from impact._scene.scene import load_scene
+from tests.scenes import E_STAR, MASS, WORK, R, micro_sphere
 
-# The Thornton–Ning particle (1 µm, E* = 1 GPa, Δγ = 0.05 J/m²) with p_y = 0.1 GPa: v_y = 2.92 m/s
-R, E_STAR, WORK, MASS, P_Y = 1e-6, 1e9, 0.05, 1.0472e-14, 1e8
+P_Y = 1e8  # Pa: the micro-sphere yields at v_y = 2.92 m/s
 YIELD_VELOCITY = float(theory.adhesive_plastic_yield_velocity(MASS, R, E_STAR, WORK, P_Y))
 
 
 def particle(velocity: float, plastic: bool = True, yield_pressure: float = P_Y, **effects) -> dict:
-    return {
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {
-            "adhesion": {"work_of_adhesion": WORK},
-            **({"plasticity": {"yield_pressure": yield_pressure}} if plastic else {}),
-            **effects,
-        },
-    }  # tsit5 at rtol 1e-10 (the default): the elastic program is shared with other tests
+    plasticity = {"plasticity": {"yield_pressure": yield_pressure}} if plastic else {}
+    # tsit5 at rtol 1e-10 (the default): the elastic program is shared with other tests
+    return micro_sphere(velocity, {"adhesion": {"work_of_adhesion": WORK}, **plasticity, **effects})
 
 
 def run(velocity: float, plastic: bool = True, yield_pressure: float = P_Y):
@@ -36,6 +29,7 @@ def closed_form(velocity: float, yield_pressure: float = P_Y) -> float:
     return float(theory.adhesive_plastic_restitution(velocity, MASS, R, E_STAR, WORK, yield_pressure))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [0.6, 0.999 * YIELD_VELOCITY])
 def test_below_the_yield_velocity_it_is_the_elastic_adhesive_impact_to_the_bit(velocity):
     plastic, elastic = run(velocity), run(velocity, plastic=False)
@@ -44,6 +38,7 @@ def test_below_the_yield_velocity_it_is_the_elastic_adhesive_impact_to_the_bit(v
     assert plastic.events == elastic.events and plastic.plastic_work == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [3.0, 10.0, 100.0])
 def test_above_it_the_restitution_meets_the_closed_form(velocity):
     result = run(velocity)
@@ -121,6 +116,7 @@ def test_two_bodies_meet_the_closed_form_with_effective_parameters():
     assert after == pytest.approx(before, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_bounces_under_gravity_keep_the_dent():
     """The second contact lands in the dent of the first, stays elastic (no yield) and loses only the
     jump-in and snap-off of the dent's JKR branch: its rebound speed (from the flight that follows)

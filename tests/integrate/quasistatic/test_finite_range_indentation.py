@@ -21,12 +21,8 @@ from impact._io.indentation import read_indentation, write_indentation
 from impact._plots.indentation import dmt_limit, save_indentation_figures
 from impact._run.indentation import IndentationResult
 from impact._scene.scene import SceneError, load_scene
+from tests.scenes import A_JKR, CONTROLS, D_JKR, E_STAR, F_JKR, WORK, R
 
-R, E_STAR, WORK = 1e-6, 1e9, 0.05  # m, Pa, J/m²
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
-CONTROLS = [("force", 3), ("displacement", 1)]
 TABORS = [0.05, 0.3, 1.0, 3.0, 10.0]
 
 
@@ -147,6 +143,7 @@ def test_maugis_displacement_loop_dissipates_the_area_of_its_jumps():
     assert up == pytest.approx(down, rel=1e-3)  # linear between the 33 samples of a piece
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n, c", [(1.0, math.tan(0.3)), (1.5, 1e3)])
 def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
     """f = c·rⁿ, the cone (n = 1, c = tan θ) and n = 1.5, one compilation: at σ0 = 1e11 Pa the
@@ -172,6 +169,7 @@ def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
 # ---------------------------------------------------------------- Greenwood–Johnson
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control, xi", CONTROLS)
 def test_double_hertz_pull_off_matches_the_closed_form(control, xi):
     """k ∈ {0.1, 1, 3, 30}: (a, d, F) of `double_hertz_pull_off` to 1e-8 (measured ≤ 2e-15);

@@ -14,8 +14,8 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
-from tests.run.fit_examples import FITS, fit_script
-from tests.run.test_compilation import Compiles
+from tests.compilations import Compiles
+from tests.run.fit.fit_examples import FITS, fit_script
 
 ADHESION, MODULUS, RADIUS = "effects.adhesion.work_of_adhesion", "material.E_star", "body.profile.R"
 
@@ -70,6 +70,7 @@ def test_rows_in_program_order_need_no_branch_column(afm_fit):
     assert result.values == labelled.values
 
 
+@pytest.mark.slow
 def test_the_tip_radius_is_recovered_with_a_known_modulus():
     parameters = {RADIUS: {"start": 2.0e-8, "scale": "log"}, ADHESION: FIT_FILE["parameters"][ADHESION]}
     result = impact.fit(
@@ -81,6 +82,7 @@ def test_the_tip_radius_is_recovered_with_a_known_modulus():
         assert result.standard_errors[path] < 0.02 * true
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control", ["displacement", "force"])
 def test_the_closed_form_curve_meets_the_quasi_static_march(control):
     """Every state of the simulated test in contact (jump-in, both branches) against the model

@@ -23,11 +23,8 @@ from impact._run.impacts import solve_scene
 from impact._run.indentation import indentation_loading, indentation_numerics
 from impact._run.parameters import options_for
 from impact.profiles import Paraboloid
+from tests.scenes import A_JKR, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-A_JKR = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # (3.170)
-D_JKR = A_JKR**2 / (3 * R)
-F_JKR = 1.5 * math.pi * R * WORK
 COUNTS = (64, 128, 256)  # one compiled capacity: 256
 
 
@@ -42,13 +39,7 @@ def adhesion(tabor):
 def impact_scene(tabor):
     """The benchmark paraboloid at v0 = 0.6 m/s with Maugis–Dugdale adhesion at Tabor parameter
     `tabor` (continuum law; add a `contact` section for an array)."""
-    return {
-        "name": "md-springs",
-        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": 0.6},
-        "effects": {"adhesion": adhesion(tabor)},
-    }
+    return micro_sphere(0.6, {"adhesion": adhesion(tabor)}, name="md-springs")
 
 
 def order(counts, errors):
@@ -80,6 +71,7 @@ def test_a_piece_through_a_continuum_state_is_that_state(tabor):
     np.testing.assert_allclose(float(F) * float(scales.force) - force, midpoint, rtol=1e-8)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control", ["force", "displacement"])
 def test_quasi_static_pull_off_converges_at_second_order(control):
     """Λ = 1: the pull-off of N springs tends to the exact critical state of (3.171) as N⁻², its
@@ -118,6 +110,7 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
     assert int(outcome.status) == RESULT_CODE["unresolved_zone"]
 
 
+@pytest.mark.slow
 def test_impact_restitution_converges_at_second_order_with_energy_balance():
     """Λ = 1, v0 = 0.6 m/s: e of N springs tends to the continuum's as N⁻² (measured: 1.3e-4 …
     8.7e-6 at N = 64 … 256, slope 1.95); the loop's work is the kinetic energy lost (to 1e-7 of

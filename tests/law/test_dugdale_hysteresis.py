@@ -23,11 +23,7 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep.closed_forms import closed_form_name
 from impact._run.sweep.plan import physics_with, static_choices
 from impact._scene.scene import SceneError
-
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
-A_C = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)  # JKR units (3.170)
-D_C = A_C**2 / (3 * R)
-F_C = 1.5 * math.pi * R * WORK
+from tests.scenes import A_JKR, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
 
 def scene(tabor=1.0, share=0.5, velocity=0.6, profile=None, stress=None, **extra):
@@ -39,14 +35,10 @@ def scene(tabor=1.0, share=0.5, velocity=0.6, profile=None, stress=None, **extra
     }
     if share is not None:
         adhesion["approach_work_of_adhesion"] = share * WORK
-    return {
-        "name": "md_hysteresis",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_STAR},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": adhesion},
-        **extra,
-    }
+    spec = micro_sphere(velocity, {"adhesion": adhesion}, name="md_hysteresis", **extra)
+    if profile is not None:
+        spec["body"]["profile"] = profile
+    return spec
 
 
 _build = eqx.filter_jit(lambda integrator, physics, options: integrator.build(physics, options))
@@ -104,6 +96,7 @@ def frozen_reference(g, a, b, sigma):
     return d, force, gap
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor, share", [(1.0, 0.5), (10.0, 0.1)])
 def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
     """d(a), F(a) along the frozen zone of the paraboloid and its two switches, where the gap at
@@ -122,14 +115,14 @@ def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
     np.testing.assert_array_equal(zone, b)
     for i in range(points.shape[0]):
         d_ref, f_ref, _ = frozen_reference(g, float(radius[i]), b, stress)
-        assert abs(depth[i] - d_ref) <= 1e-10 * D_C
-        assert abs(force[i] - f_ref) <= 1e-10 * F_C
+        assert abs(depth[i] - d_ref) <= 1e-10 * D_JKR
+        assert abs(force[i] - f_ref) <= 1e-10 * F_JKR
     h = WORK / stress
     for end, gap in ((radius[0], h), (radius[-1], share * h)):
         root = brentq(
             lambda a, gap=gap: frozen_reference(g, a, b, stress)[2] - gap, 1e-6 * b, b * (1 - 1e-12), xtol=1e-20
         )
-        assert abs(end - root) <= 1e-10 * A_C
+        assert abs(end - root) <= 1e-10 * A_JKR
 
 
 @pytest.mark.parametrize(
@@ -181,6 +174,7 @@ def balance(result):
     return 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2), result.dissipated_energy
 
 
+@pytest.mark.slow
 def test_equal_works_reproduce_the_reversible_law():
     """Δγa = Δγ on the hysteretic path (its frozen zone empty) gives the reversible program's
     impact to round-off (measured: bit for bit, with and without trajectory samples): the same
@@ -194,6 +188,7 @@ def test_equal_works_reproduce_the_reversible_law():
     np.testing.assert_allclose([t for t, _ in hysteretic.events], [t for t, _ in plain.events], rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_energy_balance_events_and_restitution_against_the_approach_work():
     """Δγa/Δγ = 0.9 … 0.3 at Λ = 1 (one compiled program): every impact loses ∮F dd of kinetic
     energy (≤ 1e-8 relative; measured ≤ 2e-10) over touch, max_indentation, detach_start,
@@ -213,6 +208,7 @@ def test_energy_balance_events_and_restitution_against_the_approach_work():
     assert np.all(np.diff(restitutions) < 0.0), restitutions
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "tabor, share, velocity, status, kinds",
     [
@@ -256,6 +252,7 @@ def test_large_tabor_tends_to_the_jkr_hysteresis_law():
     assert -1.1 < order < -0.9
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """The bead of the reversible gravity test (Λ = 3) with Δγa = 0.9Δγ: every bounce lands on
     the approach curve again (the memory cleared in flight) and unloads over a frozen zone onto

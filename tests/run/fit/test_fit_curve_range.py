@@ -12,7 +12,7 @@ import yaml
 import impact
 from impact._run.fit.curve import IndentationCurve
 from impact._scene.scene import scene_yaml
-from tests.run.fit_examples import FITS, fit_script
+from tests.run.fit.fit_examples import FITS, fit_script
 
 ADHESION, APPROACH, MODULUS = (
     "effects.adhesion.work_of_adhesion",
@@ -53,6 +53,7 @@ def single_points(values: np.ndarray) -> np.ndarray:
     return np.sort(index[counts == 1])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("control", "approach"), [("displacement", 0.03), ("displacement", 0.0), ("force", 0.03)])
 def test_the_hysteresis_curve_meets_the_quasi_static_march(control, approach):
     """Approach on the Δγa branch (jump-in at touch, or Hertz from a = 0 for Δγa = 0), the hold
@@ -74,6 +75,7 @@ def test_the_hysteresis_curve_meets_the_quasi_static_march(control, approach):
     assert held.sum() > 5 and set(legs) == {0, 1}  # the hold after the peak is tested
 
 
+@pytest.mark.slow
 def test_a_hysteresis_fit_recovers_both_works_of_adhesion_within_three_standard_errors():
     """Data: the march at Δγa = 0.03, Δγ = 0.1 J/m² (40 states on approach, 40 on retract) with
     Gaussian noise of 0.5 nN; Δγa and Δγ fitted from afar."""
@@ -148,6 +150,7 @@ def data_rows_of(data) -> np.ndarray:
     return np.stack([data["indentation"], data["branch"] == "retract"], axis=1).astype(float)
 
 
+@pytest.mark.slow
 def test_the_maugis_curve_meets_the_march_and_the_closed_form(maugis):
     """Every state of the march that is no jump (to 1e-8; measured 1e-14), and the force of
     make_maugis_data.py (brentq on (3.171)) at its rows."""
@@ -162,6 +165,7 @@ def test_the_maugis_curve_meets_the_march_and_the_closed_form(maugis):
     assert np.sum(run.force[points] < 0) > 10 and set(run.leg[points]) == {0, 1}
 
 
+@pytest.mark.slow
 def test_the_maugis_derivatives_meet_central_differences(maugis):
     """d(F, a)/d(E*, Δγ, h) by nested implicit roots, on approach in compression and on retract
     where the force is adhesive, against central differences of the model (steps 1e-6)."""

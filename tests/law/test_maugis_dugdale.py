@@ -3,7 +3,6 @@
 Λ grows, the reversible DMT side)."""
 
 import math
-from pathlib import Path
 
 import equinox as eqx
 import jax.numpy as jnp
@@ -21,8 +20,8 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._scene.errors import SweepError
 from impact._scene.scene import SceneError
 from impact.cli import app
+from tests.scenes import A_JKR, CONFIGS, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
-R, E_STAR, WORK, MASS = 1.0e-6, 1.0e9, 0.05, 1.0472e-14
 TABORS = (0.1, 0.3, 1.0, 3.0, 10.0)
 
 
@@ -34,15 +33,10 @@ def md_scene(tabor=1.0, velocity=0.6, profile=None, E_star=E_STAR, stress=None, 
         adhesion["stress"] = float(
             stress if stress is not None else theory.maugis_adhesive_stress(tabor, R, WORK, E_star)
         )
-    scene = {
-        "name": "md",
-        "body": {"profile": profile or {"shape": "paraboloid", "R": R}, "mass": MASS},
-        "material": {"E_star": E_star},
-        "initial": {"velocity": velocity},
-        "effects": {"adhesion": adhesion},
-    }
-    scene.update(extra)
-    return load_scene(scene)
+    scene = micro_sphere(velocity, {"adhesion": adhesion}, material={"E_star": E_star})
+    if profile is not None:
+        scene["body"]["profile"] = profile
+    return load_scene({"name": "md", **scene, **extra})
 
 
 _build = eqx.filter_jit(lambda integrator, physics, options: integrator.build(physics, options))
@@ -66,8 +60,7 @@ def si_contact(problem, share):
 
 def jkr_units():
     """a_c, |d_c|, F_A of (3.170)."""
-    a_c = (9 * math.pi * R**2 * WORK / (8 * E_STAR)) ** (1 / 3)
-    return a_c, a_c**2 / (3 * R), 1.5 * math.pi * R * WORK
+    return A_JKR, D_JKR, F_JKR
 
 
 def pull_off(problem):
@@ -85,6 +78,7 @@ def pull_off(problem):
     return -min(found.fun, forces[best]) * float(problem.scales.force)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor", TABORS)
 def test_paraboloid_states_solve_the_normalized_relations_3_171(tabor):
     problem = problem_of(md_scene(tabor))
@@ -132,6 +126,7 @@ def test_zone_without_contact_and_its_junction(tabor):
     assert contact[2] == 0.0 and contact[3] == pytest.approx(junction, rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "profile, n, c",
     [
@@ -189,6 +184,7 @@ def test_rigid_limit_is_bradley_3_141():
     assert errors[1] < 1e-4 and errors[1] < errors[0] / 10
 
 
+@pytest.mark.slow
 def test_power_law_dmt_pull_off_3_195():
     """A stiff half-space under a power-law body pulls off at πΔγ h^((2−n)/n)/c^(2/n)."""
     n, c = 1.5, 2.0e2
@@ -210,6 +206,7 @@ def kinetic_energy_balance(result):
     return lost, result.dissipated_energy
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tabor", TABORS)
 def test_impact_energy_balance_and_reported_tabor(tabor):
     result = simulate(md_scene(tabor))
@@ -314,6 +311,7 @@ def test_jkr_refuses_dugdale_parameters():
     assert error.value.problems == [("effects.adhesion.range", "only for model 'maugis_dugdale' (jkr has zero range)")]
 
 
+@pytest.mark.slow
 def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
     """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values;
     sweeping σ0 over a scene that gives h makes invalid points, refused before anything runs."""
@@ -351,6 +349,7 @@ def test_normalized_curves_follow_3_171_and_the_figure_draws_them_with_both_limi
         assert [line.get_gid() for line in axes.get_lines() if line.get_gid()] == ["maugis", "maugis", "limit", "limit"]
 
 
+@pytest.mark.slow
 def test_gravity_drop_bounces_then_is_captured():
     """A bead dropped onto the Maugis–Dugdale surface (Λ = 3): the bounces lose energy in the
     jumps until an outward turnaround in range captures it, in finite time."""
@@ -380,7 +379,7 @@ def test_gravity_drop_bounces_then_is_captured():
 
 
 def test_cli_runs_a_dugdale_scene_stores_tabor_and_refuses_bad_parameters(tmp_path):
-    config = str(Path(__file__).parents[2] / "configs" / "maugis_dugdale.yaml")
+    config = str(CONFIGS / "maugis_dugdale.yaml")
     facts = CliRunner().invoke(app, ["validate", config])
     assert facts.exit_code == 0
     assert "Maugis–Dugdale adhesion" in facts.output and "σ0 = 3.7411e+07 Pa" in facts.output

@@ -30,26 +30,10 @@ from impact._run.programs import solve, solve_by_field
 from impact._scene.reading import read_yaml
 from impact._scene.sweep import load_sweep
 from impact.cli.console import show_warning
+from tests.compilations import COMPILE, Compiles
+from tests.scenes import CONFIGS, FITS, ROOT, SWEEPS, THORNTON_NING
 
-ROOT = Path(__file__).parents[2]
-THORNTON_NING = ROOT / "configs" / "thornton_ning.yaml"
-COMPILE = "/jax/core/compile/backend_compile_duration"
 CACHE_HIT = "/jax/compilation_cache/cache_hits"
-
-
-class Compiles:
-    """Counts XLA backend compilations while in its `with` block."""
-
-    def __enter__(self) -> "Compiles":
-        self.count = 0
-        jax.monitoring.register_event_duration_secs_listener(self._listen)
-        return self
-
-    def _listen(self, event: str, duration: float, **kwargs) -> None:
-        self.count += event == COMPILE
-
-    def __exit__(self, *exc) -> None:
-        jax.monitoring.unregister_event_duration_listener(self._listen)
 
 
 def changed(path: tuple[str, ...], value, source: Path = THORNTON_NING) -> dict:
@@ -83,7 +67,7 @@ def test_new_traced_values_do_not_recompile():
 def test_new_double_hertz_factors_do_not_recompile():
     """Greenwood–Johnson's k is traced: a new k (either side of k = 1, where the curve gains its
     turning point) runs the compiled program."""
-    scene = read_yaml(ROOT / "configs" / "greenwood_johnson.yaml")
+    scene = read_yaml(CONFIGS / "greenwood_johnson.yaml")
     reference = impact.simulate(scene)  # compiles here unless done before
     for k in (0.5, 1e3):
         scene["effects"]["adhesion"]["k"] = k
@@ -94,7 +78,7 @@ def test_new_double_hertz_factors_do_not_recompile():
 
 
 def test_new_yield_pressures_and_velocities_do_not_recompile_a_plastic_impact():
-    plastic = ROOT / "configs" / "plastic_steel.yaml"
+    plastic = CONFIGS / "plastic_steel.yaml"
     reference = impact.simulate(plastic)
     for path, value in ((("effects", "plasticity", "yield_pressure"), 2.0e9), (("initial", "velocity"), 3.0)):
         with Compiles() as compiles:
@@ -197,6 +181,7 @@ def twice(script: str, scene: Path, cache: Path) -> tuple[list[str], list[str]]:
     return first, second
 
 
+@pytest.mark.slow
 def test_second_process_loads_the_compiled_programs_instead_of_compiling(tmp_path):
     def run() -> list[str]:
         return fresh_process(PROCESS, THORNTON_NING, tmp_path / "cache")
@@ -226,6 +211,7 @@ print({COUNTS}, "diffrax" in sys.modules, *[value.hex() for value in result.rest
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_sweeps_batch_instead_of_tracing_it(tmp_path):
     """A sweep's compiled batch is stored as a traced program too: a second process of the same
     structure neither traces (no diffrax) nor compiles it, and gets the same bits."""
@@ -247,11 +233,12 @@ print({COUNTS}, programs.count("march") + programs.count("traced"), result.pull_
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_an_indentation_test_instead_of_tracing_it(tmp_path):
     """An indentation test's march is stored traced as an impact's solve is: a second process
     neither traces nor compiles it, and gets the same bits."""
 
-    first, second = twice(INDENTATION_PROCESS, ROOT / "configs" / "indentation_paraboloid.yaml", tmp_path / "cache")
+    first, second = twice(INDENTATION_PROCESS, CONFIGS / "indentation_paraboloid.yaml", tmp_path / "cache")
     compiled, loaded, traced, *forces = first
     assert int(compiled) >= 1 and loaded == "0" and int(traced) >= 1
     compiled_again, loaded_again, traced_again, *same = second
@@ -271,11 +258,12 @@ print({COUNTS}, programs.count("traced"), *[value.hex() for value in result.valu
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_fit_instead_of_tracing_it(tmp_path):
     """A fit's programs (the residuals at the start, the whole Levenberg–Marquardt solve) are
     stored traced: a second process neither traces nor compiles them, and fits the same bits."""
 
-    first, second = twice(FIT_PROCESS, ROOT / "configs" / "fits" / "drop_test.yaml", tmp_path / "cache")
+    first, second = twice(FIT_PROCESS, FITS / "drop_test.yaml", tmp_path / "cache")
     compiled, _, traced, *values = first
     assert int(compiled) >= 1 and int(traced) >= 2 and len(values) == 2
     compiled_again, loaded_again, traced_again, *same = second
@@ -294,12 +282,13 @@ print({COUNTS}, programs.count("jit(flat)"), value.hex(), slope.hex())
 """
 
 
+@pytest.mark.slow
 def test_second_process_loads_a_functions_programs_instead_of_tracing_them(tmp_path):
     """`impact.as_function`'s programs (its value and its forward-mode Jacobian, on concrete
     inputs) are stored traced: a second process neither traces nor compiles them, and gets the
     same bits. (A spring array: its Jacobian compiles fastest.)"""
 
-    first, second = twice(GRADIENT_PROCESS, ROOT / "configs" / "spring_array.yaml", tmp_path / "cache")
+    first, second = twice(GRADIENT_PROCESS, CONFIGS / "spring_array.yaml", tmp_path / "cache")
     compiled, _, traced, *values = first
     assert int(compiled) >= 2 and int(traced) == 2 and len(values) == 2
     assert len(list((tmp_path / "cache" / EXPORTED).iterdir())) == 3  # the scene check's, f's and f′'s
@@ -324,8 +313,9 @@ def test_a_failed_runtime_check_in_a_stored_program_gives_nan(cache, tmp_path, r
     assert bool(cache) == (tmp_path / "jax" / EXPORTED).is_dir()
 
 
-def test_stored_program_gives_the_traced_results_bit_for_bit():
-    scene = impact.load_scene(THORNTON_NING)
+@pytest.mark.slow
+def test_stored_program_gives_the_traced_results_bit_for_bit(thornton_ning_scene):
+    scene = thornton_ning_scene
     arguments = integrator_for(scene), physics_for(scene), options_for(scene, True)
     with jax.enable_x64(True):
         stored = solve_by_field(*arguments)
@@ -339,9 +329,9 @@ def test_stored_program_gives_the_traced_results_bit_for_bit():
 def test_validating_a_sweep_compiles_per_structure_not_per_point():
     """Every point of a sweep is checked for what the scaled problem can represent; its numbers are
     traced, so 1200 points (and then a second sweep of the same structure) compile no new program."""
-    load_sweep(ROOT / "configs" / "sweeps" / "thornton_ning.yaml")  # compiles the checks once
+    load_sweep(SWEEPS / "thornton_ning.yaml")  # compiles the checks once
     with Compiles() as compiles:
-        spec = load_sweep(ROOT / "configs" / "sweeps" / "thornton_ning_fast.yaml")
+        spec = load_sweep(SWEEPS / "thornton_ning_fast.yaml")
     assert spec.size >= 10_000
     assert compiles.count == 0
 

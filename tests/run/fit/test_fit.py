@@ -3,7 +3,6 @@ few steps, a linear model meets ordinary least squares exactly, bounds hold, and
 the data cannot separate is reported in words."""
 
 import math
-from pathlib import Path
 
 import jax.numpy as jnp
 import numpy as np
@@ -13,10 +12,10 @@ import impact
 from impact._run.fit.bounds import Bounds
 from impact._run.fit.uncertainty import uncertainty
 from impact._scene.fit_spec import ParameterSpec
-from tests.run.fit_examples import fit_script
-from tests.run.test_compilation import Compiles
+from tests.compilations import Compiles
+from tests.run.fit.fit_examples import fit_script
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 ADHESION, MODULUS = "effects.adhesion.work_of_adhesion", "material.E_star"
 PARAMETERS = {
     ADHESION: {"start": 0.02, "min": 1.0e-4, "max": 1.0, "scale": "log"},
@@ -202,6 +201,7 @@ def test_a_relative_sigma_of_a_zero_value_is_refused(scene):
     assert caught.value.problems == [("observables.max_force.relative", "σ·|value| is 0 in row 5")]
 
 
+@pytest.mark.slow
 def test_the_simulation_fits_as_the_closed_form_does_and_a_second_fit_reuses_its_programs(scene, drop_fit):
     """model 'simulation' (impact.as_function through Levenberg–Marquardt, vmapped over the rows
     under optimistix's jit) finds the closed-form fit of the same data (`drop_fit`); a second

@@ -2,8 +2,6 @@
 balance puts it, so the restitution and the deepest indentation are exact to round-off at any
 tolerance, while the times still come from the solver (to about its rtol)."""
 
-from pathlib import Path
-
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -16,8 +14,8 @@ from impact import theory
 from impact._integrate.codes import RESULT_CODE
 from impact._run.parameters import options_for
 from impact.cli import app
+from tests.scenes import CONFIGS
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 LOOSE = {"rtol": 1e-6, "atol": 1e-8}
 
 
@@ -37,6 +35,7 @@ def parameters(s: impact.Scene) -> tuple:
     return s.body.mass, s.body.profile.R, s.material.E_star, 0.0 if adhesion is None else adhesion.work_of_adhesion
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.01, 2.0, 30.0])
 def test_thornton_ning_is_exact_at_a_loose_tolerance(factor):
     """At rtol 1e-6 the energy ends give Thornton–Ning (3.50–51) to 1e-13 where the solver's
@@ -67,6 +66,7 @@ def test_attach_on_touch_holds_and_is_exact():
         assert abs(result.restitution - expected) <= 1e-13, velocity
 
 
+@pytest.mark.slow
 def test_hertz_keeps_its_energy_and_takes_its_time_from_the_solver():
     """Without adhesion e = 1 to round-off and the deepest indentation is Hertz's; the contact
     time, from the solver at rtol 1e-6, is Hertz's within 1e-5."""
@@ -84,6 +84,7 @@ def test_hertz_keeps_its_energy_and_takes_its_time_from_the_solver():
     assert 1e-9 < abs(result.contact_time / contact - 1.0) <= 1e-5
 
 
+@pytest.mark.slow
 def test_gravity_bounces_as_the_tight_integration_does():
     """Under gravity the bead bounces the same number of times, is captured alike, and every
     contact's restitution is the one of the solver's own ends at rtol 1e-12 to 1e-11."""
@@ -94,6 +95,7 @@ def test_gravity_bounces_as_the_tight_integration_does():
     assert abs(loose.restitution - tight.restitution) <= 1e-11
 
 
+@pytest.mark.slow
 def test_a_steep_tip_loaded_in_time_is_exact():
     """A power law n = 0.75 without adhesion loads from a = 0 in time (its radius cannot ride
     h' → ∞): its turnaround comes from the energy too, so e = 1 to round-off at rtol 1e-6, where
@@ -113,6 +115,7 @@ def test_a_steep_tip_loaded_in_time_is_exact():
         assert abs(impact.simulate(steep(velocity, "integrated")).restitution - 1.0) > 1e-6
 
 
+@pytest.mark.slow
 def test_a_tiny_approach_work_loaded_in_time_is_exact():
     """Δγa/Δγ = 4e-142 on a cone puts the jump-in below the smallest float: loading runs in time
     from a = 0. At rtol 1e-6 its restitution is that of rtol 1e-12 to 1e-13; the located ends
@@ -127,56 +130,7 @@ def test_a_tiny_approach_work_loaded_in_time_is_exact():
         assert abs(impact.simulate(located).restitution - expected) > 1e-8
 
 
-@pytest.mark.parametrize(
-    ("change", "why"),
-    [
-        (
-            {"contact": {"springs": 64}},
-            "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly",
-        ),
-        (
-            {"effects": {"adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 3.7e7}}},
-            "not with adhesion model 'maugis_dugdale': its phases end where the solver locates them",
-        ),
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "plasticity": {"yield_pressure": 3e8}}},
-            "not with effects.plasticity: its phases end where the solver locates them",
-        ),
-        (
-            {"effects": {"adhesion": {"work_of_adhesion": 0.05}, "damping": {"model": "linear", "coefficient": 1e-9}}},
-            "not with effects.damping: a damped phase does not keep its energy",
-        ),
-    ],
-)
-def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data.update(change)
-    data["solver"] = {"phase_ends": "energy"}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.phase_ends"] == why
-
-
-@pytest.mark.parametrize(
-    ("field", "value", "why"),
-    [
-        ("phase_ends", "exact", "unknown phase_ends 'exact'; expected one of: integrated, energy"),
-        (
-            "method",
-            "rk4",
-            "unknown method 'rk4'; expected one of: "
-            "tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet, quadrature",
-        ),
-    ],
-)
-def test_an_unknown_solver_choice_is_refused(field, value, why):
-    data = yaml.safe_load((CONFIGS / "thornton_ning.yaml").read_text())
-    data["solver"] = {field: value}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)[f"solver.{field}"] == why
-
-
+@pytest.mark.slow
 def test_derivatives_are_thornton_nings():
     """`impact.as_function` differentiates through the energy ends (forward mode, the value and
     its Jacobian): de/dΔγ and de/dv0 at rtol 1e-6 are those of (3.50–51) to 1e-10."""
@@ -228,10 +182,11 @@ def test_phases_end_from_the_energy_by_default_where_it_applies(config, phase_en
     assert ("phase ends from the energy" in result.output) == (phase_ends == "energy")
 
 
-def test_the_default_restitution_is_thornton_nings_to_round_off():
+@pytest.mark.slow
+def test_the_default_restitution_is_thornton_nings_to_round_off(thornton_ning_scene):
     """The default scene (rtol 1e-10) ends its phases from the energy: (3.50–51) to 1e-13 at
     velocities where the located ends miss it by more than that."""
-    base = impact.load_scene(CONFIGS / "thornton_ning.yaml")
+    base = thornton_ning_scene
     assert base.solver.phase_ends is None
     mass, radius, modulus, work = parameters(base)
     located = 0.0
@@ -244,6 +199,7 @@ def test_the_default_restitution_is_thornton_nings_to_round_off():
     assert located > 1e-13
 
 
+@pytest.mark.slow
 def test_a_sweep_point_is_the_simulated_one():
     """The sweep's batch and `impact.simulate` end the phases alike: the same restitution."""
     base = scene("thornton_ning.yaml")
@@ -253,6 +209,7 @@ def test_a_sweep_point_is_the_simulated_one():
     np.testing.assert_array_equal(np.asarray(swept), np.asarray(simulated))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "power_law.yaml"])
 def test_the_energy_decides_the_outcome_at_a_loose_tolerance(config):
     """At rtol 1e-2, just above the sticking velocity the solver's speed may cross zero before
@@ -282,6 +239,7 @@ def test_the_energy_decides_the_outcome_at_a_loose_tolerance(config):
     assert np.max(np.abs(restitution - closed_form)) <= 1e-10
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("config", ["thornton_ning.yaml", "power_law.yaml"])
 def test_the_located_ends_at_a_loose_tolerance_are_not_flagged(config):
     """`solver.phase_ends: integrated` at rtol 1e-3: the check of the phases' speeds against their
@@ -300,6 +258,7 @@ def test_the_located_ends_at_a_loose_tolerance_are_not_flagged(config):
     assert 1e-6 < np.max(np.abs(restitution - closed_form)) <= 1e-2
 
 
+@pytest.mark.slow
 def test_energy_drift_is_a_sweep_point_s_status():
     """In a batch, a point whose located ends drift from the energy balance gets `energy_drift`
     (hard/08 at its velocity, rtol 1e-6) beside a point that does not (100 times faster, where the

@@ -49,6 +49,7 @@ def test_restitution_meets_thorntons_closed_form(ratio):
     assert abs(lost - result.plastic_work) < 1e-8 * energy
 
 
+@pytest.mark.slow
 def test_below_the_yield_velocity_the_impact_is_elastic():
     plastic, elastic = impact_at(0.9), impact_at(0.9, plastic=False)
     assert plastic.plastic_work == 0.0  # the state stays virgin: R_p = R, δ_p = 0

@@ -1,7 +1,8 @@
-"""Impacts against the chapter's closed forms and our own references (issue: core)."""
+"""Impacts on the continuum JKR law (and without adhesion, Hertz's) against the chapter's closed
+forms and our own references: Thornton–Ning, power laws and cones, capture, the spring array,
+attach on touch, gravity."""
 
 import dataclasses
-from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
@@ -11,12 +12,11 @@ from impact import simulate, theory
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for
 from impact._scene.scene import load_scene
-
-CONFIGS = Path(__file__).parents[2] / "configs"
+from tests.scenes import CONFIGS, E_STAR, MASS, WORK, R
 
 MATERIALS = {
     # micro-particle on a stiff polymer, and a softer, stickier pair
-    "micro": dict(R=1e-6, E_star=1e9, work_of_adhesion=0.05, mass=1.0472e-14),
+    "micro": dict(R=R, E_star=E_STAR, work_of_adhesion=WORK, mass=MASS),
     "soft": dict(R=5e-5, E_star=2e7, work_of_adhesion=0.2, mass=2.0e-9),
 }
 TIGHT = dict(method="tsit5", rtol=1e-11, atol=1e-13)
@@ -55,6 +55,7 @@ def tn_restitution(material, velocity):
 VELOCITY_FACTORS = np.geomspace(1.001, 50.0, 24)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("material", sorted(MATERIALS))
 @pytest.mark.parametrize("solver, tolerance", [(None, 1e-6), (TIGHT, 1e-9)], ids=["default", "tight"])
 def test_thornton_ning_restitution(material, solver, tolerance):
@@ -105,6 +106,7 @@ NEVER_TIMED = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", NEVER_TIMED)
 def test_a_scene_that_never_loads_in_time_runs_as_the_general_program_does(case):
     """Where loading is never integrated in time (`Options.timed_loading` false: a body
@@ -154,7 +156,6 @@ def power_law_scene(n, c, velocity, approach=None):
 
 def tip_constant(n):
     """c for f = c·rⁿ through the paraboloid's f at r = R (keeps the contact micro-sized)."""
-    R = MATERIALS["micro"]["R"]
     return R ** (1.0 - n) / 2.0
 
 
@@ -195,6 +196,7 @@ def test_below_sticking_velocity_the_body_is_captured(factor):
     assert np.isfinite(result.events[-1][0]) and result.stats["steps"] < 1000
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("adhesion", [None, 0.0], ids=["not named", "zero"])
 def test_no_adhesion_is_elastic_hertz(adhesion):
     """Δγ = 0: e = 1 within 1e-9, contact time 2.868…(m²/(R E*² v0))^(1/5) within 1e-6."""
@@ -283,6 +285,7 @@ def test_gravity_touchdown_time():
     assert result.touch_velocity == pytest.approx(np.sqrt(2 * g * gap), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_gravity_sticky_bounces_end_captured():
     """Dropped to touch at 2·v_s, the body bounces a few times and is captured, in bounded steps."""
     g = 9.81
