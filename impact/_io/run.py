@@ -18,6 +18,10 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
                           (lab frame, along the body's approach; speeds above are relative)
         events/{time, kind}
+        relaxation/            a viscoelastic half-space only: its springs when the run ends,
+                               spring_position[N] (m), displacement[N] (m), arm_stretch[N, M] (m),
+                               attached[N]; and the first contact's stored_energy,
+                               released_energy, gained_energy (J)
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes
         solver_stats/          steps, accepted_steps, rejected_steps, (wall_time),
@@ -33,7 +37,8 @@ import numpy as np
 
 from .._run.impacts import Result
 from .._run.losses import NAMED_LOSSES
-from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, SCALAR_UNITS, VELOCITY_SERIES
+from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, RELAXATION_FIELDS, SCALAR_UNITS, VELOCITY_SERIES
+from .._run.viscoelastic import Relaxation
 from .files import atomic_path
 from .h5md import current_user, open_run, read_scene, read_string, write_header, write_scene
 
@@ -64,6 +69,7 @@ def read_run(path: str | Path) -> Result:
         stats = file["parameters/solver_stats"]
         scalars = {name: _scalar(observables[name]) for name in SCALAR_UNITS if name in observables}
         scalars.setdefault("viscous_work", 0.0)  # files written before damping existed
+        relaxation = _read_relaxation(observables["relaxation"]) if "relaxation" in observables else None
         return Result(
             scene=read_scene(file),
             **scalars,
@@ -79,6 +85,7 @@ def read_run(path: str | Path) -> Result:
                 **{name: int(stats[name][()]) for name in STEP_COUNTS},
                 "scales": {name: float(stats["scales"][name][()]) for name in SCALE_UNITS},
             },
+            relaxation=relaxation,
         )
 
 
@@ -134,6 +141,22 @@ def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Grou
     kinds = np.array([kind for _, kind in result.events], dtype=object)
     events.create_dataset("time", data=times).attrs["unit"] = "s"
     events.create_dataset("kind", data=kinds, dtype=h5py.string_dtype())
+    if result.relaxation is not None:
+        _write_relaxation(observables.create_group("relaxation"), result.relaxation)
+
+
+def _write_relaxation(group: h5py.Group, relaxation: Relaxation) -> None:
+    group.attrs["description"] = "the viscoelastic medium's springs when the run ends, and the first contact's energies"
+    for name, (unit, description) in RELAXATION_FIELDS.items():
+        dataset = group.create_dataset(name, data=getattr(relaxation, name))
+        dataset.attrs["description"] = description
+        if unit:
+            dataset.attrs["unit"] = unit
+
+
+def _read_relaxation(group: h5py.Group) -> Relaxation:
+    values = {name: group[name][()] for name in RELAXATION_FIELDS}
+    return Relaxation(**{name: float(value) if np.ndim(value) == 0 else value for name, value in values.items()})
 
 
 def _write_parameters(parameters: h5py.Group, result: Result, wall_time: float | None) -> None:

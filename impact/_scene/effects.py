@@ -1,5 +1,6 @@
 """The `effects` section of a scene file: adhesion (one of the models of `adhesion`), gravity,
-plasticity and damping, each a pydantic model in SI units forbidding unknown keys."""
+plasticity, damping and a viscoelastic medium (`viscoelasticity`), each a pydantic model in SI
+units forbidding unknown keys."""
 
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
@@ -18,6 +19,7 @@ from .domains import within
 from .errors import FieldProblem
 from .profiles import Number
 from .sections import Section
+from .viscoelasticity import Viscoelasticity
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -114,3 +116,4 @@ class Effects(Section):
     gravity: Gravity | None = None
     plasticity: Plasticity | None = None
     damping: Damping | None = None
+    viscoelasticity: Viscoelasticity | None = None
