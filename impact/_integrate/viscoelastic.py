@@ -33,7 +33,7 @@ from .._law.law import ContactLaw
 from .._law.reach import radius_bound
 from .._law.scales import Scales, energy_scales
 from .._law.viscoelastic import Viscoelastic
-from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray
+from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
@@ -68,16 +68,18 @@ class ViscoelasticProblem(AbstractProblem):
 class Relaxed(eqx.Module):
     """The medium when the run ends (scaled), and the first contact's snaps."""
 
-    springs: SpringStates
+    springs: SpringStates  # [capacity]: the first `count` are the array's
     spacing: jax.Array  # Δx
+    count: jax.Array  # N
     released: jax.Array  # elastic energy released by the springs that let go in the first contact
     gained: jax.Array  # elastic energy gained by the springs that jumped onto the indenter in it
 
 
 class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
-    """N springs, each the medium's generalized Maxwell element, stepped at dt (s)."""
+    """N springs (`Physics.spring_count`, traced), each the medium's generalized Maxwell element,
+    in `capacity` compiled slots, stepped at dt (s)."""
 
-    springs: int = eqx.field(static=True)  # N
+    capacity: int = eqx.field(static=True)  # slots of the compiled array (≥ N)
     dt: float  # step (s)
     max_steps: int = eqx.field(static=True, default=4096)  # steps a contact may take
 
@@ -99,22 +101,14 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         reach, bounded = radius_bound(elastic, relaxed[1], touch_speed)
         default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * reach)
         length = jnp.where(jnp.isnan(physics.spring_length), default, physics.spring_length / scales.radial)
-        spacing = length / self.springs
-        positions = (jnp.arange(self.springs) + 0.5) * spacing
         detach, attach = law.hess_lengths(scales, E_star, options.adhesive)
-        element = law.element(scales, E_star)
-        root = jnp.sqrt(positions)
+        count = physics.spring_count.astype(int)
+        array = spring_array(law.element(scales, E_star), elastic.g, length, count, self.capacity, detach, attach)
         return ViscoelasticProblem(
             motion=motion_of(physics, options, scales, -physics.gap / scales.normal, touch_speed),
             bounded=bounded | jnp.isfinite(elastic.extent()),
             units=scales,
-            array=ViscoelasticArray(
-                element=element,
-                spacing=spacing,
-                profile=elastic.g(positions),
-                attach_gap=attach * root,
-                tension=element.instantaneous * detach * root,
-            ),
+            array=array,
             step=jnp.asarray(self.dt, jnp.float64) / scales.time,
         )
 
@@ -128,7 +122,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         zero = jnp.zeros(())
         start = _Walk(
             carry=initial_carry(problem, options),
-            springs=SpringStates.virgin(self.springs, terms),
+            springs=SpringStates.virgin(self.capacity, terms),
             force=zero,
             contact_steps=jnp.zeros((), int),
             released=zero,
@@ -155,7 +149,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
 
         end = jax.lax.while_loop(running, advance, start)
         outcome = replace(finish(end.carry), first_contact_stored_energy=end.first.stored)
-        relaxed = Relaxed(end.springs, problem.array.spacing, end.first.released, end.first.gained)
+        relaxed = Relaxed(end.springs, problem.array.spacing, problem.array.count, end.first.released, end.first.gained)
         return outcome, relaxed
 
     def _step(self, problem: ViscoelasticProblem, walk: "_Walk") -> "_Walk":
@@ -176,7 +170,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         turned = inward & (v <= 0.0)
         separated = ~inward & ~attached
         captured = ~inward & attached & (v > 0.0)
-        overflow = springs.attached[-1]
+        overflow = array.overflows(springs)
         out_of_time = t > problem.motion.time_limit
         exhausted = walk.contact_steps + 1 >= self.max_steps
         # Where the body let go: the last spring's release inside the step (on the straight path).

@@ -21,7 +21,7 @@ import jax.numpy as jnp
 from .._core.pytree import replace
 from .._law.law import ContactLaw
 from .._law.viscoelastic import Viscoelastic
-from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray
+from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
 from .codes import Status, status_code
 from .quasistatic.loading import EVENT, Loading
 from .quasistatic.setup import loading_scales
@@ -40,7 +40,7 @@ class RateNumerics:
     """Static choices of a rate-controlled test (changing them recompiles)."""
 
     adhesive: bool
-    springs: int  # N
+    capacity: int  # slots of the compiled array (the count, `Loading.spring_count`, is traced)
     force_control: bool
     cycles: int
     steps_per_leg: int = 200  # steps of each ramp and each hold
@@ -96,19 +96,10 @@ def build_array(loading: Loading, numerics: RateNumerics):
     radius = grid[jnp.minimum(jnp.searchsorted(reached, peak), grid.shape[0] - 1)]
     default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * radius)
     length = jnp.where(jnp.isnan(loading.spring_length), default, loading.spring_length / scales.radial)
-    spacing = length / numerics.springs
-    positions = (jnp.arange(numerics.springs) + 0.5) * spacing
     detach, attach = law.hess_lengths(scales, loading.E_star, numerics.adhesive)
-    element = law.element(scales, loading.E_star)
-    root = jnp.sqrt(positions)
-    array = ViscoelasticArray(
-        element=element,  # times in seconds: `loading_scales` keeps the test's clock
-        spacing=spacing,
-        profile=elastic.g(positions),
-        attach_gap=attach * root,
-        tension=element.instantaneous * detach * root,
-    )
-    return scales, array
+    element = law.element(scales, loading.E_star)  # times in seconds: `loading_scales` keeps the test's clock
+    count = loading.spring_count
+    return scales, spring_array(element, elastic.g, length, count, numerics.capacity, detach, attach)
 
 
 def march_at_rate(program: RateLoading, numerics: RateNumerics):
@@ -125,7 +116,7 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
     zero = jnp.zeros(())
     terms = array.element.moduli.shape[-1]
     start = _March(
-        springs=SpringStates.virgin(numerics.springs, terms),
+        springs=SpringStates.virgin(numerics.capacity, terms),
         t=zero,
         d=zero,
         force=zero,
@@ -207,7 +198,7 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
         rows=end.rows,
         events=end.events,
         steps=end.count,
-        top=array.spacing * numerics.springs,
+        top=array.spacing * array.count,
     )
     return scales, outcome
 

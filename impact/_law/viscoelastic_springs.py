@@ -67,21 +67,19 @@ class StepTotals(eqx.Module):
 
 
 class ViscoelasticArray(eqx.Module):
-    """The springs' places and thresholds, and their element."""
+    """The springs' places and thresholds, and their element. The array has a compiled number of
+    slots; the springs beyond `count` (traced) never touch (their g is infinite)."""
 
     element: PronyElement
     spacing: jax.Array  # Δx
-    profile: jax.Array  # [N] g(x_j)
-    attach_gap: jax.Array  # [N] the gap at which a free spring attaches: √(2πx_jΔγa/E₀*) (scaled)
-    tension: jax.Array  # [N] the force per width at which an attached spring lets go: √(2πx_jΔγE₀*)
+    count: jax.Array  # N
+    profile: jax.Array  # [slots] g(x_j)
+    attach_gap: jax.Array  # [slots] the gap at which a free spring attaches: √(2πx_jΔγa/E₀*) (scaled)
+    tension: jax.Array  # [slots] the force per width at which an attached spring lets go: √(2πx_jΔγE₀*)
 
     @property
-    def count(self) -> int:
+    def slots(self) -> int:
         return self.profile.shape[0]
-
-    def positions(self):
-        """x_j = (j − ½)·Δx."""
-        return (jnp.arange(self.count) + 0.5) * self.spacing
 
     def forces(self, states: SpringStates):
         """Each spring's force per width (0 where free)."""
@@ -97,12 +95,16 @@ class ViscoelasticArray(eqx.Module):
 
     def contact_radius(self, states: SpringStates):
         """The outer edge of the outermost attached spring (0 without contact)."""
-        outermost = jnp.max(jnp.where(states.attached, jnp.arange(self.count), -1))
+        outermost = jnp.max(jnp.where(states.attached, jnp.arange(self.slots), -1))
         return (outermost + 1) * self.spacing
+
+    def overflows(self, states: SpringStates):
+        """Whether the last spring is attached: the contact may have grown beyond the array."""
+        return states.attached[self.count - 1]
 
     def advance(self, states: SpringStates, indentation, rate, duration) -> tuple[SpringStates, StepTotals]:
         """The springs after `duration` with d(s) = `indentation` + `rate`·s, and the step's totals."""
-        count = self.count
+        count = self.slots
         rate_n = jnp.full(count, rate)
         element = self.element
         change = self._change_time(states, indentation, rate_n, duration)
@@ -200,3 +202,23 @@ class _Evolved(eqx.Module):
     states: SpringStates
     impulse: jax.Array  # [N] ∫f ds
     dissipation: jax.Array  # [N]
+
+
+def spring_array(element: PronyElement, g, length, count, slots: int, detach, attach) -> ViscoelasticArray:
+    """`count` springs at the midpoints x_j = (j − ½)·Δx of [0, `length`] in `slots` slots (the
+    rest never touch), for the scaled profile `g` and the scaled rule of Heß at the
+    instantaneous modulus: a spring lets go at the tension e₀·`detach`·√x and attaches across the
+    gap `attach`·√x (`Viscoelastic.hess_lengths`)."""
+    spacing = length / count
+    index = jnp.arange(slots)
+    used = index < count
+    positions = (index + 0.5) * spacing
+    root = jnp.sqrt(positions)
+    return ViscoelasticArray(
+        element=element,
+        spacing=spacing,
+        count=jnp.asarray(count, int),
+        profile=jnp.where(used, g(jnp.where(used, positions, 0.5 * spacing)), jnp.inf),
+        attach_gap=attach * root,
+        tension=element.instantaneous * detach * root,
+    )

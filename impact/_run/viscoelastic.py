@@ -56,6 +56,7 @@ def _solve_relaxing(integrator: ViscoelasticSprings, physics: Physics, options: 
     springs = relaxed.springs
     medium = {
         "spacing": relaxed.spacing,
+        "count": relaxed.count,
         "attached": springs.attached,
         "displacement": springs.displacement,
         "arm_stretch": springs.stretches,
@@ -70,12 +71,12 @@ def relaxation_of(scales: Mapping[str, Any], outcome: Mapping[str, Any], medium:
     radial, normal = float(scales["radial"]), float(scales["normal"])
     energy = float(scales["force"]) * normal
     spacing = float(medium["spacing"])
-    count = np.asarray(medium["attached"]).shape[0]
+    count = int(medium["count"])
     return Relaxation(
         spring_position=(np.arange(count) + 0.5) * spacing * radial,
-        displacement=np.asarray(medium["displacement"]) * normal,
-        arm_stretch=np.asarray(medium["arm_stretch"]) * normal,
-        attached=np.asarray(medium["attached"], dtype=bool),
+        displacement=np.asarray(medium["displacement"])[:count] * normal,
+        arm_stretch=np.asarray(medium["arm_stretch"])[:count] * normal,
+        attached=np.asarray(medium["attached"], dtype=bool)[:count],
         stored_energy=float(outcome["first_contact_stored_energy"]) * energy,
         released_energy=float(medium["released"]) * energy,
         gained_energy=float(medium["gained"]) * energy,

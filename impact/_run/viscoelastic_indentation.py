@@ -10,6 +10,7 @@ from .._core.pytree import fields
 from .._core.stored import call_stored
 from .._integrate.viscoelastic_indentation import RateLoading, RateNumerics, march_at_rate
 from .._scene.scene import Scene
+from .._scene.springs import spring_capacity
 from .indentation import IndentationResult, indentation_loading, to_indentation_result
 
 
@@ -19,7 +20,7 @@ def rate_numerics(scene: Scene) -> RateNumerics:
     assert isinstance(springs, int), "validated: a viscoelastic half-space runs on a spring array"
     return RateNumerics(
         adhesive=scene.adhesive,
-        springs=springs,
+        capacity=spring_capacity(springs),
         force_control=scene.control == "force",
         cycles=scene.loading.cycles,
     )

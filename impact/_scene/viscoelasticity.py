@@ -16,6 +16,7 @@ from .domains import within
 from .errors import FieldProblem
 from .profiles import Number
 from .sections import MIDPOINT, Section
+from .springs import spring_capacity
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -62,7 +63,7 @@ class Viscoelasticity(Section):
         """The spring array stepped by the implicit midpoint rule (validated: springs and dt given)."""
         springs, solver = scene.contact.springs, scene.solver
         assert isinstance(springs, int) and solver.dt is not None, "validated: contact.springs N and solver.dt"
-        return ViscoelasticSprings(springs=springs, dt=solver.dt, max_steps=solver.max_steps)
+        return ViscoelasticSprings(capacity=spring_capacity(springs), dt=solver.dt, max_steps=solver.max_steps)
 
     def instantaneous_modulus(self, relaxed: float) -> float:
         """E₀* = E∞* + Σ E_i (Pa) for the relaxed modulus `relaxed` (Pa)."""
