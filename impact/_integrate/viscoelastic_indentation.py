@@ -19,6 +19,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.pytree import replace
+from .._law.jkr import hess_coefficients
 from .._law.law import ContactLaw
 from .._law.viscoelastic import Viscoelastic
 from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
@@ -31,7 +32,8 @@ from .quasistatic.setup import loading_scales
 _LENGTH_MARGIN = 1.5
 # Force control: doublings of the bracket around the step's indentation, then Illinois steps.
 _BRACKET_DOUBLINGS = 60
-_ILLINOIS_STEPS = 60
+_ILLINOIS_STEPS = 100
+_SETTLED = 1e-14  # the bracket's width relative to the indentation
 _EVENTS = 64
 
 
@@ -88,12 +90,18 @@ def build_array(loading: Loading, numerics: RateNumerics):
     law = loading.law
     assert isinstance(law, Viscoelastic), f"a rate-controlled test rides a Viscoelastic law, not {type(law).__name__}"
     scales = loading_scales(loading, numerics.adhesive)
-    elastic = ContactLaw(loading.profile, scales, jnp.zeros(()), jnp.zeros(()), False)
-    # The relaxed non-adhesive contact at the peak: g(a) = d (displacement), F(a) = 2(a·g − G) (force).
+    if numerics.adhesive:  # the relaxed medium's attach edge: the widest a loading reaches
+        relaxed = hess_coefficients(law.work_of_adhesion, law.approach_work_of_adhesion, scales, loading.E_star)[1]
+    else:
+        relaxed = jnp.zeros(())
+    elastic = ContactLaw(loading.profile, scales, jnp.zeros(()), relaxed, numerics.adhesive)
+    # Where the relaxed contact reaches the peak: the edge h(a) = g(a) − λa·√a (displacement
+    # control), F(a) = 2(a·g − G) without adhesion (force control).
     peak = loading.peak / jnp.where(loading.force_control, scales.force, scales.normal)
     grid = jnp.geomspace(1e-6, 1e6, 241)
-    reached = jnp.where(loading.force_control, elastic.force(grid, elastic.g(grid)), elastic.g(grid))
-    radius = grid[jnp.minimum(jnp.searchsorted(reached, peak), grid.shape[0] - 1)]
+    reached = jnp.where(loading.force_control, elastic.force(grid, elastic.g(grid)), elastic.edge(grid, relaxed))
+    below = jnp.max(jnp.where(reached <= peak, jnp.arange(grid.shape[0]), 0))
+    radius = grid[jnp.minimum(below + 1, grid.shape[0] - 1)]
     default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * radius)
     length = jnp.where(jnp.isnan(loading.spring_length), default, loading.spring_length / scales.radial)
     detach, attach = law.hess_lengths(scales, loading.E_star, numerics.adhesive)
@@ -165,8 +173,9 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
         step = march.step + 1
         leg_done = (step >= steps) | (h == 0.0)
         exhausted = leg_done & to_pull_off & ~lost
+        overflow = array.overflows(springs)
         next_leg = march.leg + jnp.asarray(leg_done, int)
-        done = lost | exhausted | (next_leg >= legs)
+        done = lost | exhausted | overflow | (next_leg >= legs)
         # The program's legs as a quasi-static test numbers them: 0 the first loading (and its hold),
         # 1 the first unloading, … (a force-controlled contact lost at F = 0 adds no point).
         leg = 2 * (march.leg // 3) + jnp.asarray(march.leg % 3 == 2, int)
@@ -187,7 +196,9 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
             step=jnp.where(leg_done, 0, step),
             touched=march.touched | contact,
             done=done,
-            status=Status.where(exhausted, Status.phase_limit, march.status),
+            status=Status.where(
+                overflow, Status.radius_overflow, Status.where(exhausted, Status.phase_limit, march.status)
+            ),
             pull_off=pull_off,
         )
 
@@ -248,6 +259,13 @@ def _indentation_at(array: ViscoelasticArray, springs: SpringStates, start, dura
             jnp.where(above, -1, 1),
         )
 
-    state = (low, high, excess(low), excess(high), jnp.zeros((), int))
-    low, high, f_low, f_high, _ = jax.lax.fori_loop(0, _ILLINOIS_STEPS, illinois, state)
+    def open_bracket(state):
+        low, high, _, _, _, steps = state
+        return (high - low > _SETTLED * jnp.maximum(jnp.abs(high), jnp.abs(low))) & (steps < _ILLINOIS_STEPS)
+
+    def counted(state):
+        return (*illinois(None, state[:5]), state[5] + 1)
+
+    state = (low, high, excess(low), excess(high), jnp.zeros((), int), jnp.zeros((), int))
+    low, high, f_low, f_high, _, _ = jax.lax.while_loop(open_bracket, counted, state)
     return jnp.where(jnp.abs(f_low) < jnp.abs(f_high), low, high)

@@ -42,6 +42,8 @@ INDENTATION_CURVE = {
     "force": ("N", "normal force; > 0 compressive, < 0 adhesive"),
     "leg": ("", "leg of the loading program: 0 first loading, 1 first unloading, ..."),
 }
+# The time of each point of a viscoelastic half-space's test at a rate (`IndentationResult.time`).
+CURVE_TIME = ("s", "time of each point since the first touch")
 # Its pull-off (`PullOff` fields) and its extremes (`IndentationResult` properties): name → unit.
 PULL_OFF_UNITS = {"contact_radius": "m", "indentation": "m", "force": "N"}
 MAXIMA_UNITS = {"max_force": "N", "max_indentation": "m", "max_contact_radius": "m"}

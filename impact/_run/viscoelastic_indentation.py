@@ -37,9 +37,11 @@ def rate_loading(scene: Scene) -> RateLoading:
     )
 
 
-def simulate_rate_test(scene: Scene) -> IndentationResult:
-    """Run the viscoelastic indentation scene (its program traced once per machine and structure)."""
-    scales, outcome = call_stored(_march_by_field, rate_loading(scene), rate_numerics(scene))
+def simulate_rate_test(scene: Scene, numerics: RateNumerics | None = None) -> IndentationResult:
+    """Run the viscoelastic indentation scene (its program traced once per machine and
+    structure) with its own static choices, or `numerics` (e.g. a larger capacity, shared)."""
+    numerics = rate_numerics(scene) if numerics is None else numerics
+    scales, outcome = call_stored(_march_by_field, rate_loading(scene), numerics)
     return to_indentation_result(scene, SimpleNamespace(**scales), SimpleNamespace(**outcome))
 
 
