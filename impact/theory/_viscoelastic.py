@@ -47,7 +47,7 @@ def lee_radok_kernel(X: Scalars):
     closed = root - dawsn(root)
     # √X − D(√X) = Σ_{n≥1} (−1)^(n+1)·2ⁿ·X^(n+½)/(2n+1)!!
     positive = jnp.where(X > 0.0, X, 0.0)
-    term, series = jnp.sqrt(positive) * positive * 2.0 / 3.0, jnp.zeros_like(positive)
+    term, series = derivatives.sqrt(positive) * positive * 2.0 / 3.0, jnp.zeros_like(positive)
     for n in range(1, _SERIES_TERMS + 1):
         series = series + term
         term = -term * 2.0 * positive / (2 * n + 3)
