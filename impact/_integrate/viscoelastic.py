@@ -92,13 +92,15 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         speed = touch_velocity(physics, options)
         if options.adhesive:
             scales = law.scales(profile, E_star, physics.mass, speed)
-            relaxed = hess_coefficients(law.work_of_adhesion, law.approach_work_of_adhesion, scales, E_star)
+            relaxed, relaxed_attach = hess_coefficients(
+                law.work_of_adhesion, law.approach_work_of_adhesion, scales, E_star
+            )
         else:
             scales = energy_scales(profile, E_star, physics.mass, speed)
-            relaxed = (jnp.zeros(()), jnp.zeros(()))
-        elastic = ContactLaw(profile, scales, *relaxed, options.adhesive)
+            relaxed = relaxed_attach = jnp.zeros(())
+        elastic = ContactLaw(profile, scales, relaxed, relaxed_attach, options.adhesive)
         touch_speed = speed / scales.velocity
-        reach, bounded = radius_bound(elastic, relaxed[1], touch_speed)
+        reach, bounded = radius_bound(elastic, relaxed_attach, touch_speed)
         default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * reach)
         length = jnp.where(jnp.isnan(physics.spring_length), default, physics.spring_length / scales.radial)
         detach, attach = law.hess_lengths(scales, E_star, options.adhesive)

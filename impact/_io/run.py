@@ -155,8 +155,15 @@ def _write_relaxation(group: h5py.Group, relaxation: Relaxation) -> None:
 
 
 def _read_relaxation(group: h5py.Group) -> Relaxation:
-    values = {name: group[name][()] for name in RELAXATION_FIELDS}
-    return Relaxation(**{name: float(value) if np.ndim(value) == 0 else value for name, value in values.items()})
+    return Relaxation(
+        spring_position=group["spring_position"][()],
+        displacement=group["displacement"][()],
+        arm_stretch=group["arm_stretch"][()],
+        attached=group["attached"][()],
+        stored_energy=float(group["stored_energy"][()]),
+        released_energy=float(group["released_energy"][()]),
+        gained_energy=float(group["gained_energy"][()]),
+    )
 
 
 def _write_parameters(parameters: h5py.Group, result: Result, wall_time: float | None) -> None:

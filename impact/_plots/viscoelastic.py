@@ -20,6 +20,7 @@ import numpy as np
 from .. import theory
 from .._run.indentation import IndentationResult
 from .._run.sweep.execute import sweep
+from .._scene.profiles import ParaboloidSpec
 from .._scene.scene import load_scene
 from .figures import si_prefix
 
@@ -64,9 +65,10 @@ def deborah_figure() -> "Figure":
     result = sweep(base, {"effects.viscoelasticity.prony.0.time": _DEBORAH_TIMES, "initial.velocity": list(_SPEEDS)})
     figure = Figure(figsize=(7.5, 4.8), layout="constrained")
     axes = figure.subplots()
-    relaxed = scene.material.effective_modulus
+    relaxed, profile = scene.material.effective_modulus, scene.contact_profile
+    assert isinstance(profile, ParaboloidSpec), "the micro-sphere's tip is a paraboloid"
     for column, speed in enumerate(_SPEEDS):
-        contact = float(theory.hertz_contact_time(speed, scene.reduced_mass, scene.body.profile.R, relaxed))
+        contact = float(theory.hertz_contact_time(speed, scene.reduced_mass, profile.R, relaxed))
         deborah = contact / _DEBORAH_TIMES
         restitution = result.restitution[:, column]
         axes.plot(deborah, restitution, "o-", ms=3, label=f"v₀ = {speed:g} m/s")
