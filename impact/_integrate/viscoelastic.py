@@ -26,7 +26,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .._core.pytree import replace
+from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.jkr import hess_coefficients
 from .._law.law import ContactLaw
@@ -158,11 +158,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         """One step of the implicit midpoint rule, with its events."""
         c, array, h = walk.carry, problem.array, problem.step
 
-        def corrected(_, half):
-            return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
-
-        half = jax.lax.fori_loop(0, self.ITERATIONS - 1, corrected, c.v - 0.5 * h * walk.force)
-        springs, totals = array.advance(walk.springs, c.d, half, h)
+        springs, totals, half = self._midpoint(problem, walk)
         v = c.v - totals.impulse
         d = c.d + h * half
         t = c.t + h
@@ -198,34 +194,38 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         status = Status.where(
             overflow,
             Status.radius_overflow,
-            Status.where(
-                out_of_time,
-                Status.time_limit,
-                Status.where(exhausted, Status.solver_failure, Status.where(captured, Status.captured, c.status)),
-            ),
+            Status.where(out_of_time, Status.time_limit, Status.where(exhausted, Status.solver_failure, c.status)),
         )
-        mode = jnp.where(
-            stops | captured, DONE, jnp.where(separated, FLIGHT, jnp.where(turned | ~inward, RECEDE, ADVANCE))
-        )
-        c = replace(c, mode=mode, status=status, steps=c.steps + 1, accepted=c.accepted + 1)
-        released, gained = walk.released + totals.released, walk.gained + totals.gained
-        ended = (c.contacts == 1) & (separated | captured)
-        first = jax.tree.map(
-            lambda now, kept: jnp.where(ended, now, kept),
-            _FirstContact(stored=array.stored(springs), released=released, gained=gained),
-            walk.first,
-        )
+        status = Status.where(captured & ~stops, Status.captured, status)
+        following = jnp.where(separated, FLIGHT, jnp.where(turned | ~inward, RECEDE, ADVANCE))
         phases = c.phases + jnp.asarray(separated | captured | turned, int)
+        c = replace(c, mode=jnp.where(stops | captured, DONE, following), status=status, phases=phases)
+        c = replace(c, steps=c.steps + 1, accepted=c.accepted + 1)
+        released, gained = walk.released + totals.released, walk.gained + totals.gained
+        now = _FirstContact(stored=array.stored(springs), released=released, gained=gained)
+        ended = (c.contacts == 1) & (separated | captured)
         return replace(
             walk,
-            carry=replace(c, phases=phases),
+            carry=c,
             springs=springs,
             force=force,
             contact_steps=walk.contact_steps + 1,
             released=released,
             gained=gained,
-            first=first,
+            first=where(ended, now, walk.first),
         )
+
+    def _midpoint(self, problem: ViscoelasticProblem, walk: "_Walk"):
+        """The step's springs, totals and v½ = (v + v')/2 of the implicit midpoint rule: fixed-point
+        evaluations from v½ = v − h·F/2 (scaled mass 1)."""
+        c, array, h = walk.carry, problem.array, problem.step
+
+        def corrected(_, half):
+            return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
+
+        half = jax.lax.fori_loop(0, self.ITERATIONS - 1, corrected, c.v - 0.5 * h * walk.force)
+        springs, totals = array.advance(walk.springs, c.d, half, h)
+        return springs, totals, half
 
 
 class _FirstContact(eqx.Module):

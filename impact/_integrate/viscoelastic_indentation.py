@@ -115,16 +115,18 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
     loading = program.loading
     scales, array = build_array(loading, numerics)
     unit = jnp.where(loading.force_control, scales.force, scales.normal)
-    rate = program.rate / unit  # per second
-    peak = loading.peak / unit
-    targets = loading.targets / unit  # [2·cycles…] peak, unload_to (−inf: to pull-off)
-    legs = 3 * numerics.cycles
-    ramp = peak / rate  # s
-    rows = legs * numerics.steps_per_leg + numerics.pull_off_legs * numerics.steps_per_leg
+    plan = _Program(
+        array=array,
+        rate=program.rate / unit,
+        peak=loading.peak / unit,
+        targets=loading.targets / unit,
+        hold=program.hold,
+        numerics=numerics,
+    )
+    rows = (3 * numerics.cycles + numerics.pull_off_legs) * numerics.steps_per_leg
     zero = jnp.zeros(())
-    terms = array.element.moduli.shape[-1]
     start = _March(
-        springs=SpringStates.virgin(numerics.capacity, terms),
+        springs=SpringStates.virgin(numerics.capacity, array.element.moduli.shape[-1]),
         t=zero,
         d=zero,
         force=zero,
@@ -139,70 +141,7 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
         events=jnp.full((_EVENTS, 2), -1),
         event_count=jnp.zeros((), int),
     )
-
-    def leg_plan(march: _March):
-        """(direction, duration of a step, steps of the leg, ends at pull-off) of its leg."""
-        cycle, part = march.leg // 3, march.leg % 3
-        last = cycle == numerics.cycles - 1
-        unload_to = targets[2 * cycle + 1]
-        to_pull_off = (part == 2) & (last | ~jnp.isfinite(unload_to))
-        low = jnp.where(cycle > 0, targets[jnp.maximum(2 * cycle - 1, 0)], 0.0)
-        low = jnp.where(jnp.isfinite(low), low, 0.0)
-        span = jnp.where(part == 0, peak - low, jnp.where(part == 2, peak - unload_to, 0.0))
-        duration = jnp.where(part == 1, program.hold, jnp.where(to_pull_off, ramp, span / rate))
-        direction = jnp.where(part == 0, 1.0, jnp.where(part == 1, 0.0, -1.0))
-        steps = jnp.where(to_pull_off, numerics.pull_off_legs * numerics.steps_per_leg, numerics.steps_per_leg)
-        return direction, duration / numerics.steps_per_leg, steps, to_pull_off
-
-    def advance(march: _March) -> _March:
-        direction, h, steps, to_pull_off = leg_plan(march)
-        if numerics.force_control:
-            target = jnp.maximum(march.force + direction * rate * h, 0.0)
-            d = _indentation_at(array, march.springs, march.d, h, target)
-        else:
-            d = march.d + direction * rate * h
-        springs, _ = array.advance(march.springs, march.d, (d - march.d) / jnp.where(h > 0, h, 1.0), h)
-        force = array.force(springs)
-        contact = jnp.any(springs.attached)
-        lost = march.touched & ~contact & to_pull_off
-        if numerics.force_control:
-            lost = lost | (to_pull_off & (march.force + direction * rate * h <= 0.0))
-        pull_off = jnp.where(
-            lost, jnp.stack([array.contact_radius(march.springs), march.d, march.force]), march.pull_off
-        )
-        step = march.step + 1
-        leg_done = (step >= steps) | (h == 0.0)
-        exhausted = leg_done & to_pull_off & ~lost
-        overflow = array.overflows(springs)
-        next_leg = march.leg + jnp.asarray(leg_done, int)
-        done = lost | exhausted | overflow | (next_leg >= legs)
-        # The program's legs as a quasi-static test numbers them: 0 the first loading (and its hold),
-        # 1 the first unloading, … (a force-controlled contact lost at F = 0 adds no point).
-        leg = 2 * (march.leg // 3) + jnp.asarray(march.leg % 3 == 2, int)
-        row = jnp.stack([array.contact_radius(springs), d, force, leg.astype(d.dtype), march.t + h])
-        written = ~lost if numerics.force_control else jnp.asarray(True)
-        index = jnp.where(written, march.count, march.rows.shape[0])
-        march = replace(march, rows=march.rows.at[index].set(row, mode="drop"), count=march.count + written)
-        march = _log(march, EVENT["touch"], ~march.touched & contact)
-        march = _log(march, EVENT["reversal"], leg_done & (march.leg % 3 > 0) & ~done)
-        march = _log(march, EVENT["pull_off"], lost)
-        return replace(
-            march,
-            springs=springs,
-            t=march.t + h,
-            d=d,
-            force=force,
-            leg=next_leg,
-            step=jnp.where(leg_done, 0, step),
-            touched=march.touched | contact,
-            done=done,
-            status=Status.where(
-                overflow, Status.radius_overflow, Status.where(exhausted, Status.phase_limit, march.status)
-            ),
-            pull_off=pull_off,
-        )
-
-    end = jax.lax.while_loop(lambda march: ~march.done, advance, start)
+    end = jax.lax.while_loop(lambda march: ~march.done, lambda march: plan.step(march), start)
     outcome = RateOutcome(
         status=status_code(end.status),
         pull_off=end.pull_off,
@@ -212,6 +151,79 @@ def march_at_rate(program: RateLoading, numerics: RateNumerics):
         top=array.spacing * array.count,
     )
     return scales, outcome
+
+
+class _Program(eqx.Module):
+    """The program in the units of the test (lengths or forces scaled, times in s): legs 3c,
+    3c + 1, 3c + 2 load, hold and unload cycle c."""
+
+    array: ViscoelasticArray
+    rate: jax.Array  # per s
+    peak: jax.Array
+    targets: jax.Array  # [2·cycles…] the peak and unload_to of each cycle (−inf: to pull-off)
+    hold: jax.Array  # s
+    numerics: RateNumerics = eqx.field(static=True)
+
+    def leg(self, march: _March):
+        """(direction, duration of a step, steps of the leg, ends at pull-off) of its leg."""
+        numerics, targets = self.numerics, self.targets
+        cycle, part = march.leg // 3, march.leg % 3
+        unload_to = targets[2 * cycle + 1]
+        to_pull_off = (part == 2) & ((cycle == numerics.cycles - 1) | ~jnp.isfinite(unload_to))
+        low = jnp.where(cycle > 0, targets[jnp.maximum(2 * cycle - 1, 0)], 0.0)
+        low = jnp.where(jnp.isfinite(low), low, 0.0)
+        span = jnp.where(part == 0, self.peak - low, jnp.where(part == 2, self.peak - unload_to, 0.0))
+        ramp = self.peak / self.rate
+        duration = jnp.where(part == 1, self.hold, jnp.where(to_pull_off, ramp, span / self.rate))
+        direction = jnp.where(part == 0, 1.0, jnp.where(part == 1, 0.0, -1.0))
+        steps = jnp.where(to_pull_off, numerics.pull_off_legs * numerics.steps_per_leg, numerics.steps_per_leg)
+        return direction, duration / numerics.steps_per_leg, steps, to_pull_off
+
+    def step(self, march: _March) -> _March:
+        """One step of the program, its point and its events."""
+        array, force_control = self.array, self.numerics.force_control
+        direction, h, steps, to_pull_off = self.leg(march)
+        target = march.force + direction * self.rate * h
+        if force_control:
+            d = _indentation_at(array, march.springs, march.d, h, jnp.maximum(target, 0.0))
+        else:
+            d = march.d + direction * self.rate * h
+        springs, _ = array.advance(march.springs, march.d, (d - march.d) / jnp.where(h > 0, h, 1.0), h)
+        force = array.force(springs)
+        contact = jnp.any(springs.attached)
+        lost = march.touched & to_pull_off & (~contact | ((target <= 0.0) if force_control else False))
+        last_contact = jnp.stack([array.contact_radius(march.springs), march.d, march.force])
+        leg_done = (march.step + 1 >= steps) | (h == 0.0)
+        exhausted = leg_done & to_pull_off & ~lost
+        overflow = array.overflows(springs)
+        next_leg = march.leg + jnp.asarray(leg_done, int)
+        done = lost | exhausted | overflow | (next_leg >= 3 * self.numerics.cycles)
+        # The program's legs as a quasi-static test numbers them: 0 the first loading (and its hold),
+        # 1 the first unloading, … (a force-controlled contact lost at F = 0 adds no point).
+        leg = 2 * (march.leg // 3) + jnp.asarray(march.leg % 3 == 2, int)
+        row = jnp.stack([array.contact_radius(springs), d, force, leg.astype(d.dtype), march.t + h])
+        written = ~lost if force_control else jnp.asarray(True)
+        index = jnp.where(written, march.count, march.rows.shape[0])
+        march = replace(march, rows=march.rows.at[index].set(row, mode="drop"), count=march.count + written)
+        march = _log(march, EVENT["touch"], ~march.touched & contact)
+        march = _log(march, EVENT["reversal"], leg_done & (march.leg % 3 > 0) & ~done)
+        march = _log(march, EVENT["pull_off"], lost)
+        status = Status.where(
+            overflow, Status.radius_overflow, Status.where(exhausted, Status.phase_limit, march.status)
+        )
+        return replace(
+            march,
+            springs=springs,
+            t=march.t + h,
+            d=d,
+            force=force,
+            leg=next_leg,
+            step=jnp.where(leg_done, 0, march.step + 1),
+            touched=march.touched | contact,
+            done=done,
+            status=status,
+            pull_off=jnp.where(lost, last_contact, march.pull_off),
+        )
 
 
 def _log(march: _March, kind: int, valid) -> _March:
