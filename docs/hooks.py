@@ -129,8 +129,13 @@ def _summary(model: type[BaseModel]) -> str:
     return _cell(doc.strip().split("\n\n")[0]) if doc.strip() else ""
 
 
-def _shape(model: type[BaseModel]) -> str:
-    options, _ = _unwrap(model.model_fields["shape"].annotation)
+def _tag(models: list[type[BaseModel]]) -> str:
+    """The key whose value selects a member of a tagged union: a profile's `shape`, an adhesion's `model`."""
+    return "shape" if "shape" in models[0].model_fields else "model"
+
+
+def _tag_value(model: type[BaseModel], tag: str) -> str:
+    options, _ = _unwrap(model.model_fields[tag].annotation)
     return typing.get_args(options[0])[0]
 
 
@@ -143,14 +148,16 @@ def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[s
         models = _models(field.annotation)
         if models:
             nested.append((path, models))
-            kind = "one of the shapes below, by `shape`" if len(models) > 1 else "section, below"
+            tag = _tag(models)
+            kind = f"one of the {tag}s below, by `{tag}`" if len(models) > 1 else "section, below"
             _, optional = _unwrap(field.annotation)
             kind += " (optional)" if optional else ""
-            summary = _summary(models[0]) if len(models) == 1 else "the body's shape"
+            summary = _summary(models[0]) if len(models) == 1 else {"shape": "the body's shape"}.get(tag, "")
             description = field.description or summary
             lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description or '')} |")
             continue
-        description = field.description or ("selects this profile" if name == "shape" else "")
+        selects = {"shape": "selects this profile", "model": "selects this model"}
+        description = field.description or selects.get(name, "")
         bounds = _bounds(field)
         kind = _cell(_type_name(field.annotation)) + (f"<br>{bounds}" if bounds else "")
         lines.append(f"| {key(path)} | {kind} | {_default(field)} | {_cell(description)} |")
@@ -159,10 +166,11 @@ def _table(model: type[BaseModel], prefix: str) -> tuple[list[str], list[tuple[s
 
 def _section(path: str, models: list[type[BaseModel]], level: int) -> list[str]:
     hashes = "#" * min(level, 6)
-    if len(models) > 1:  # a union tagged by `shape`: one table per shape
-        out = [f"{hashes} `{path}`", "", f"A mapping whose `shape` selects one of {len(models)} profiles.", ""]
+    if len(models) > 1:  # a tagged union (`shape`, `model`): one table per member
+        tag = _tag(models)
+        out = [f"{hashes} `{path}`", "", f"A mapping whose `{tag}` selects one of {len(models)} {tag}s.", ""]
         for model in models:
-            out += [f"{hashes}# `shape: {_shape(model)}`", "", _summary(model), ""]
+            out += [f"{hashes}# `{tag}: {_tag_value(model, tag)}`", "", _summary(model), ""]
             lines, nested = _table(model, f"{path}.")
             out += [*lines, ""]
             for inner_path, inner in nested:

@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from ._run.fit import fit as fit
     from ._run.impacts import Result as Result
     from ._run.indentation import IndentationResult as IndentationResult
+    from ._run.shear import ShearResult as ShearResult
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
@@ -42,6 +43,7 @@ _SOURCES = {
     "Result": "._run.impacts",
     "Scene": "._scene.scene",
     "SceneError": "._scene.scene",
+    "ShearResult": "._run.shear",
     "SweepResult": "._run.sweep",
     "as_function": "._run.differentiable",
     "configure": "._core.runtime",
@@ -63,6 +65,7 @@ __all__ = [
     "Result",
     "Scene",
     "SceneError",
+    "ShearResult",
     "SweepResult",
     "__version__",
     "as_function",

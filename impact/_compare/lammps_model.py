@@ -225,8 +225,7 @@ def _adhesion_refusals(scene: Scene, model: str) -> list[tuple[str, str]]:
         return [
             (
                 "effects.adhesion.model",
-                f"LAMMPS's granular adhesion has zero range (jkr, dmt, mdr): {adhesion.name!r} has no equivalent "
-                "there",
+                f"LAMMPS's granular adhesion has zero range (jkr, dmt, mdr): {adhesion.name!r} has no equivalent there",
             )
         ]
     if adhesion.hysteretic and model in ADHESIVE_MODELS:

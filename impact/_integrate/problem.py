@@ -10,6 +10,7 @@ import jax.numpy as jnp
 
 from .._core.types import Parameter
 from .._effects.damping import Damping
+from .._effects.friction import Friction
 from .._effects.gravity import Gravity
 from .._law.base import AbstractContactLaw, AbstractEdgeLaw
 from .._law.branches import Branch, Tabulation, build_branch
@@ -57,6 +58,7 @@ class Physics(eqx.Module):
     law: AbstractContactLaw  # the contact law the scene names, with its parameters
     gravity: Gravity  # unused unless `Options.gravity`
     damping: Damping  # unused unless `Options.damped`
+    friction: Friction  # unused unless the integrator is an oblique one
     time_limit: Parameter  # s
     spring_length: Parameter  # radius covered by a spring array (m); nan: the default
     spring_count: Parameter  # N of a spring array (traced: one compilation serves every N); nan: continuum

@@ -13,11 +13,13 @@ import h5py
 from .._core.runtime import float64
 from .._run.impacts import Result
 from .._run.indentation import IndentationResult
+from .._run.shear import ShearResult
 from .._run.sweep.result import SweepResult
 from .._scene.errors import SweepError
 from .h5md import CONFIG, stored_provenance
 from .indentation import is_indentation_run, read_indentation
 from .run import read_run
+from .shear import is_shear_run, read_shear
 from .sweep import SWEEP_FILE, read_sweep
 from .sweep_journal import journal_state
 
@@ -51,20 +53,25 @@ def open_sweep(path: str | Path) -> SweepResult:
 
 
 @float64
-def open_run(path: str | Path) -> Result | IndentationResult:
+def open_run(path: str | Path) -> Result | IndentationResult | ShearResult:
     """A stored run as the result `impact.simulate` returned: a `Result` for an impact, an
-    `IndentationResult` for an indentation test (the scene rebuilt from the stored YAML).
+    `IndentationResult` for an indentation test, a `ShearResult` for a shear test (the scene
+    rebuilt from the stored YAML).
 
     `path`: a run file (`run.h5` of `impact run`) or the folder holding `run.h5`. `stats` holds
     the solver's counts, the scales and `provenance`.
 
     Raises FileNotFoundError for a missing file and ValueError for a file that is no run."""
     path = _in_folder(path, RUN_FILE)
-    result: Result | IndentationResult = read_indentation(path) if is_indentation_run(path) else read_run(path)
+    result: Result | IndentationResult | ShearResult
+    if is_shear_run(path):
+        result = read_shear(path)
+    else:
+        result = read_indentation(path) if is_indentation_run(path) else read_run(path)
     return dataclasses.replace(result, stats={**result.stats, "provenance": _provenance(path, CONFIG)})
 
 
-def open_stored(path: str | Path) -> SweepResult | Result | IndentationResult:
+def open_stored(path: str | Path) -> SweepResult | Result | IndentationResult | ShearResult:
     """Whichever result a file holds: a sweep (`open_sweep`) or a run (`open_run`).
 
     Raises FileNotFoundError for a missing file and ValueError for a file that is no HDF5 file;

@@ -10,6 +10,7 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         velocity/{step, time, value[T, 1, 1]}   ḋ (m/s), towards the surface > 0
     observables/
         contact/{indentation, contact_radius, force}/{step, time, value[T]}
+                 {tangential_force, stick_radius}/...   (where the scene names friction)
         restitution, stuck, status, contact_time, max_indentation, max_force, min_force,
         bounces, touch_velocity, separation_velocity, dissipated_energy, plastic_work, viscous_work,
         adhesion_hysteresis   (where the scene names adhesion), unrecovered_elastic_energy (where
@@ -17,6 +18,8 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         tabor_parameter   (scalars; Λ: Maugis–Dugdale on a paraboloid, Greenwood–Johnson; else nan)
         centre_of_mass_velocity, body_velocity_after, counterpart_velocity_after
                           (lab frame, along the body's approach; speeds above are relative)
+        tangential_velocity_after, spin_after, tangential_restitution,
+        contact_point_tangential_restitution, rebound_angle, friction_work
         events/{time, kind}
         relaxation/            a viscoelastic half-space only: its springs when the run ends,
                                spring_position[N] (m), displacement[N] (m), arm_stretch[N, M] (m),
@@ -31,12 +34,14 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
 """
 
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
 
 from .._run.impacts import Result
 from .._run.losses import NAMED_LOSSES
+from .._run.tangential import TANGENTIAL_SERIES
 from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, RELAXATION_FIELDS, SCALAR_UNITS, VELOCITY_SERIES
 from .._run.viscoelastic import Relaxation
 from .files import atomic_path
@@ -69,6 +74,12 @@ def read_run(path: str | Path) -> Result:
         stats = file["parameters/solver_stats"]
         scalars = {name: _scalar(observables[name]) for name in SCALAR_UNITS if name in observables}
         scalars.setdefault("viscous_work", 0.0)  # files written before damping existed
+        for name in SCALAR_UNITS:
+            scalars.setdefault(name, float("nan"))  # files written before oblique impacts existed
+        frames = len(position["time"])
+        series: dict[str, Any] = {
+            name: contact[f"{name}/value"][()] if name in contact else np.zeros(frames) for name in TANGENTIAL_SERIES
+        }
         relaxation = _read_relaxation(observables["relaxation"]) if "relaxation" in observables else None
         return Result(
             scene=read_scene(file),
@@ -78,6 +89,7 @@ def read_run(path: str | Path) -> Result:
             velocity=file["particles/body/velocity/value"][()].reshape(-1),
             force=contact["force/value"][()],
             contact_radius=contact["contact_radius/value"][()],
+            **series,
             events=[
                 (float(t), str(kind)) for t, kind in zip(events["time"][()], events["kind"].asstr()[()], strict=True)
             ],
@@ -129,7 +141,8 @@ def _link_clock(source: h5py.Group, target: h5py.Group) -> None:
 
 def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Group) -> None:
     contact = observables.create_group("contact")
-    for name, (unit, description) in CONTACT_SERIES.items():
+    series = {**CONTACT_SERIES, **(TANGENTIAL_SERIES if result.scene.effects.friction is not None else {})}
+    for name, (unit, description) in series.items():
         _link_clock(clock, _series(contact.create_group(name), getattr(result, name), unit, description))
     derived = {name: "J" for name in DERIVED_LOSSES if NAMED_LOSSES[name](result.scene)}
     for name, unit in {**SCALAR_UNITS, **derived}.items():

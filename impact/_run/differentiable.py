@@ -41,6 +41,12 @@ OUTPUTS = (
     "touch_velocity",
     "separation_velocity",
     "dissipated_energy",
+    "tangential_velocity_after",
+    "spin_after",
+    "tangential_restitution",
+    "contact_point_tangential_restitution",
+    "rebound_angle",
+    "friction_work",
 )
 _STATIC = (
     "selects the compiled program (a static choice of the solver, the limits, the contact or "

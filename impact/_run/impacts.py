@@ -12,10 +12,12 @@ from .._integrate.base import AbstractIntegrator
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
 from .._integrate.problem import Options, Physics
 from .._integrate.viscoelastic import ViscoelasticSprings
+from .._scene.friction import lever_arm
 from .._scene.scene import Scene
 from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from .parameters import integrator_for, options_for, physics_for
 from .programs import solve_by_field
+from .tangential import tangential_results
 from .viscoelastic import Relaxation, relaxation_of, solve_relaxing
 
 if TYPE_CHECKING:
@@ -65,11 +67,29 @@ class Result:
             (< 0: rebounding).
         counterpart_velocity_after: The counterpart's velocity after the first contact, lab
             frame [m/s]; 0 for the flat.
+        tangential_velocity_after: Velocity of the body's centre along the surface after the
+            first contact [m/s], along its sliding before (`initial.angle`); nan unless it
+            separated. Without `effects.friction` the body slides on unchanged.
+        spin_after: The body's spin after the first contact in radians per second [s⁻¹], > 0
+            rolling it along its sliding; nan unless it separated.
+        tangential_restitution: |v_t′|/v_t of the centre, dimensionless (as Kharaz et al. and
+            DEM codes define it); nan without sliding before.
+        contact_point_tangential_restitution: −w′/w of the contact point, w = v_t − Rω,
+            dimensionless: −1 slides on unchanged, +1 reversed (Maw, Barber & Fawcett's β).
+        rebound_angle: Angle of the rebound from the surface normal, atan(v_t′/v_n′), in radians
+            (dimensionless).
+        friction_work: Energy lost to friction in the first contact [J] (0 without friction):
+            the kinetic energy in, translational and rotational, is the energy out plus
+            `dissipated_energy` plus this.
         t: Time of each trajectory sample [s].
         indentation: Indentation d at each sample [m], > 0 pressed in.
         velocity: Approach speed ḋ at each sample [m/s], towards the surface positive.
         force: Contact force at each sample [N], compressive positive.
         contact_radius: Contact radius a at each sample [m].
+        tangential_force: Tangential force Q on the body at each sample [N], > 0 against its
+            sliding (0 without friction).
+        stick_radius: Inner radius c of the slip zone at each sample [m]: the contact radius
+            where no spring slips, 0 where the whole contact slides (also without friction).
         events: The events in time order, as (time [s], kind) pairs; the kinds are listed in
             the user guide.
         stats: Solver steps (`steps`, `accepted_steps`, `rejected_steps`) and the run's
@@ -98,11 +118,19 @@ class Result:
     centre_of_mass_velocity: float
     body_velocity_after: float
     counterpart_velocity_after: float
+    tangential_velocity_after: float
+    spin_after: float
+    tangential_restitution: float
+    contact_point_tangential_restitution: float
+    rebound_angle: float
+    friction_work: float
     t: np.ndarray = field(repr=False)
     indentation: np.ndarray = field(repr=False)
     velocity: np.ndarray = field(repr=False)
     force: np.ndarray = field(repr=False)
     contact_radius: np.ndarray = field(repr=False)
+    tangential_force: np.ndarray = field(repr=False)
+    stick_radius: np.ndarray = field(repr=False)
     events: list[tuple[float, str]] = field(repr=False)  # kinds: codes.EVENT_KINDS
     stats: dict = field(repr=False)
     relaxation: Relaxation | None = field(default=None, repr=False)
@@ -206,6 +234,24 @@ def velocities_after(scene: Scene, separation_velocity: "float | np.ndarray") ->
     return centre, centre - other / total * separation_velocity, centre + mass / total * separation_velocity
 
 
+def slid(scene: Scene, tangential: Mapping[str, Any] | None, scales: Mapping[str, float], rebound: float) -> dict:
+    """The tangential results (`tangential.TANGENTIAL_RESULTS`) of a run whose first contact let
+    go at the normal speed `rebound` (m/s; nan where it did not), from the integrator's scaled
+    `tangential` results (None without friction: the body slides on unchanged)."""
+    start = scene.start
+    before = (float(start.tangential_velocity), start.spin)
+    lever = lever_arm(scene.body.profile) or 0.0
+    if tangential is None:
+        after, work = before, 0.0
+    else:
+        speed = scales["normal"] / scales["time"]
+        after = (float(tangential["velocity"]) * speed, float(tangential["surface_speed"]) * speed / lever)
+        work = float(tangential["friction_work"]) * scales["force"] * scales["normal"]
+    if not np.isfinite(rebound):
+        after = (float("nan"), float("nan"))
+    return {name: float(value) for name, value in tangential_results(before, after, lever, rebound, work).items()}
+
+
 def to_result(
     scene: Scene,
     scales: Mapping[str, Any],
@@ -215,7 +261,8 @@ def to_result(
 ) -> Result:
     """Scaled outcome → SI result (the fields of `Scales` and `Outcome` by name) of the scene
     solved by `integrator` with `physics`."""
-    o = {name: np.asarray(value) for name, value in outcome.items()}
+    tangential = outcome.get("tangential")
+    o = {name: np.asarray(value) for name, value in outcome.items() if name != "tangential"}
     s = {name: float(value) for name, value in scales.items()}
     time, length, force = s["time"], s["normal"], s["force"]
     speed = length / time
@@ -238,6 +285,7 @@ def to_result(
     repeated = np.zeros(len(rows), dtype=bool)
     repeated[1:] = np.all(rows[1:] == rows[:-1], axis=1)
     rows = rows[~repeated]  # zero-length phases repeat their single state
+    sliding = slid(scene, tangential, s, rebound if np.isfinite(let_go) else float("nan"))
     kinds = o["event_kinds"]
     used = kinds >= 0
     events = [(float(t) * time, EVENT_KINDS[int(k)]) for t, k in zip(o["event_times"][used], kinds[used], strict=True)]
@@ -260,11 +308,14 @@ def to_result(
         centre_of_mass_velocity=centre,
         body_velocity_after=body_after,
         counterpart_velocity_after=counterpart_after,
+        **sliding,
         t=rows[:, 0] * time,
         indentation=rows[:, 1] * length,
         velocity=rows[:, 2] * speed,
         force=rows[:, 3] * force,
         contact_radius=rows[:, 4] * s["radial"],
+        tangential_force=rows[:, 5] * force if rows.shape[1] > 5 else np.zeros(len(rows)),
+        stick_radius=rows[:, 6] * s["radial"] if rows.shape[1] > 5 else np.zeros(len(rows)),
         events=events,
         stats={
             "steps": int(o["steps"]),

@@ -23,6 +23,7 @@ from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._scene.scene import Scene, scene_yaml
 from .losses import NAMED_LOSSES
 from .sweep.result import RESULTS
+from .tangential import TANGENTIAL_SERIES
 from .units import (
     CONTACT_SERIES,
     CURVE_TIME,
@@ -156,6 +157,9 @@ def run_series(result: "Result") -> dict[str, tuple[np.ndarray, str, str]]:
     series["velocity"] = (result.velocity, *VELOCITY_SERIES)
     for name in ("contact_radius", "force"):
         series[name] = (getattr(result, name), *CONTACT_SERIES[name])
+    if result.scene.effects.friction is not None:
+        for name, described in TANGENTIAL_SERIES.items():
+            series[name] = (getattr(result, name), *described)
     return series
 
 

@@ -7,6 +7,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._effects.damping import Damping
+from .._effects.friction import Friction
 from .._effects.gravity import Gravity
 from .._integrate.base import AbstractIntegrator
 from .._integrate.problem import Options, Physics
@@ -54,7 +55,7 @@ def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> 
     scene's contact profile)."""
     springs = scene.contact.springs
     gravity, duration = scene.effects.gravity, scene.limits.duration
-    damping = scene.effects.damping
+    damping, friction = scene.effects.damping, scene.effects.friction
 
     def value(number):
         return xp.asarray(number, dtype=xp.float64)
@@ -71,6 +72,7 @@ def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> 
             value(0.0 if damping is None else damping.viscoelastic_constant),
             value(0.0 if damping is None else damping.linear_coefficient),
         ),
+        friction=Friction.none() if friction is None else friction.physics(scene, xp),
         time_limit=value(np.inf if duration is None else duration),
         spring_length=value(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=value(np.nan if isinstance(springs, str) else springs),

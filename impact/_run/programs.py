@@ -32,4 +32,8 @@ def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Op
 
 def _solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Options) -> tuple[Fields, Fields]:
     scales, outcome = integrator.solve(physics, options)
-    return fields(scales), fields(outcome)
+    found = fields(outcome)
+    tangential = found.pop("tangential")  # an oblique impact's results, by field name
+    if tangential is not None:
+        found["tangential"] = fields(tangential)
+    return fields(scales), found

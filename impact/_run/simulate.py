@@ -7,17 +7,24 @@ from .._core.runtime import float64
 from .._scene.scene import Scene, load_scene
 from .impacts import Result, simulate_impact
 
-if TYPE_CHECKING:
-    from .indentation import IndentationResult  # imported where a scene is one: an impact needs none of it
+if TYPE_CHECKING:  # imported where a scene is one: an impact needs none of them
+    from .indentation import IndentationResult
+    from .shear import ShearResult
 
 
 @float64
-def simulate(scene: "Scene | dict | str | Path", *, trajectory: bool = True) -> "Result | IndentationResult":
+def simulate(
+    scene: "Scene | dict | str | Path", *, trajectory: bool = True
+) -> "Result | IndentationResult | ShearResult":
     """Run one scene (a `Scene`, a mapping or a YAML file). An impact gives a `Result`
     (`trajectory=False` skips its time series: faster); an indentation test (kind
-    `indentation`) gives an `IndentationResult` (its curve is always kept). Computes in
-    float64 whatever JAX's global flag."""
+    `indentation`) gives an `IndentationResult` (its curve is always kept), with a `shear`
+    program a `ShearResult`. Computes in float64 whatever JAX's global flag."""
     scene = load_scene(scene)
+    if scene.kind == "indentation" and scene.shear is not None:
+        from .shear import simulate_shear
+
+        return simulate_shear(scene)
     if scene.kind == "indentation":
         from .indentation import simulate_indentation
 

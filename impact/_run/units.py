@@ -2,6 +2,8 @@
 tables (`impact._run.labelled`): UDUNITS symbols, as every file's `unit` attributes ('' for a
 dimensionless value). A sweep's columns carry theirs in `sweep.result.RESULTS`."""
 
+from .tangential import TANGENTIAL_RESULTS
+
 # An impact's scalar results (`Result` fields): name → unit.
 SCALAR_UNITS = {
     "restitution": "",
@@ -21,12 +23,13 @@ SCALAR_UNITS = {
     "centre_of_mass_velocity": "m s-1",
     "body_velocity_after": "m s-1",
     "counterpart_velocity_after": "m s-1",
+    **{name: unit for name, (unit, _) in TANGENTIAL_RESULTS.items()},
 }
 # Losses derived from the others (`Result` properties, in J), stored where the scene names what
 # they describe (`losses.NAMED_LOSSES`).
 DERIVED_LOSSES = ("adhesion_hysteresis", "unrecovered_elastic_energy")
 # An impact's time series of the contact (`Result` fields, sampled at `Result.t` in s):
-# name → (unit, description).
+# name → (unit, description); with friction also `tangential.TANGENTIAL_SERIES`.
 CONTACT_SERIES = {
     "indentation": ("m", "indentation d of the half-space; > 0 pressed in, < 0 a gap"),
     "contact_radius": ("m", "contact radius a"),

@@ -17,6 +17,7 @@ from .adhesion import AbstractAdhesion, AdhesionSpec
 from .adhesion.base import adaptive, value
 from .domains import within
 from .errors import FieldProblem
+from .friction import FrictionSection
 from .profiles import Number
 from .sections import Section
 from .viscoelasticity import Viscoelasticity
@@ -117,3 +118,4 @@ class Effects(Section):
     plasticity: Plasticity | None = None
     damping: Damping | None = None
     viscoelasticity: Viscoelasticity | None = None
+    friction: FrictionSection | None = None

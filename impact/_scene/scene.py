@@ -37,6 +37,7 @@ from .sections import (
     Section,
     Solver,
 )
+from .shear import Shear
 from .viscoelasticity import medium_problem
 
 # Sections that only an impact reads: an indentation refuses them rather than ignore them.
@@ -66,6 +67,7 @@ class Scene(Section):
         None, description="a second free body that the body hits; default: a rigid flat at rest"
     )
     initial: Initial | None = None
+    shear: Shear | None = Field(None, description="indentation only: a tangential program at the held peak load")
     effects: Effects = Effects()
     contact: Contact = Contact()
     solver: Solver = Solver()
@@ -141,9 +143,10 @@ class Scene(Section):
         return self
 
     @model_validator(mode="after")
-    def _adhesion_supported(self):
-        if self.effects.adhesion is not None:
-            self.effects.adhesion.check(self)
+    def _sections_supported(self):  # each refuses (FieldProblem) what it cannot run in this scene
+        for section in (self.effects.adhesion, self.shear, self.effects.friction):
+            if section is not None:
+                section.check(self)
         return self
 
     @model_validator(mode="after")
@@ -298,9 +301,9 @@ class Scene(Section):
 
     @property
     def approach_velocity(self) -> float:
-        """Speed (m/s) at which the two surfaces approach at the start: the body's, plus the
-        counterpart's towards it."""
-        speed = self.start.velocity
+        """Speed (m/s) at which the surfaces approach at the start: the body's along the normal,
+        plus the counterpart's towards it."""
+        speed = self.start.normal_velocity
         return speed if self.counterpart is None else speed + self.counterpart.velocity
 
     @property
@@ -330,12 +333,14 @@ class Scene(Section):
         return Elastic() if adhesion is None else adhesion.law(xp)
 
     def integrator(self) -> AbstractIntegrator:
-        """The integrator that runs the scene's impact: the one of its viscoelastic medium, of its
-        plasticity or of its adhesion model where adhesion is simulated (Δγ > 0), else the MDR's
+        """The integrator that runs the scene's impact: its viscoelastic medium's, its friction's, its
+        plasticity's, or its adhesion model's where adhesion is simulated (Δγ > 0), else the MDR's
         without adhesion."""
         adhesion = self.active_adhesion
         if self.effects.viscoelasticity is not None:
             return self.effects.viscoelasticity.integrator(self)
+        if self.effects.friction is not None:
+            return self.effects.friction.integrator(self)
         if self.effects.plasticity is not None:
             return self.effects.plasticity.integrator(self)
         return edge_integrator(self) if adhesion is None else adhesion.integrator(self)

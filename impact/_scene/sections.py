@@ -5,10 +5,13 @@ Cross-field checks raise `FieldProblem` to name the field at fault.
 """
 
 import math
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
+import jax
+import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
+from .. import theory
 from .._integrate.base import PHASE_ENDS, SOLVERS
 from . import domains as d
 from .domains import within
@@ -26,6 +29,10 @@ QUADRATURE = "quadrature"
 QUADRATURE_SHAPES = ("paraboloid", "cone", "power_law")  # g = A·xⁿ: the work along a branch in closed form
 METHODS = SOLVER_METHODS + SPRING_METHODS + (QUADRATURE,)
 MASS_OR_DENSITY = "give exactly one of mass (kg) and density (kg/m³)"
+# Oblique impacts: the angle of incidence from the normal, the spin, the moment of inertia.
+INCIDENCE = d.Domain(0.0, math.pi / 2, "rad", open_high=True, reason="from the normal up to grazing (π/2 excluded)")
+SPIN = d.Domain(-1e9, 1e9, "rad/s", reason="a billion radians a second either way")
+INERTIA = d.Domain(1e-80, 1e12, "kg m2", reason="from a nanoparticle's to a thousand-tonne body's")
 
 
 class Section(BaseModel):
@@ -51,6 +58,13 @@ class Body(Section):
     mass: Annotated[Number, within(d.MASS)] | None = Field(None, description="mass (kg)")
     density: Annotated[Number, within(d.DENSITY)] | None = Field(
         None, description="density (kg/m³); mass = density × volume of the closed body"
+    )
+    inertia: Annotated[Number, within(INERTIA)] | None = Field(
+        None,
+        description=(
+            "moment of inertia about the centre (kg·m²) for effects.friction; default (2/5)mR², the solid sphere "
+            "of the paraboloid's or sphere's radius R"
+        ),
     )
 
     @model_validator(mode="after")
@@ -146,10 +160,19 @@ class Material(Section):
     nu: Poisson | None = _poisson("the half-space or counterpart")
     E_body: Modulus | None = Field(None, description="Young's modulus of the body (Pa); omit for a rigid body")
     nu_body: Poisson | None = _poisson("the body")
+    G_star: Modulus | None = Field(
+        None,
+        description=(
+            "effective shear modulus `G*` (Pa) of effects.friction, beside E_star; with E and nu it follows from "
+            "them, `1/G* = (2 − ν)/(4G) + (2 − ν_body)/(4G_body)`"
+        ),
+    )
 
     @model_validator(mode="after")
     def _one_description(self):
         moduli = (self.E, self.nu, self.E_body, self.nu_body)
+        if self.G_star is not None and self.E_star is None:
+            raise FieldProblem("G_star", "only beside E_star: with E and nu, G* follows from them")
         if self.E_star is not None:
             if any(value is not None for value in moduli):
                 raise ValueError("give either E_star or E and nu (with E_body and nu_body), not both")
@@ -172,12 +195,44 @@ class Material(Section):
             compliance += (1.0 - self.nu_body**2) / self.E_body
         return 1.0 / compliance
 
+    @property
+    def tangential_modulus(self) -> Any:
+        """G* (Pa) of friction: `G_star`, else from E and ν (`theory.effective_shear_modulus`);
+        None for E_star alone. A float for a scene's numbers, an array for a sweep's."""
+        if self.G_star is not None:
+            return self.G_star
+        if self.E is None:
+            return None
+        assert self.nu is not None, "validated: E comes with nu"
+        values = (self.E, self.nu) if self.E_body is None else (self.E, self.nu, self.E_body, self.nu_body)
+        return theory.effective_shear_modulus(*values)
+
+
+def _trigonometric(angle: Any, name: str) -> Any:
+    """cos or sin (`name`) of a scene's angle: a number, a sweep's numpy array or a traced value."""
+    return getattr(jax.numpy if isinstance(angle, jax.Array) else np, name)(angle)
+
 
 class Initial(Section):
-    """Where the body starts: its approach speed and its distance from the surface."""
+    """Where the body starts: its speed, the direction of its motion and its spin, and its
+    distance from the surface."""
 
     velocity: Annotated[Number, within(d.VELOCITY)] = Field(
-        description="approach speed towards the surface (m/s); 0 only when gravity drops the body from a gap",
+        description=(
+            "speed of the body (m/s), towards the surface at `angle` from its normal; 0 only when gravity drops "
+            "the body from a gap"
+        ),
+    )
+    angle: Annotated[Number, within(INCIDENCE)] = Field(
+        0.0,
+        description=(
+            "angle of incidence from the surface normal (rad): the body approaches at velocity·cos(angle) and "
+            "slides along the surface at velocity·sin(angle)"
+        ),
+    )
+    spin: Annotated[Number, within(SPIN)] = Field(
+        0.0,
+        description="spin ω of the body (rad/s) about the axis across its sliding; > 0 rolls it along its sliding",
     )
     gap: Annotated[Number, within(d.GAP)] = Field(
         0.0,
@@ -186,6 +241,18 @@ class Initial(Section):
             "with greenwood_johnson, beyond the onset d₀ = −k·c₀²/R"
         ),
     )
+
+    @property
+    def normal_velocity(self) -> Any:
+        """The speed towards the surface (m/s): velocity·cos(angle) (the velocity itself at 0)."""
+        if isinstance(self.angle, (int, float)) and self.angle == 0:
+            return self.velocity
+        return self.velocity * _trigonometric(self.angle, "cos")
+
+    @property
+    def tangential_velocity(self) -> Any:
+        """The speed along the surface (m/s): velocity·sin(angle)."""
+        return self.velocity * _trigonometric(self.angle, "sin")
 
 
 class Contact(Section):

@@ -87,6 +87,11 @@ class Viscoelasticity(Section):
             "effects.gravity": effects.gravity is not None
             and "not with effects.viscoelasticity: between bounces the surface still creeps back, which the "
             "analytic flight between contacts does not follow",
+            "effects.friction": effects.friction is not None
+            and "not with effects.viscoelasticity: the tangential springs of a viscoelastic medium (their own "
+            "relaxation, slip against creep) are not implemented",
+            "shear": scene.shear is not None
+            and "not with effects.viscoelasticity: the tangential springs of a viscoelastic medium are not implemented",
         }
         for field, why in refusals.items():
             if why:

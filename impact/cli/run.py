@@ -31,6 +31,7 @@ from .tables import facts_table, result_table
 
 if TYPE_CHECKING:
     from .._run.indentation import IndentationResult
+    from .._run.shear import ShearResult
 
 # Indentation tests' modules (their quasi-static march, files and figures) are imported where a
 # run is one: an impact's run loads none of them; h5py is imported where a run is written or shown.
@@ -68,11 +69,16 @@ def show_run(run_file: Path) -> None:
     from .._io.h5md import read_provenance
     from .._io.indentation import is_indentation_run, read_indentation, read_indentation_provenance
     from .._io.run import read_run
+    from .._io.shear import is_shear_run, read_shear, read_shear_provenance
 
-    indentation = is_indentation_run(run_file)
+    result: Result | IndentationResult | ShearResult
     try:
-        result = read_indentation(run_file) if indentation else read_run(run_file)
-        provenance = (read_indentation_provenance if indentation else read_provenance)(run_file)
+        if is_indentation_run(run_file):
+            result, provenance = read_indentation(run_file), read_indentation_provenance(run_file)
+        elif is_shear_run(run_file):
+            result, provenance = read_shear(run_file), read_shear_provenance(run_file)
+        else:
+            result, provenance = read_run(run_file), read_provenance(run_file)
     except (OSError, ValueError) as error:
         refuse(f"cannot show {run_file}", [("", str(error))])
     out.print(result_table(result, provenance["wall_time"]))
@@ -95,9 +101,13 @@ def scene_of(scene_file: Path, assignments: list[str] | None) -> Scene:
 # --- output ---------------------------------------------------------------------------------
 
 
-def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time: float, overwrite: bool) -> None:
+def write_outputs(
+    result: "Result | IndentationResult | ShearResult", folder: Path, wall_time: float, overwrite: bool
+) -> None:
     """Create the folder and write config.yaml, run.h5 and the plots, each atomically; a folder
     created here is removed again if a write fails."""
+    from .._run.shear import ShearResult  # a shear test's result, where a run is written
+
     created = not folder.exists()
     try:
         folder.mkdir(parents=True, exist_ok=overwrite)
@@ -112,6 +122,16 @@ def write_outputs(result: "Result | IndentationResult", folder: Path, wall_time:
 
             write_run(result, folder / "run.h5", wall_time=wall_time)
             save_figures(result, folder)
+            if result.scene.effects.friction is not None:
+                from .._plots.oblique import save_run_tangential_figure
+
+                save_run_tangential_figure(result, folder)
+        elif isinstance(result, ShearResult):
+            from .._io.shear import write_shear
+            from .._plots.shear import save_shear_figures
+
+            write_shear(result, folder / "run.h5", wall_time=wall_time)
+            save_shear_figures(result, folder)
         else:
             from .._io.indentation import write_indentation
             from .._plots.indentation import save_indentation_figures

@@ -137,10 +137,14 @@ def run_sweep(
 
 
 def _save_figures(result: SweepResult, folder: Path) -> None:
-    """restitution.png, and losses.png where the scene names a loss."""
+    """restitution.png, losses.png where the scene names a loss, tangential.png where it names friction."""
     save_restitution_figure(result, folder / FIGURE)
     if result.named_losses():
         save_losses_figure(result, folder / LOSSES_FIGURE)
+    if result.scene.effects.friction is not None:
+        from .._plots.oblique import save_tangential_figure
+
+        save_tangential_figure(result, folder)
 
 
 def _sweep_spec(sweep_file: Path) -> SweepSpec:

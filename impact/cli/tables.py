@@ -15,8 +15,9 @@ from .._run.impacts import Result
 from .._scene.scene import Scene
 from .._scene.sections import QUADRATURE, SPRING_METHODS
 
-if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs neither
+if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs none
     from .._run.indentation import IndentationResult
+    from .._run.shear import ShearResult
     from .._run.sweep import SweepResult
 
 OUTCOMES = ("separated", "captured")
@@ -43,11 +44,32 @@ def key_value_table(title: str, rows: list[tuple[str, str]]) -> Table:
     return table
 
 
-def result_table(result: "Result | IndentationResult", wall_time: float | None) -> Table:
-    """The key results of an impact or an indentation test (wall time in s, if known)."""
+def result_table(result: "Result | IndentationResult | ShearResult", wall_time: float | None) -> Table:
+    """The key results of an impact, an indentation test or a shear test (wall time in s, if known)."""
+    from .._run.shear import ShearResult  # a shear test's module, where one is shown
+
     if isinstance(result, Result):
         return impact_table(result, wall_time)
+    if isinstance(result, ShearResult):
+        return shear_table(result, wall_time)
     return indentation_table(result, wall_time)
+
+
+def shear_table(result: "ShearResult", wall_time: float | None) -> Table:
+    """The held normal state and the extremes of a shear test's program."""
+    largest = float(np.max(np.abs(result.force), initial=0.0))
+    rows = [
+        ("status", result.status),
+        ("normal force", quantity(result.normal_force, "N")),
+        ("indentation", quantity(result.indentation, "m")),
+        ("contact radius", quantity(result.contact_radius, "m")),
+        ("largest |Q|", quantity(largest, "N")),
+        ("largest |δ|", quantity(float(np.max(np.abs(result.displacement), initial=0.0)), "m")),
+        ("springs", f"{result.stats['springs']} (spacing {quantity(result.stats['spacing'], 'm')})"),
+        ("points", str(len(result.force))),
+        _wall_time(wall_time),
+    ]
+    return key_value_table(f"{result.scene.name} (shear)", rows)
 
 
 def _wall_time(wall_time: float | None) -> tuple[str, str]:
@@ -107,6 +129,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
             else []
         ),
         *_two_body_rows(result),
+        *_sliding_rows(result),
         ("bounces (contacts)", str(result.bounces)),
         ("solver steps", f"{stats['steps']} ({stats['accepted_steps']} accepted, {stats['rejected_steps']} rejected)"),
         _wall_time(wall_time),
@@ -127,6 +150,22 @@ def _two_body_rows(result: Result) -> list[tuple[str, str]]:
     ]
 
 
+def _sliding_rows(result: Result) -> list[tuple[str, str]]:
+    """The tangential results of an oblique impact with friction."""
+    if result.scene.effects.friction is None:
+        return []
+    return [
+        ("tangential velocity after", f"{result.tangential_velocity_after:.6g} m/s"),
+        ("spin after", f"{result.spin_after:.6g} rad/s"),
+        (
+            "tangential restitution",
+            f"{result.tangential_restitution:.6g} (contact point {result.contact_point_tangential_restitution:.6g})",
+        ),
+        ("rebound angle", f"{result.rebound_angle:.6g} rad"),
+        ("friction work", quantity(result.friction_work, "J")),
+    ]
+
+
 def _effects(scene: Scene) -> str:
     """The adhesion and gravity a scene names, with their parameters in SI units."""
     adhesion, gravity = scene.active_adhesion, scene.effects.gravity
@@ -141,6 +180,8 @@ def _effects(scene: Scene) -> str:
         effects.append(scene.effects.damping.describe())
     if scene.effects.viscoelasticity is not None:
         effects.append(scene.effects.viscoelasticity.describe())
+    if scene.effects.friction is not None:
+        effects.append(scene.effects.friction.describe())
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
 
 
@@ -169,7 +210,12 @@ def facts_table(scene: Scene) -> Table:
             ("kind", f"indentation, {scene.control} control"),
             shape,
             modulus,
-            ("program", f"peak {program.peak:g} {unit}{timed}{cycles}, then to pull-off"),
+            (
+                "program",
+                f"peak {program.peak:g} {unit}{timed}{cycles}, then to pull-off"
+                if scene.shear is None
+                else f"peak {program.peak:g} {unit} held; shear ({scene.shear.control}) through {scene.shear.path}",
+            ),
             *effect_rows,
         ]
         return key_value_table(f"{scene.name} (SI units)", rows)
@@ -188,11 +234,22 @@ def facts_table(scene: Scene) -> Table:
         ("mass", f"{body.resolved_mass:.6g} kg{density}"),
         *_counterpart_rows(scene),
         modulus,
-        ("initial", f"velocity {scene.start.velocity:g} m/s, gap {scene.start.gap:g} m"),
+        ("initial", _initial(scene)),
         *effect_rows,
         ("solver", f"{solver.method}, {steps}"),
     ]
     return key_value_table(f"{scene.name} (SI units)", rows)
+
+
+def _initial(scene: Scene) -> str:
+    """The initial state: speed and gap, and where given the angle of incidence and the spin."""
+    start = scene.start
+    words = f"velocity {start.velocity:g} m/s, gap {start.gap:g} m"
+    if start.angle:
+        words += f", angle {start.angle:g} rad from the normal"
+    if start.spin:
+        words += f", spin {start.spin:g} rad/s"
+    return words
 
 
 def _counterpart_rows(scene: Scene) -> list[tuple[str, str]]:

@@ -109,6 +109,14 @@ from ._double_hertz import double_hertz_outer_radius as double_hertz_outer_radiu
 from ._double_hertz import double_hertz_pull_off as double_hertz_pull_off
 from ._double_hertz import double_hertz_range as double_hertz_range
 from ._double_hertz import double_hertz_tabor_parameter as double_hertz_tabor_parameter
+from ._friction import cattaneo_mindlin_displacement as cattaneo_mindlin_displacement
+from ._friction import cattaneo_mindlin_force as cattaneo_mindlin_force
+from ._friction import cattaneo_mindlin_stick_radius as cattaneo_mindlin_stick_radius
+from ._friction import effective_shear_modulus as effective_shear_modulus
+from ._friction import full_slip_displacement as full_slip_displacement
+from ._friction import gross_sliding_tangent as gross_sliding_tangent
+from ._friction import mindlin_deresiewicz_force as mindlin_deresiewicz_force
+from ._friction import sliding_impact as sliding_impact
 from ._impact import attach_on_touch_energy_loss as attach_on_touch_energy_loss
 from ._impact import attach_on_touch_restitution as attach_on_touch_restitution
 from ._impact import force_release_energy_loss as force_release_energy_loss
@@ -288,4 +296,12 @@ __all__ = [
     "lee_radok_force",
     "ting_contact_time",
     "ting_force",
+    "effective_shear_modulus",
+    "full_slip_displacement",
+    "cattaneo_mindlin_force",
+    "cattaneo_mindlin_displacement",
+    "cattaneo_mindlin_stick_radius",
+    "mindlin_deresiewicz_force",
+    "gross_sliding_tangent",
+    "sliding_impact",
 ]

@@ -290,7 +290,10 @@ def test_scene_that_is_no_text_file_is_refused(kind, tmp_path, monkeypatch):
 @pytest.mark.parametrize(
     "assignment, phrases",
     [
-        ("initial.speed=0.8", ["--set", "no field 'initial.speed' in the scene", "initial takes: gap, velocity"]),
+        (
+            "initial.speed=0.8",
+            ["--set", "no field 'initial.speed' in the scene", "initial takes: angle, gap, spin, velocity"],
+        ),
         ("initial.velocity.x=1", ["--set", "no field 'initial.velocity.x'", "is a value"]),
         ("body.profile.theta=0.1", ["--set", "no field 'body.profile.theta'"]),  # a paraboloid has no theta
         ("initial.velocity=fast", ["initial.velocity", "expected a number", "'fast'"]),

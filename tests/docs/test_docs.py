@@ -9,7 +9,7 @@ import typing
 from pathlib import Path
 
 import pytest
-import yaml
+from mkdocs_config import mkdocs_config
 from pydantic import BaseModel
 
 import impact
@@ -156,7 +156,7 @@ def test_no_control_characters(path):
 
 
 def test_home_page_leads_to_every_page():
-    nav = yaml.safe_load((DOCS / "mkdocs.yml").read_text())["nav"]
+    nav = mkdocs_config(DOCS / "mkdocs.yml")["nav"]
     pages = [page for entry in nav for page in entry.values() if page != "index.md"]
     section = (PAGES / "index.md").read_text().split("## Where to go next", 1)[1].split("\n## ", 1)[0]
     missing = [page for page in pages if f"]({page})" not in section]

@@ -16,7 +16,7 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 import pytest
-import yaml
+from mkdocs_config import mkdocs_config
 
 import impact
 
@@ -268,7 +268,7 @@ def test_scene_reference_keys_do_not_break(site):
 
 
 def test_pages_link_the_repository_and_name_their_address(site):
-    config = yaml.safe_load(CONFIG.read_text())
+    config = mkdocs_config(CONFIG)
     assert config["site_url"].startswith("https://") and config["repo_url"].startswith("https://")
     index = (site / "index.html").read_text()
     assert f'<link rel="canonical" href="{config["site_url"]}index.html">' in index

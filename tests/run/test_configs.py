@@ -222,6 +222,29 @@ def lee_radok_and_ting(result):
     assert np.max(np.abs(result.force[checked] / expected[checked] - 1)) < 1e-6
 
 
+def oblique_balance(result):
+    """Kharaz et al.'s alumina sphere at 30°: the Hertz array rebounds with e = 1 (1e-12); the
+    kinetic energy in (translational and rotational) is the energy out plus the friction work
+    (1e-12); it leaves sliding slower and spinning forward."""
+    scene = result.scene
+    mass, radius = scene.body.resolved_mass, scene.body.profile.R
+    inertia = 0.4 * mass * radius**2
+    before = 0.5 * mass * scene.start.velocity**2
+    after = 0.5 * mass * (result.separation_velocity**2 + result.tangential_velocity_after**2)
+    after += 0.5 * inertia * result.spin_after**2
+    assert result.restitution == pytest.approx(1.0, abs=1e-12)
+    assert abs(before - after - result.dissipated_energy - result.friction_work) <= 1e-12 * before
+    assert 0.0 < result.tangential_restitution < 1.0 and result.spin_after > 0.0
+
+
+def cattaneo_mindlin_and_masing(result):
+    """The shear test: Q(δ) within 1e-8·μF_n of Cattaneo–Mindlin and Masing's branches."""
+    from impact._plots.shear import closed_form
+
+    most = result.scene.effects.friction.coefficient * result.normal_force
+    assert max(abs(result.force - closed_form(result))) <= 1e-8 * most
+
+
 CHECKS = {
     "thornton_ning": matches(thornton_ning, 1e-6),
     "cone": matches(power_law, 1e-6),
@@ -243,6 +266,8 @@ CHECKS = {
     "rubber_ball_viscoelastic": viscoelastic_first_order,
     "viscoelastic_sphere": viscoelastic_energy_balance,
     "indentation_viscoelastic": lee_radok_and_ting,
+    "oblique_kharaz": oblique_balance,
+    "shear_paraboloid": cattaneo_mindlin_and_masing,
 }
 
 

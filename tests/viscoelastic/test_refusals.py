@@ -66,6 +66,12 @@ def refusal(base: dict, **changes) -> tuple[str, str]:
             "flight between contacts does not follow",
         ),
         (
+            {"effects__friction": {"coefficient": 0.3}},
+            "effects.friction",
+            "not with effects.viscoelasticity: the tangential springs of a viscoelastic medium (their own "
+            "relaxation, slip against creep) are not implemented",
+        ),
+        (
             {"effects__adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 1e8}},
             "effects.adhesion.model",
             "'maugis_dugdale' not with effects.viscoelasticity: its adhesive stress acts on free springs, which "

@@ -18,6 +18,7 @@ from ..._integrate.problem import Physics
 from ..._scene.errors import SweepError
 from ..losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from ..programs import solve
+from ..tangential import TANGENTIAL_RESULTS, tangential_results
 from .closed_forms import closed_form_restitution
 from .plan import Plan, StaticChoices
 from .result import SOLVED, empty_results
@@ -53,7 +54,10 @@ def point_function(choices: StaticChoices) -> Callable:
         viscous = o.first_contact_viscous_work * force * length
         stored = o.first_contact_stored_energy * force * length
         plastic = plastic_work(choices.integrator, physics, o.max_indentation * length, dissipated)
+        rebound = jnp.where(success & jnp.isfinite(o.separation_time), o.separation_velocity * speed, jnp.nan)
+        sliding = point_tangential(outcome.tangential, physics, speed, force * length, rebound)
         return {
+            **sliding,
             "restitution": jnp.where((touch > 0) & success, ratio, jnp.nan),
             "stuck": o.stuck,
             "status": o.status.astype(jnp.int32),
@@ -82,6 +86,25 @@ def point_function(choices: StaticChoices) -> Callable:
         }
 
     return point
+
+
+def point_tangential(tangential, physics: Physics, speed, energy, rebound) -> dict:
+    """A point's tangential results in SI (`tangential.tangential_results`) from the scaled
+    `tangential` outcome of an oblique impact (units `speed`, `energy`) and the normal
+    `rebound` speed (m/s; nan where the first contact did not let go); nan columns for a scene
+    without friction (the sweep keeps none)."""
+    if tangential is None:
+        return {name: jnp.full((), jnp.nan) for name in TANGENTIAL_RESULTS}
+    friction = physics.friction
+    lever = friction.lever_arm
+    separated = jnp.isfinite(rebound)
+    after = (
+        jnp.where(separated, tangential.velocity * speed, jnp.nan),
+        jnp.where(separated, tangential.surface_speed * speed / lever, jnp.nan),
+    )
+    return tangential_results(
+        (friction.tangential_velocity, friction.spin), after, lever, rebound, tangential.friction_work * energy, jnp
+    )
 
 
 def local_devices(devices: "int | Sequence | None" = None) -> list:

@@ -13,6 +13,7 @@ from ..._scene.scene import Scene
 from ..._scene.sweep_spec import SweepSpec
 from ..impacts import velocities_after
 from ..losses import NAMED_LOSSES
+from ..tangential import TANGENTIAL_RESULTS
 
 if TYPE_CHECKING:
     import pandas
@@ -66,6 +67,7 @@ RESULTS = {
     "accepted_steps": (np.int64, -1, "", "accepted solver steps"),
     "rejected_steps": (np.int64, -1, "", "rejected solver steps"),
     "theory_restitution": (np.float64, np.nan, "", "closed-form restitution of the chapter (NaN where none)"),
+    **{name: (np.float64, np.nan, unit, what) for name, (unit, what) in TANGENTIAL_RESULTS.items()},
 }
 
 # The columns a sweep holds only where its base scene names what they describe (an axis can set
@@ -74,6 +76,7 @@ NAMED_BY: dict[str, Callable[[Scene], bool]] = {
     **NAMED_LOSSES,
     "body_velocity_after": lambda scene: scene.counterpart is not None,
     "counterpart_velocity_after": lambda scene: scene.counterpart is not None,
+    **{name: (lambda scene: scene.effects.friction is not None) for name in TANGENTIAL_RESULTS},
 }
 LOSSES = tuple(NAMED_LOSSES)
 # The columns computed on the host from a chunk's solved columns (the rest come from the batch).
@@ -147,6 +150,14 @@ class SweepResult:
             approach [m/s] (< 0: rebounding); only with a counterpart, else None.
         counterpart_velocity_after: The counterpart's velocity after the first contact, lab
             frame, along the body's approach [m/s]; only with a counterpart, else None.
+        tangential_velocity_after: Velocity of the centre along the surface after the first
+            contact [m/s]; only where the base scene names `effects.friction`, else None (as the
+            five below; each as in `impact.Result`).
+        spin_after: Spin after the first contact in radians per second [s⁻¹].
+        tangential_restitution: |v_t′|/v_t of the centre, dimensionless.
+        contact_point_tangential_restitution: −w′/w of the contact point, dimensionless.
+        rebound_angle: Angle of the rebound from the surface normal in radians (dimensionless).
+        friction_work: Energy lost to friction in the first contact [J].
     """
 
     spec: SweepSpec
@@ -174,6 +185,12 @@ class SweepResult:
     unrecovered_elastic_energy: np.ndarray | None = None
     body_velocity_after: np.ndarray | None = None
     counterpart_velocity_after: np.ndarray | None = None
+    tangential_velocity_after: np.ndarray | None = None
+    spin_after: np.ndarray | None = None
+    tangential_restitution: np.ndarray | None = None
+    contact_point_tangential_restitution: np.ndarray | None = None
+    rebound_angle: np.ndarray | None = None
+    friction_work: np.ndarray | None = None
 
     @property
     def scene(self) -> Scene:

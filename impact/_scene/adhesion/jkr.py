@@ -20,8 +20,8 @@ _ZERO_RANGE = "only for model 'maugis_dugdale' (jkr has zero range)"
 
 
 class JKRAdhesion(AbstractAdhesion):
-    """JKR adhesion (zero range): the edge spring lets go at the elongation √(2πxΔγ/E*) (rule of
-    Heß, (3.26)); on approach the next one attaches at √(2πxΔγa/E*), 0 ≤ Δγa ≤ Δγ (Δγa = Δγ: the
+    """JKR adhesion (zero range): the edge spring lets go at the elongation `√(2πxΔγ/E*)` (rule of
+    Heß, (3.26)); on approach the next one attaches at `√(2πxΔγa/E*)`, 0 ≤ Δγa ≤ Δγ (Δγa = Δγ: the
     reversible JKR law with its jump-in; 0: attach on touch)."""
 
     model: Literal["jkr"] = Field(
