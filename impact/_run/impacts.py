@@ -96,8 +96,8 @@ class Result:
             `scales`; read back by `impact.open_run`, the `provenance` of the file (the versions
             that wrote it).
         relaxation: A viscoelastic half-space (`effects.viscoelasticity`): its springs when the
-            run ends and the first contact's stored and snap energies (`impact.Relaxation`);
-            None otherwise.
+            run ends (places and displacements [m]) and the first contact's stored and snap
+            energies [J] (`impact.Relaxation`); None otherwise.
     """
 
     scene: Scene

@@ -29,7 +29,7 @@ class Relaxation:
         stored_energy: The elastic energy the medium held when the first contact ended [J]
             (`Result.unrecovered_elastic_energy`).
         released_energy: Elastic energy released by the springs that let go with adhesion in
-            the first contact [J] (f²/(2E₀*) per width each).
+            the first contact [J] (`f²/(2E₀*)` per width each).
         gained_energy: Elastic energy gained by the springs that jumped onto the body [J].
     """
 

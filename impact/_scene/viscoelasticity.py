@@ -27,14 +27,14 @@ MAX_TERMS = 16  # Prony terms: each adds an internal variable to every spring
 class PronyTerm(Section):
     """One Maxwell arm of the medium: E_i·e^(−t/τ_i) in its relaxation modulus."""
 
-    modulus: Annotated[Number, within(d.MODULUS)] = Field(description="E_i (Pa), added to the effective modulus E*")
+    modulus: Annotated[Number, within(d.MODULUS)] = Field(description="E_i (Pa), added to the effective modulus `E*`")
     time: Annotated[Number, within(d.RELAXATION_TIME)] = Field(description="relaxation time τ_i (s)")
 
 
 class Viscoelasticity(Section):
-    """A viscoelastic half-space: its effective modulus relaxes as E*(t) = E∞* + Σ E_i·e^(−t/τ_i)
+    """A viscoelastic half-space: its effective modulus relaxes as `E*(t) = E∞* + Σ E_i·e^(−t/τ_i)`
     (a generalized Maxwell model; one term is the standard linear solid). `material` gives the
-    relaxed (long-time) modulus E∞*; the instantaneous one is E₀* = E∞* + Σ E_i. Runs on a spring
+    relaxed (long-time) modulus `E∞*`; the instantaneous one is `E₀* = E∞* + Σ E_i`. Runs on a spring
     array (`contact.springs: N`), each spring the medium's element (Popov, Willert & Heß, MDR
     handbook III, Facta Universitatis 16 (2018) 99)."""
 

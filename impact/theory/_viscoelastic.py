@@ -30,7 +30,7 @@ _BISECTION_STEPS = 80  # t₁ of Ting's condition, to the last bit of the loadin
 
 @float64
 def prony_relaxation_modulus(time: Scalars, E_relaxed: Scalars, moduli, times):
-    """E*(t) = E∞* + Σ E_i·e^(−t/τ_i) [Pa] at `time` [s] ≥ 0, for the relaxed modulus
+    """`E*(t) = E∞* + Σ E_i·e^(−t/τ_i)` [Pa] at `time` [s] ≥ 0, for the relaxed modulus
     `E_relaxed` [Pa] and the Prony terms `moduli` [Pa], `times` [s] (last axis)."""
     time = as_float(time)
     return E_relaxed + jnp.sum(moduli * jnp.exp(-time[..., None] / times), axis=-1)
@@ -67,7 +67,7 @@ def lee_radok_force(time: Scalars, rate: Scalars, R: Scalars, E_relaxed: Scalars
 def ting_contact_time(time: Scalars, E_relaxed: Scalars, moduli, times, ramp_time: Scalars, hold: Scalars = 0.0):
     """t₁ [s]: the time of the loading whose contact radius the contact has at `time` [s] when a
     paraboloid is loaded at a constant rate until `ramp_time` [s], held `hold` [s] and unloaded at
-    the same rate (Ting's condition ∫_{t₁}^{t} E*(t − s)·ḋ(s) ds = 0); `ramp_time` while loaded
+    the same rate (Ting's condition `∫_{t₁}^{t} E*(t − s)·ḋ(s) ds = 0`); `ramp_time` while loaded
     or held, 0 once the contact is lost."""
     time = as_float(time)
     shape = jnp.broadcast_shapes(time.shape, jnp.shape(ramp_time), jnp.shape(hold), jnp.shape(E_relaxed))
