@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from ._run.simulate import simulate as simulate
     from ._run.sweep import SweepResult as SweepResult
     from ._run.sweep import sweep as sweep
+    from ._run.viscoelastic import Relaxation as Relaxation
     from ._scene.cost import allow_long as allow_long
     from ._scene.fit_spec import FitError as FitError
     from ._scene.scene import Scene as Scene
@@ -39,6 +40,7 @@ _SOURCES = {
     "FitError": "._scene.fit_spec",
     "FitResult": "._run.fit",
     "IndentationResult": "._run.indentation",
+    "Relaxation": "._run.viscoelastic",
     "Result": "._run.impacts",
     "Scene": "._scene.scene",
     "SceneError": "._scene.scene",
@@ -61,6 +63,7 @@ __all__ = [
     "FitError",
     "FitResult",
     "IndentationResult",
+    "Relaxation",
     "Result",
     "Scene",
     "SceneError",

@@ -43,6 +43,9 @@ class Outcome(eqx.Module):
     trajectory: jax.Array  # [T, 5]: t, d, v, F, a (nan where unused); T = 0 without samples
     # (an oblique impact's [T, 7] adds Q and c: `oblique`)
     tangential: Any = None  # an oblique impact's tangential results (`oblique.TangentialOutcome`)
+    # The elastic energy a viscoelastic medium still holds when the first contact ends (0 for an
+    # elastic one: `viscoelastic.ViscoelasticSprings`).
+    first_contact_stored_energy: jax.Array | float = 0.0
 
 
 class Carry(eqx.Module):

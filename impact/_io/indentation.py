@@ -9,6 +9,8 @@ in time; values SI with a `unit` attribute):
                                the (a, d, F) points in program order; `step` numbers the points
                                (a hard link shared by all four); leg: 0 first loading, 1 first
                                unloading, ...
+        curve/time/{step, value[P]}   a viscoelastic half-space's test at a rate: the time (s)
+                               of each point
         pull_off/{contact_radius, indentation, force}   the last stable state before the
                                contact is lost (nan if it never was)
         status, max_force, max_indentation, max_contact_radius           (scalars)
@@ -26,7 +28,7 @@ import h5py
 import numpy as np
 
 from .._run.indentation import IndentationResult, PullOff
-from .._run.units import INDENTATION_CURVE, MAXIMA_UNITS, PULL_OFF_UNITS
+from .._run.units import CURVE_TIME, INDENTATION_CURVE, MAXIMA_UNITS, PULL_OFF_UNITS
 from .h5md import (
     new_h5md,
     open_run,
@@ -71,6 +73,11 @@ def write_indentation(
             value.attrs["description"] = description
             if unit:
                 value.attrs["unit"] = unit
+        if result.time is not None:
+            group = curve.create_group("time")
+            group["step"] = step
+            value = group.create_dataset("value", data=result.time)
+            value.attrs["description"], value.attrs["unit"] = CURVE_TIME[1], CURVE_TIME[0]
         pull_off = observables.create_group("pull_off")
         pull_off.attrs["description"] = "the last stable state before the contact is lost"
         for name, unit in PULL_OFF_UNITS.items():
@@ -118,6 +125,7 @@ def read_indentation(path: str | Path) -> IndentationResult:
                 "reach": float(stats["reach"][()]),
                 "scales": read_scales(stats, SCALES),
             },
+            time=curve["time/value"][()] if "time" in curve else None,
         )
 
 

@@ -21,6 +21,10 @@ Layout (H5MD 1.1: de Buyl et al., Comput. Phys. Commun. 185, 1546 (2014)), all v
         tangential_velocity_after, spin_after, tangential_restitution,
         contact_point_tangential_restitution, rebound_angle, friction_work
         events/{time, kind}
+        relaxation/            a viscoelastic half-space only: its springs when the run ends,
+                               spring_position[N] (m), displacement[N] (m), arm_stretch[N, M] (m),
+                               attached[N]; and the first contact's stored_energy,
+                               released_energy, gained_energy (J)
     parameters/
         config.yaml            the resolved scene YAML; provenance attributes
         solver_stats/          steps, accepted_steps, rejected_steps, (wall_time),
@@ -38,7 +42,8 @@ import numpy as np
 from .._run.impacts import Result
 from .._run.losses import NAMED_LOSSES
 from .._run.tangential import TANGENTIAL_SERIES
-from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, SCALAR_UNITS, VELOCITY_SERIES
+from .._run.units import CONTACT_SERIES, DERIVED_LOSSES, RELAXATION_FIELDS, SCALAR_UNITS, VELOCITY_SERIES
+from .._run.viscoelastic import Relaxation
 from .h5md import new_h5md, open_run, read_scales, read_scene, read_string, write_run_stats, write_scene
 
 SCALE_UNITS = {"radial": "m", "normal": "m", "force": "N", "time": "s"}
@@ -73,6 +78,7 @@ def read_run(path: str | Path) -> Result:
         series: dict[str, Any] = {
             name: contact[f"{name}/value"][()] if name in contact else np.zeros(frames) for name in TANGENTIAL_SERIES
         }
+        relaxation = _read_relaxation(observables["relaxation"]) if "relaxation" in observables else None
         return Result(
             scene=read_scene(file),
             **scalars,
@@ -89,6 +95,7 @@ def read_run(path: str | Path) -> Result:
                 **{name: int(stats[name][()]) for name in STEP_COUNTS},
                 "scales": read_scales(stats, SCALE_UNITS),
             },
+            relaxation=relaxation,
         )
 
 
@@ -145,6 +152,29 @@ def _write_observables(observables: h5py.Group, result: Result, clock: h5py.Grou
     kinds = np.array([kind for _, kind in result.events], dtype=object)
     events.create_dataset("time", data=times).attrs["unit"] = "s"
     events.create_dataset("kind", data=kinds, dtype=h5py.string_dtype())
+    if result.relaxation is not None:
+        _write_relaxation(observables.create_group("relaxation"), result.relaxation)
+
+
+def _write_relaxation(group: h5py.Group, relaxation: Relaxation) -> None:
+    group.attrs["description"] = "the viscoelastic medium's springs when the run ends, and the first contact's energies"
+    for name, (unit, description) in RELAXATION_FIELDS.items():
+        dataset = group.create_dataset(name, data=getattr(relaxation, name))
+        dataset.attrs["description"] = description
+        if unit:
+            dataset.attrs["unit"] = unit
+
+
+def _read_relaxation(group: h5py.Group) -> Relaxation:
+    return Relaxation(
+        spring_position=group["spring_position"][()],
+        displacement=group["displacement"][()],
+        arm_stretch=group["arm_stretch"][()],
+        attached=group["attached"][()],
+        stored_energy=float(group["stored_energy"][()]),
+        released_energy=float(group["released_energy"][()]),
+        gained_energy=float(group["gained_energy"][()]),
+    )
 
 
 def _write_parameters(parameters: h5py.Group, result: Result, wall_time: float | None) -> None:

@@ -22,11 +22,19 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 FIGURES = ("force_indentation.png", "normalized.png")
+TIMED_FIGURES = ("force_indentation.png", "time.png")
 _MARKERS = {"touch": "o", "snap_in": ">", "snap_out": "<", "pull_off": "s", "reversal": "^"}
 
 
 def save_indentation_figures(result: IndentationResult, folder: str | Path) -> list[Path]:
-    """Write the two figures into `folder` (atomically); return their paths."""
+    """Write the two figures into `folder` (atomically); return their paths. A viscoelastic
+    test at a rate draws its curve against time (`time.png`) instead of the normalized one."""
+    if result.time is not None:
+        from .viscoelastic import rate_test_figure
+
+        return write_figures(
+            folder, zip(TIMED_FIGURES, (force_indentation_figure(result), rate_test_figure(result)), strict=True)
+        )
     return write_figures(
         folder, zip(FIGURES, (force_indentation_figure(result), normalized_figure(result)), strict=True)
     )
@@ -75,6 +83,8 @@ def dmt_limit(result: IndentationResult, points: int = 800):
 def _limits(result: IndentationResult):
     """(label, line style, (a, d, F)) of the curves drawn under the program's path."""
     dmt = dmt_limit(result)
+    if result.scene.effects.viscoelasticity is not None:
+        return [("equilibrium curve of the relaxed medium (E∞*)", "--", equilibrium(result))]
     if dmt is None:
         return [("equilibrium curve", "--", equilibrium(result))]
     return [("JKR limit", "--", equilibrium(result)), ("DMT limit", ":", dmt)]

@@ -1,6 +1,7 @@
 """Impacts: a scene of kind `impact` → its integrator, parameters and options → one solve →
 the result in SI units."""
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -10,12 +11,14 @@ import numpy as np
 from .._integrate.base import AbstractIntegrator
 from .._integrate.codes import EVENT_KINDS, RESULT_CODES, is_success
 from .._integrate.problem import Options, Physics
+from .._integrate.viscoelastic import ViscoelasticSprings
 from .._scene.friction import lever_arm
 from .._scene.scene import Scene
 from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
 from .parameters import integrator_for, options_for, physics_for
 from .programs import solve_by_field
 from .tangential import tangential_results
+from .viscoelastic import Relaxation, relaxation_of, solve_relaxing
 
 if TYPE_CHECKING:
     import pandas
@@ -54,7 +57,8 @@ class Result:
         plastic_work: The part of `dissipated_energy` lost to plastic flow (`effects.plasticity`)
             [J]; 0 without.
         viscous_work: The part of `dissipated_energy` lost to damping, ∫F_visc ḋ dt
-            (`effects.damping`) [J]; 0 without.
+            (`effects.damping`), or in the dashpots of a viscoelastic medium
+            (`effects.viscoelasticity`) [J]; 0 without.
         tabor_parameter: Λ (3.172), dimensionless, of a Maugis–Dugdale scene on a paraboloid, the
             equivalent Λ(k) of a Greenwood–Johnson scene; nan otherwise.
         centre_of_mass_velocity: Velocity of the centre of mass, lab frame [m/s]; 0 against a
@@ -91,6 +95,9 @@ class Result:
         stats: Solver steps (`steps`, `accepted_steps`, `rejected_steps`) and the run's
             `scales`; read back by `impact.open_run`, the `provenance` of the file (the versions
             that wrote it).
+        relaxation: A viscoelastic half-space (`effects.viscoelasticity`): its springs when the
+            run ends (places and displacements [m]) and the first contact's stored and snap
+            energies [J] (`impact.Relaxation`); None otherwise.
     """
 
     scene: Scene
@@ -126,6 +133,7 @@ class Result:
     stick_radius: np.ndarray = field(repr=False)
     events: list[tuple[float, str]] = field(repr=False)  # kinds: codes.EVENT_KINDS
     stats: dict = field(repr=False)
+    relaxation: Relaxation | None = field(default=None, repr=False)
 
     @property
     def success(self) -> bool:
@@ -137,15 +145,28 @@ class Result:
         """The part of the first contact's loss dissipated neither by plastic flow nor by damping
         [J]: the jump-in and the snap-off of the adhesive contact (0 without adhesion)."""
         return float(
-            adhesion_hysteresis(self.scene.adhesive, self.dissipated_energy, self.plastic_work, self.viscous_work)
+            adhesion_hysteresis(
+                self.scene.adhesive, self.dissipated_energy, self.plastic_work, self.viscous_work, self.stored_energy
+            )
         )
 
     @property
+    def stored_energy(self) -> float:
+        """The elastic energy a viscoelastic medium still held when the first contact ended [J]
+        (0 for an elastic one)."""
+        return 0.0 if self.relaxation is None else self.relaxation.stored_energy
+
+    @property
     def unrecovered_elastic_energy(self) -> float:
-        """The part of the first contact's loss that a damped contact without adhesion leaves in
-        the surface as elastic energy [J] (it lets go at F = 0, still indented); 0 otherwise."""
+        """The part of the first contact's loss left in the surface as elastic energy [J]: by a
+        damped contact without adhesion (it lets go at F = 0, still indented), by a viscoelastic
+        medium (its springs still strained); 0 otherwise."""
         damped = self.scene.effects.damping is not None
-        return float(unrecovered_elastic_energy(self.scene.adhesive, damped, self.dissipated_energy, self.viscous_work))
+        return float(
+            unrecovered_elastic_energy(
+                self.scene.adhesive, damped, self.dissipated_energy, self.viscous_work, self.stored_energy
+            )
+        )
 
     def to_xarray(self) -> "xarray.Dataset":
         """The run as an `xarray.Dataset` (needs the extra `impact-mdr[analysis]`): the time
@@ -185,6 +206,10 @@ def solve_scene(scene: Scene, integrator: AbstractIntegrator, options: Options) 
     `simulate_impact`; a caller's where it shares one program between scenes, e.g. traced
     tolerances or a spring capacity)."""
     physics = physics_for(scene)
+    if isinstance(integrator, ViscoelasticSprings):
+        scales, outcome, medium = solve_relaxing(integrator, physics, options)
+        result = to_result(scene, scales, outcome, integrator, physics)
+        return dataclasses.replace(result, relaxation=relaxation_of(scales, outcome, medium))
     scales, outcome = solve_by_field(integrator, physics, options)
     return to_result(scene, scales, outcome, integrator, physics)
 

@@ -57,6 +57,8 @@ class IndentationResult:
             `pull_off`, `reversal`.
         stats: The march's `steps`, the radius its branches reach (`reach`, m) and its `scales`;
             read back by `impact.open_run`, the `provenance` of the file (the versions that wrote it).
+        time: The time of each point [s] of a viscoelastic half-space's test at a rate
+            (`program.rate`); None for a quasi-static test.
     """
 
     scene: Scene
@@ -68,6 +70,7 @@ class IndentationResult:
     leg: np.ndarray = field(repr=False)
     events: list[tuple[int, str]] = field(repr=False)  # kinds: quasistatic.EVENT_KINDS
     stats: dict = field(repr=False)
+    time: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def success(self) -> bool:
@@ -164,6 +167,10 @@ def indentation_loading(scene: Scene) -> Loading:
 def simulate_indentation(scene: Scene) -> IndentationResult:
     """Run one scene of kind `indentation` (its program traced once per machine and structure:
     `impact._core.stored`)."""
+    if scene.effects.viscoelasticity is not None:
+        from .viscoelastic_indentation import simulate_rate_test  # it builds on this module
+
+        return simulate_rate_test(scene)
     scales, outcome = call_stored(_march_by_field, indentation_loading(scene), indentation_numerics(scene))
     return to_indentation_result(scene, SimpleNamespace(**scales), SimpleNamespace(**outcome))
 
@@ -174,7 +181,8 @@ def _march_by_field(loading: Loading, numerics: QuasiStaticNumerics) -> tuple[di
 
 
 def to_indentation_result(scene: Scene, scales, outcome) -> IndentationResult:
-    """Scaled outcome → SI result (consecutive repeated points dropped)."""
+    """Scaled outcome → SI result (consecutive repeated points dropped); rows of five columns
+    hold the time (s) of each point last."""
     radial, normal, force = (float(getattr(scales, name)) for name in ("radial", "normal", "force"))
     rows = np.asarray(outcome.rows)
     used = np.isfinite(rows[:, 0])
@@ -190,6 +198,7 @@ def to_indentation_result(scene: Scene, scales, outcome) -> IndentationResult:
         if kind >= 0 and count
     ]
     a, d, F = np.asarray(outcome.pull_off, dtype=float)
+    timed = rows.shape[1] > 4
     return IndentationResult(
         scene=scene,
         status=RESULT_CODES[int(outcome.status)],
@@ -204,4 +213,5 @@ def to_indentation_result(scene: Scene, scales, outcome) -> IndentationResult:
             "reach": float(outcome.top) * radial,
             "scales": {"radial": radial, "normal": normal, "force": force},
         },
+        time=rows[:, 4] if timed else None,
     )

@@ -26,6 +26,7 @@ from .sweep.result import RESULTS
 from .tangential import TANGENTIAL_SERIES
 from .units import (
     CONTACT_SERIES,
+    CURVE_TIME,
     DERIVED_LOSSES,
     INDENTATION_CURVE,
     MAXIMA_UNITS,
@@ -194,8 +195,12 @@ def run_frame(result: "Result") -> "pandas.DataFrame":
 
 
 def curve_series(result: "IndentationResult") -> dict[str, tuple[np.ndarray, str, str]]:
-    """An indentation test's curve by name: (values, unit, description)."""
-    return {name: (getattr(result, name), unit, what) for name, (unit, what) in INDENTATION_CURVE.items()}
+    """An indentation test's curve by name: (values, unit, description), with the time of a
+    viscoelastic test at a rate."""
+    series = {name: (getattr(result, name), unit, what) for name, (unit, what) in INDENTATION_CURVE.items()}
+    if result.time is not None:
+        series["time"] = (result.time, *CURVE_TIME)
+    return series
 
 
 def indentation_dataset(result: "IndentationResult") -> "xarray.Dataset":

@@ -20,10 +20,15 @@ from .._scene.scene import Scene
 # loss is 0 and the outputs leave it out).
 NAMED_LOSSES: dict[str, Callable[[Scene], bool]] = {
     "plastic_work": lambda scene: scene.effects.plasticity is not None,
-    "viscous_work": lambda scene: scene.effects.damping is not None,
+    "viscous_work": lambda scene: _viscous(scene),
     "adhesion_hysteresis": lambda scene: scene.effects.adhesion is not None,
-    "unrecovered_elastic_energy": lambda scene: scene.effects.damping is not None,
+    "unrecovered_elastic_energy": lambda scene: _viscous(scene),
 }
+
+
+def _viscous(scene: Scene) -> bool:
+    """Whether the scene dissipates viscously: damping, or a viscoelastic medium."""
+    return scene.effects.damping is not None or scene.effects.viscoelasticity is not None
 
 
 def plastic_work(integrator: AbstractIntegrator, physics: Physics, max_indentation, dissipated):
@@ -42,21 +47,22 @@ def plastic_work(integrator: AbstractIntegrator, physics: Physics, max_indentati
     return 0.0
 
 
-def adhesion_hysteresis(adhesive: bool, dissipated, plastic, viscous):
-    """J of the first contact's loss dissipated neither by plastic flow nor by damping: the
-    jump-in and the snap-off of the adhesive contact (0 where adhesion is not simulated)."""
+def adhesion_hysteresis(adhesive: bool, dissipated, plastic, viscous, stored=0.0):
+    """J of the first contact's loss dissipated neither by plastic flow nor viscously, nor left
+    in a viscoelastic medium (`stored`, J): the jump-in and the snap-off of the adhesive contact
+    (0 where adhesion is not simulated)."""
     if not adhesive:
         return 0.0
-    return dissipated - plastic - viscous
+    return dissipated - plastic - viscous - stored
 
 
-def unrecovered_elastic_energy(adhesive: bool, damped: bool, dissipated, viscous):
-    """J of elastic energy the surface still holds when a damped contact without adhesion lets
-    go: it ends where the total force returns to zero, at a finite indentation (the body leaves
-    faster than the surface recovers: Schwager & Pöschel, Phys. Rev. E 78, 051304 (2008)), so
-    ∫F dd of the elastic force over the contact is not zero; the body's kinetic energy lost
-    includes it. 0 with adhesion (there the snap-off releases it: `adhesion_hysteresis`) or
-    without damping."""
-    if adhesive or not damped:
-        return 0.0
-    return dissipated - viscous
+def unrecovered_elastic_energy(adhesive: bool, damped: bool, dissipated, viscous, stored=0.0):
+    """J of elastic energy the surface still holds when the contact lets go. A damped contact
+    without adhesion ends where the total force returns to zero, at a finite indentation (the
+    body leaves faster than the surface recovers: Schwager & Pöschel, Phys. Rev. E 78, 051304
+    (2008)), so ∫F dd of the elastic force over the contact is not zero; the body's kinetic
+    energy lost includes it (with adhesion the snap-off releases it: `adhesion_hysteresis`). A
+    viscoelastic medium states it, `stored` (J), with or without adhesion. 0 otherwise."""
+    if damped and not adhesive:
+        return dissipated - viscous
+    return stored

@@ -45,6 +45,19 @@ INDENTATION_CURVE = {
     "force": ("N", "normal force; > 0 compressive, < 0 adhesive"),
     "leg": ("", "leg of the loading program: 0 first loading, 1 first unloading, ..."),
 }
+# The time of each point of a viscoelastic half-space's test at a rate (`IndentationResult.time`).
+CURVE_TIME = ("s", "time of each point since the first touch")
 # Its pull-off (`PullOff` fields) and its extremes (`IndentationResult` properties): name → unit.
 PULL_OFF_UNITS = {"contact_radius": "m", "indentation": "m", "force": "N"}
 MAXIMA_UNITS = {"max_force": "N", "max_indentation": "m", "max_contact_radius": "m"}
+# The springs of a viscoelastic medium when an impact ends (`Relaxation` fields): name → (unit,
+# description).
+RELAXATION_FIELDS = {
+    "spring_position": ("m", "x of each spring"),
+    "displacement": ("m", "displacement u of each spring; > 0 pressed in"),
+    "arm_stretch": ("m", "stretch q_i of each spring's Maxwell arms, one column per Prony term"),
+    "attached": ("", "whether each spring is in contact"),
+    "stored_energy": ("J", "elastic energy the medium held when the first contact ended"),
+    "released_energy": ("J", "elastic energy released by the springs that let go in the first contact"),
+    "gained_energy": ("J", "elastic energy gained by the springs that jumped onto the body in the first contact"),
+}

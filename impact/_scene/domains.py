@@ -165,3 +165,11 @@ POISSON = Domain(-1.0, 0.5, "", open_low=True, open_high=True, reason="a stable 
 CYCLES = Domain(1, 100, "", reason="each cycle adds legs to the compiled march")
 PEAK = Domain(0.0, 1e6, "N or m", reason="a load of at most a meganewton or a kilometre")
 UNLOAD_TO = Domain(-1e6, 1e6, "N or m", reason="as program.peak")
+# A viscoelastic medium (effects.viscoelasticity) and the rate-controlled program it is tested by.
+RELAXATION_TIME = Domain(
+    1e-30, 1e12, "s", reason="from far below any contact time (relaxed) to thirty thousand years (glassy)"
+)
+# The springs' state is N × (Prony terms) numbers, all updated every step.
+VISCOELASTIC_SPRINGS = Domain(1, 1e5, "", reason="every spring is updated every step")
+LOADING_RATE = Domain(0.0, 1e9, "m/s or N/s", open_low=True, reason="a test at rate 0 never reaches its peak")
+HOLD = Domain(0.0, 1e9, "s", reason="up to thirty years")

@@ -1,5 +1,6 @@
 """The `effects` section of a scene file: adhesion (one of the models of `adhesion`), gravity,
-plasticity and damping, each a pydantic model in SI units forbidding unknown keys."""
+plasticity, damping and a viscoelastic medium (`viscoelasticity`), each a pydantic model in SI
+units forbidding unknown keys."""
 
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
@@ -19,6 +20,7 @@ from .errors import FieldProblem
 from .friction import FrictionSection
 from .profiles import Number
 from .sections import Section
+from .viscoelasticity import Viscoelasticity
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -115,4 +117,5 @@ class Effects(Section):
     gravity: Gravity | None = None
     plasticity: Plasticity | None = None
     damping: Damping | None = None
+    viscoelasticity: Viscoelasticity | None = None
     friction: FrictionSection | None = None

@@ -1,7 +1,8 @@
 """The columns of a fit of a quasi-static indentation curve (the AFM use), and their checks.
 
 Each row is one point of the curve: the controlled value (the column `indentation` (m) under
-displacement control, `force` (N) under force control) is the row's input; the other of the two
+displacement control, `force` (N) under force control; `time` (s) for a viscoelastic test at a
+rate) is the row's input; the other of the two
 (or `contact_radius`) is the observable; the branch (approach or retract) comes from a column of
 labels named by the fit file's `branch` key, or, without one, from the order of the rows: up to
 the largest control value approach, after it retract (a recorded test in program order).
@@ -12,9 +13,14 @@ import numpy as np
 from .scene import Scene
 
 CONTROL_COLUMNS = {"displacement": "indentation", "force": "force"}
+TIME = "time"  # the control column of a viscoelastic test at a rate (s)
 CURVE_OBSERVABLES = ("force", "indentation", "contact_radius")
 BRANCHES = {"approach": 0.0, "retract": 1.0}  # the branch labels and their codes in the rows
 BRANCH = "branch"  # the column of branch codes in a validated fit's data
+VISCOELASTIC_THEORY = (
+    "a viscoelastic test at a rate is fitted with model: theory (the closed forms of Lee & Radok and Ting, "
+    "exact for a paraboloid under displacement control without adhesion), not through its spring array"
+)
 NOT_DIFFERENTIABLE = (
     "the quasi-static march of an indentation scene is not differentiable (its jumps and searches "
     "are loops with no derivative); use model: theory, the closed-form JKR curve"
@@ -22,12 +28,18 @@ NOT_DIFFERENTIABLE = (
 
 
 def control_column(scene: Scene) -> str | None:
-    """The data column of the controlled value of an indentation scene (None for an impact)."""
-    return CONTROL_COLUMNS[scene.control] if scene.kind == "indentation" and scene.control else None
+    """The data column of the controlled value of an indentation scene (None for an impact): the
+    time of a viscoelastic half-space's test at a rate."""
+    if scene.kind != "indentation" or not scene.control:
+        return None
+    return TIME if scene.effects.viscoelasticity is not None else CONTROL_COLUMNS[scene.control]
 
 
 def curve_observables(scene: Scene) -> tuple[str, ...]:
-    """The observables a fit of the scene's curve can match: all but the controlled value."""
+    """The observables a fit of the scene's curve can match: all but the controlled value (a
+    viscoelastic test at a rate: its force)."""
+    if scene.effects.viscoelasticity is not None:
+        return ("force",)
     return tuple(name for name in CURVE_OBSERVABLES if name != control_column(scene))
 
 
@@ -39,7 +51,8 @@ def curve_problems(scene: Scene, branch: str | None, model: str, columns: dict[s
         return [] if branch is None else [("branch", "only an indentation scene has approach and retract branches")]
     problems = []
     if model == "simulation":
-        problems.append(("model", NOT_DIFFERENTIABLE))
+        viscoelastic = scene.effects.viscoelasticity is not None
+        problems.append(("model", VISCOELASTIC_THEORY if viscoelastic else NOT_DIFFERENTIABLE))
     if control not in columns:
         problems.append(
             (

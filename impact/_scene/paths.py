@@ -1,4 +1,5 @@
-"""Dotted field paths of a scene (`initial.velocity`, `body.profile.R`).
+"""Dotted field paths of a scene (`initial.velocity`, `body.profile.R`; an entry of a list of
+sections by its index, `effects.viscoelasticity.prony.0.time`).
 
 One place walks them: against the schema for a scene mapping not yet validated (`check_path`,
 the CLI's `--set`), into a mapping (`assign`), on a validated scene (`resolve_field`,
@@ -49,20 +50,40 @@ def _of_named_shape(models: list[type[BaseModel]], node) -> list[type[BaseModel]
     return named or models
 
 
+def is_list(annotation) -> bool:
+    """Whether a field annotation is a list (through Optional and Annotated)."""
+    if typing.get_origin(annotation) is list:
+        return True
+    return any(is_list(argument) for argument in typing.get_args(annotation) if argument is not type(None))
+
+
+def _entry(node: list, key: str, parent: str):
+    """The entry of a list of sections at the index `key`; NoField where there is none."""
+    if not key.isdigit() or int(key) >= len(node):
+        raise NoField(f"{parent} is a list of {len(node)}: index it by 0 … {len(node) - 1}, not {key!r}")
+    return node[int(key)]
+
+
 def check_path(data: dict, keys: list[str]) -> None:
     """Refuse (NoField) a dotted path that names no field of the scene schema (for the profile:
-    of the shape the mapping names, if it names one)."""
+    of the shape the mapping names, if it names one; an entry of a list by its index)."""
     models: list[type[BaseModel]] = [Scene]
     node: object = data
+    listed = False
     for depth, key in enumerate(keys):
+        parent = ".".join(keys[:depth]) or "the scene"
+        if listed:
+            node = _entry(node, key, parent) if isinstance(node, list) else None
+            listed = False
+            continue
         models = _of_named_shape(models, node)
         fields = [model.model_fields[key] for model in models if key in model.model_fields]
         if not fields:
-            parent = ".".join(keys[:depth]) or "the scene"
             known = sorted({name for model in models for name in model.model_fields})
             hint = f"{parent} takes: {', '.join(known)}" if known else f"{parent} is a value, not a section"
             raise NoField(f"no field {'.'.join(keys)!r} in the scene; {hint}")
         models = [model for field in fields for model in models_in(field.annotation)]
+        listed = any(is_list(field.annotation) for field in fields)
         node = node.get(key) if isinstance(node, dict) else None
 
 
@@ -71,11 +92,16 @@ def assign(data: dict, keys: list[str], value) -> None:
     lacks (or holds as None); NotASection where the path goes through a value."""
     node = data
     for depth, key in enumerate(keys[:-1]):
+        if isinstance(node, list):
+            node = _entry(node, key, ".".join(keys[:depth]))
+            continue
         if node.get(key) is None:
             node[key] = {}
-        if not isinstance(node[key], dict):
+        if not isinstance(node[key], (dict, list)):
             raise NotASection(".".join(keys[: depth + 1]))
         node = node[key]
+    if isinstance(node, list):
+        raise NotASection(".".join(keys))
     node[keys[-1]] = value
 
 
@@ -88,6 +114,11 @@ def resolve_field(scene: BaseModel, path: str) -> tuple[BaseModel, str]:
     node: object = scene
     for depth, key in enumerate(keys):
         parent = ".".join(keys[:depth]) or "the scene"
+        if isinstance(node, list):
+            node = _entry(node, key, parent)
+            if depth == len(keys) - 1:
+                raise NoField(f"no field {path!r}: {path} is a section, not a value")
+            continue
         if not isinstance(node, BaseModel):
             raise NoField(f"no field {path!r}: {parent} is a value, not a section")
         fields = type(node).model_fields
@@ -109,7 +140,7 @@ def section_at(scene: BaseModel, prefix: str) -> BaseModel:
     """The section of a validated scene at a dotted prefix ('' for the scene itself)."""
     model = scene
     for key in prefix.split(".") if prefix else ():
-        model = getattr(model, key)
+        model = model[int(key)] if isinstance(model, list) else getattr(model, key)
     return model
 
 
@@ -126,5 +157,14 @@ Model = TypeVar("Model", bound=BaseModel)
 
 
 def _replaced(model: Model, tree: dict) -> Model:
-    update = {key: _replaced(getattr(model, key), sub) if isinstance(sub, dict) else sub for key, sub in tree.items()}
+    update = {key: _replaced_node(getattr(model, key), sub) for key, sub in tree.items()}
     return model.model_copy(update=update)
+
+
+def _replaced_node(node, sub):
+    """`node` with the values of the tree `sub` (a section, or a list of sections by index)."""
+    if not isinstance(sub, dict):
+        return sub
+    if isinstance(node, list):
+        return [_replaced(entry, sub[str(index)]) if str(index) in sub else entry for index, entry in enumerate(node)]
+    return _replaced(node, sub)

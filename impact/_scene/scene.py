@@ -40,6 +40,7 @@ from .sections import (
     Solver,
 )
 from .shear import Shear
+from .viscoelasticity import medium_problem
 
 MAX_NAME = 100  # characters of a scene's name (its runs' folder; file names end at 255 bytes)
 
@@ -137,6 +138,15 @@ class Scene(Section):
                 f"a paraboloid counterpart needs a paraboloid body (only two paraboloids sum to a paraboloid, "
                 f"1/R = 1/R₁ + 1/R₂), not {self.body.profile.shape!r}; a flat counterpart takes any body",
             )
+        return self
+
+    @model_validator(mode="after")
+    def _viscoelastic_medium(self):
+        medium = self.effects.viscoelasticity
+        if medium is not None:
+            medium.check(self)
+        elif (problem := medium_problem(self)) is not None:
+            raise problem
         return self
 
     @model_validator(mode="after")
@@ -335,17 +345,23 @@ class Scene(Section):
 
     def contact_law(self, xp: Any = np) -> AbstractContactLaw:
         """The contact law the scene names, with its values (arrays of a sweep's points with
-        `xp` numpy): its adhesion model's, Thornton's where it names plasticity (with adhesion
-        Thornton & Ning's), the MDR without adhesion where it names neither."""
-        adhesion, plasticity = self.effects.adhesion, self.effects.plasticity
+        `xp` numpy): a viscoelastic medium's (with its adhesion's works), its adhesion model's,
+        Thornton's where it names plasticity (with adhesion Thornton & Ning's), the MDR without
+        adhesion where it names neither."""
+        adhesion, plasticity, medium = self.effects.adhesion, self.effects.plasticity, self.effects.viscoelasticity
+        if medium is not None:
+            return medium.law(adhesion, xp)
         if plasticity is not None:
             return plasticity.law(adhesion, xp)
         return Elastic() if adhesion is None else adhesion.law(xp)
 
     def integrator(self) -> AbstractIntegrator:
-        """The integrator that runs the scene's impact: its friction's, its plasticity's, or its
-        adhesion model's where adhesion is simulated (Δγ > 0), else the MDR's without adhesion."""
+        """The integrator that runs the scene's impact: its viscoelastic medium's, its friction's, its
+        plasticity's, or its adhesion model's where adhesion is simulated (Δγ > 0), else the MDR's
+        without adhesion."""
         adhesion = self.active_adhesion
+        if self.effects.viscoelasticity is not None:
+            return self.effects.viscoelasticity.integrator(self)
         if self.effects.friction is not None:
             return self.effects.friction.integrator(self)
         if self.effects.plasticity is not None:

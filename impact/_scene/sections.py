@@ -21,8 +21,10 @@ from .profiles import Number, ParaboloidSpec, ProfileSpec
 
 # Adaptive diffrax methods of the continuum law (and of a spring array), by their scene names.
 SOLVER_METHODS = tuple(SOLVERS)
-# Fixed-step integrators of the spring array (contact.springs: N).
-SPRING_METHODS = ("verlet",)
+# Fixed-step integrators of the spring array (contact.springs: N): velocity Verlet, and the
+# implicit midpoint rule of a viscoelastic half-space's springs (effects.viscoelasticity).
+MIDPOINT = "midpoint"
+SPRING_METHODS = ("verlet", MIDPOINT)
 # The continuum law without an ODE solve: each phase ended by its energy and timed by quadrature.
 QUADRATURE = "quadrature"
 QUADRATURE_SHAPES = ("paraboloid", "cone", "power_law")  # g = A·xⁿ: the work along a branch in closed form
@@ -272,7 +274,9 @@ class Contact(Section):
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
     'quadrature', the continuum law's phases timed by quadrature without an ODE solve; or
-    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
+    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt; or
+    'midpoint', the implicit midpoint rule on the spring array of a viscoelastic half-space
+    (effects.viscoelasticity), its springs advanced exactly over each step dt."""
 
     method: str = Field(
         "tsit5",
@@ -298,7 +302,7 @@ class Solver(Section):
         ),
     )
     dt: Annotated[Number, within(d.TIME_STEP)] | None = Field(
-        None, description="time step (s) of method 'verlet'; only for it"
+        None, description="time step (s) of the fixed-step methods 'verlet' and 'midpoint'; only for them"
     )
 
     @field_validator("method", "phase_ends")
@@ -312,10 +316,12 @@ class Solver(Section):
 
     @model_validator(mode="after")
     def _step_with_verlet_only(self):
-        if self.method == "verlet" and self.dt is None:
-            raise FieldProblem("dt", "missing: method 'verlet' needs its fixed time step (s)")
-        if self.method != "verlet" and self.dt is not None:
-            raise FieldProblem("dt", f"only for method 'verlet'; method {self.method!r} takes no time step")
+        stepped = self.method in SPRING_METHODS
+        if stepped and self.dt is None:
+            raise FieldProblem("dt", f"missing: method {self.method!r} needs its fixed time step (s)")
+        if not stepped and self.dt is not None:
+            methods = " and ".join(map(repr, SPRING_METHODS))
+            raise FieldProblem("dt", f"only for methods {methods}; method {self.method!r} takes no time step")
         return self
 
 
@@ -351,6 +357,16 @@ class Program(Section):
         description=(
             "where the cycles before the last stop unloading (N or m, below peak); default: each retracts to pull-off"
         ),
+    )
+    rate: Annotated[Number, within(d.LOADING_RATE)] | None = Field(
+        None,
+        description=(
+            "viscoelastic half-space only (required there): the speed of loading and unloading, m/s under "
+            "displacement control, N/s under force control"
+        ),
+    )
+    hold: Annotated[Number, within(d.HOLD)] = Field(
+        0.0, description="viscoelastic half-space only: time (s) each cycle holds its peak before unloading"
     )
 
     @model_validator(mode="after")

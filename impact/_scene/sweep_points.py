@@ -194,7 +194,9 @@ def _chains(scene: Scene, paths) -> list[tuple[str, BaseModel]]:
         keys = path.split(".")[:-1]
         for depth in range(len(keys)):
             prefix = ".".join(keys[: depth + 1])
-            seen.setdefault(prefix, section_at(scene, prefix))
+            section = section_at(scene, prefix)
+            if isinstance(section, BaseModel):  # not a list of sections (its entries are)
+                seen.setdefault(prefix, section)
     return sorted(seen.items(), key=lambda item: -len(item[0].split(".")) if item[0] else 1)
 
 

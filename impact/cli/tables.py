@@ -13,7 +13,7 @@ from .._integrate.codes import RESULT_CODE, RESULT_CODES
 from .._plots.figures import si_prefix
 from .._run.impacts import Result
 from .._scene.scene import Scene
-from .._scene.sections import QUADRATURE
+from .._scene.sections import QUADRATURE, SPRING_METHODS
 
 if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs none
     from .._run.indentation import IndentationResult
@@ -105,6 +105,7 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
     stats = result.stats
     tabor = result.tabor_parameter
     effects = result.scene.effects
+    viscous = effects.damping is not None or effects.viscoelasticity is not None
     rows = [
         ("restitution e", _restitution(result)),
         ("stuck", "yes" if result.stuck else "no"),
@@ -117,13 +118,13 @@ def impact_table(result: Result, wall_time: float | None) -> Table:
         *([("plastic work", quantity(result.plastic_work, "J"))] if effects.plasticity else []),
         *(
             [("adhesion hysteresis", quantity(result.adhesion_hysteresis, "J"))]
-            if (effects.plasticity or effects.damping) and result.scene.adhesive
+            if (effects.plasticity or viscous) and result.scene.adhesive
             else []
         ),
-        *([("viscous work", quantity(result.viscous_work, "J"))] if effects.damping else []),
+        *([("viscous work", quantity(result.viscous_work, "J"))] if viscous else []),
         *(
             [("unrecovered elastic energy", quantity(result.unrecovered_elastic_energy, "J"))]
-            if effects.damping and not result.scene.adhesive
+            if (effects.damping and not result.scene.adhesive) or effects.viscoelasticity
             else []
         ),
         *_two_body_rows(result),
@@ -195,6 +196,8 @@ def _effects(scene: Scene) -> str:
         effects.append(f"plasticity (p_y = {scene.effects.plasticity.yield_pressure:.6g} Pa)")
     if scene.effects.damping is not None:
         effects.append(scene.effects.damping.describe())
+    if scene.effects.viscoelasticity is not None:
+        effects.append(scene.effects.viscoelasticity.describe())
     if scene.effects.friction is not None:
         effects.append(scene.effects.friction.describe())
     return ", ".join(effects) or "none (elastic Hertz/MDR contact)"
@@ -220,13 +223,14 @@ def facts_table(scene: Scene) -> Table:
         unit = "N" if scene.control == "force" else "m"
         unloading = "" if program.unload_to is None else f" unloading to {program.unload_to:g} {unit}"
         cycles = f", {program.cycles} cycles{unloading}" if program.cycles > 1 else ""
+        timed = "" if program.rate is None else f" at {program.rate:g} {unit}/s, held {program.hold:g} s"
         rows = [
             ("kind", f"indentation, {scene.control} control"),
             shape,
             modulus,
             (
                 "program",
-                f"peak {program.peak:g} {unit}{cycles}, then to pull-off"
+                f"peak {program.peak:g} {unit}{timed}{cycles}, then to pull-off"
                 if scene.shear is None
                 else f"peak {program.peak:g} {unit} held; shear ({scene.shear.control}) through {scene.shear.path}",
             ),
@@ -235,7 +239,7 @@ def facts_table(scene: Scene) -> Table:
         return key_value_table(f"{scene.name} (SI units)", rows)
     density = "" if body.density is None else f" (density {body.density:g} kg/m³)"
     solver = scene.solver
-    if solver.method == "verlet":
+    if solver.method in SPRING_METHODS:
         steps = f"dt {solver.dt:g} s"
     elif solver.method == QUADRATURE:
         steps = "phase ends from the energy, timed by quadrature"

@@ -44,6 +44,10 @@ Misprints found in the chapter (the code uses the corrected forms):
 (3.51) and (3.82) follow exactly from the energy balance (see ``power_law_energy_loss``), and
 (3.82) reduces to (3.51) at n = 2, c = 1/(2R).
 
+A viscoelastic half-space (a Prony series, ``prony_relaxation_modulus``): Lee & Radok's force of
+a paraboloid pressed at a constant rate and held (``lee_radok_force``), Ting's while it is
+unloaded (``ting_force``), jax.numpy closed forms up to one bisection.
+
 The Maugis–Dugdale functions (§3.6–3.8, from ``tabor_parameter`` on) use numpy/scipy (hypergeometric
 function, scalar minimization) and compute in float64 whatever the jax setting. The
 Greenwood–Johnson double-Hertz functions (§3.9, ``double_hertz_*``) are jax.numpy closed forms
@@ -173,6 +177,11 @@ from ._special import kendall_to_optimal_ratio as kendall_to_optimal_ratio
 from ._special import wavy_paraboloid_force as wavy_paraboloid_force
 from ._special import wavy_paraboloid_indentation as wavy_paraboloid_indentation
 from ._special import wavy_paraboloid_normalized as wavy_paraboloid_normalized
+from ._viscoelastic import lee_radok_force as lee_radok_force
+from ._viscoelastic import lee_radok_kernel as lee_radok_kernel
+from ._viscoelastic import prony_relaxation_modulus as prony_relaxation_modulus
+from ._viscoelastic import ting_contact_time as ting_contact_time
+from ._viscoelastic import ting_force as ting_force
 
 __all__ = [
     "adhesive_plastic_dent",
@@ -282,6 +291,11 @@ __all__ = [
     "thornton_restitution",
     "thornton_loading_work",
     "thornton_max_indentation",
+    "prony_relaxation_modulus",
+    "lee_radok_kernel",
+    "lee_radok_force",
+    "ting_contact_time",
+    "ting_force",
     "effective_shear_modulus",
     "full_slip_displacement",
     "cattaneo_mindlin_force",

@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 import impact
@@ -184,6 +185,41 @@ def viscoelastic_first_order(result):
     assert first_order < result.restitution < first_order + (1 - first_order) ** 2
 
 
+def viscoelastic_energy_balance(result):
+    """The micro-sphere: the kinetic energy lost is the work on the springs, and that is the
+    dashpots' dissipation + the energy left in the medium + the snaps' (each to 1e-8 of it); e
+    lies below Thornton–Ning of the relaxed medium (the dashpots take a third of the energy)."""
+    mass, work = result.scene.reduced_mass, result.dissipated_energy
+    relaxation = result.relaxation
+    snaps = relaxation.released_energy - relaxation.gained_energy
+    assert 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2) == pytest.approx(work, rel=1e-8)
+    assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=1e-8)
+    assert result.restitution < thornton_ning(result.scene, result.touch_velocity)
+    assert result.viscous_work > 0.25 * 0.5 * mass * result.touch_velocity**2
+
+
+def lee_radok_and_ting(result):
+    """The viscoelastic film: Lee & Radok while loading and held, Ting while unloading, where the
+    force exceeds 5 % of its peak (to 1e-6)."""
+    scene = result.scene
+    program, prony = scene.program, scene.effects.viscoelasticity.prony
+    moduli, times = ([getattr(term, name) for term in prony] for name in ("modulus", "time"))
+    expected = np.asarray(
+        theory.ting_force(
+            result.time,
+            program.rate,
+            scene.body.profile.R,
+            scene.material.effective_modulus,
+            np.array(moduli),
+            np.array(times),
+            program.peak / program.rate,
+            program.hold,
+        )
+    )
+    checked = (result.time >= 0.2) & (expected > 0.05 * expected.max())
+    assert np.max(np.abs(result.force[checked] / expected[checked] - 1)) < 1e-6
+
+
 def oblique_balance(result):
     """Kharaz et al.'s alumina sphere at 30°: the Hertz array rebounds with e = 1 (1e-12); the
     kinetic energy in (translational and rotational) is the energy out plus the friction work
@@ -226,6 +262,8 @@ CHECKS = {
     "plastic_steel": thornton_plastic,
     "wall_particle": thornton_ning_plastic,
     "rubber_ball_viscoelastic": viscoelastic_first_order,
+    "viscoelastic_sphere": viscoelastic_energy_balance,
+    "indentation_viscoelastic": lee_radok_and_ting,
     "oblique_kharaz": oblique_balance,
     "shear_paraboloid": cattaneo_mindlin_and_masing,
 }

@@ -4,7 +4,8 @@ row's inputs (in the order of the fit), to the vector of the observables.
 `simulation_model` is the simulation itself (`impact.as_function`; impacts only); `theory_model`
 the closed form of the Thornton–Ning impact (3.50)–(3.51) and its largest force
 (`thornton_ning_max_force`), or of an indentation scene its quasi-static curve (`curve`: JKR with
-attach hysteresis; `range_curve`: Maugis–Dugdale, Greenwood–Johnson), a fast model for scenes it
+attach hysteresis; `range_curve`: Maugis–Dugdale, Greenwood–Johnson; `viscoelastic_curve`: Lee &
+Radok and Ting on a viscoelastic half-space), a fast model for scenes it
 describes; any other such function may be passed to `impact.fit`. A model may also offer
 `batched(values, rows)`, the observables of all rows at once (computing what they share once).
 """
@@ -24,6 +25,7 @@ from ..._scene.profiles import ParaboloidSpec
 from ..._scene.scene import scene_yaml
 from ..differentiable import as_function
 from .curve import IndentationCurve, curve_model, curve_problems
+from .viscoelastic_curve import ViscoelasticCurve, viscoelastic_curve_model, viscoelastic_curve_problems
 
 Model = Callable[[jax.Array], jax.Array]
 
@@ -91,6 +93,8 @@ def theory_model(spec: FitSpec) -> Model:
     reversible JKR adhesion and no gravity); of an indentation, the quasi-static JKR curve
     (`curve`). FitError naming the field it cannot describe."""
     _check_theory(spec)
+    if spec.scene.effects.viscoelasticity is not None:
+        return viscoelastic_curve_model(spec)
     if spec.scene.kind == "indentation":
         return curve_model(spec)
     scene = spec.scene
@@ -110,13 +114,14 @@ def theory_model(spec: FitSpec) -> Model:
 
 # impact's own models: each a frozen dataclass of text, names and numbers, whose repr names
 # its compiled programs (the key of a fit's programs stored in the cache, `impact._core.stored`).
-DESCRIBED = (SimulatedImpact, ClosedForm, IndentationCurve)
+DESCRIBED = (SimulatedImpact, ClosedForm, IndentationCurve, ViscoelasticCurve)
 
 
 def _check_theory(spec: FitSpec) -> None:
     scene = spec.scene
     if scene.kind == "indentation":
-        if problems := curve_problems(spec):
+        check = viscoelastic_curve_problems if scene.effects.viscoelasticity is not None else curve_problems
+        if problems := check(spec):
             raise FitError(problems)
         return
     adhesion = scene.active_adhesion

@@ -32,7 +32,7 @@ _COMPILED: dict = {}
 POINT_READS = (
     "status", "stuck", "touch_velocity", "separation_velocity", "touch_time", "separation_time",
     "max_indentation", "max_force", "min_force", "contacts", "first_contact_work",
-    "first_contact_viscous_work", "steps", "accepted_steps", "rejected_steps",
+    "first_contact_viscous_work", "first_contact_stored_energy", "steps", "accepted_steps", "rejected_steps",
 )  # fmt: skip
 
 
@@ -52,6 +52,7 @@ def point_function(choices: StaticChoices) -> Callable:
         ratio = o.separation_velocity / jnp.where(touch > 0, touch, 1.0)
         dissipated = o.first_contact_work * force * length
         viscous = o.first_contact_viscous_work * force * length
+        stored = o.first_contact_stored_energy * force * length
         plastic = plastic_work(choices.integrator, physics, o.max_indentation * length, dissipated)
         rebound = jnp.where(success & jnp.isfinite(o.separation_time), o.separation_velocity * speed, jnp.nan)
         sliding = point_tangential(outcome.tangential, physics, speed, force * length, rebound)
@@ -74,9 +75,9 @@ def point_function(choices: StaticChoices) -> Callable:
             "dissipated_energy": dissipated,
             "plastic_work": plastic,
             "viscous_work": viscous,
-            "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous),
+            "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous, stored),
             "unrecovered_elastic_energy": unrecovered_elastic_energy(
-                options.adhesive, options.damped, dissipated, viscous
+                options.adhesive, options.damped, dissipated, viscous, stored
             ),
             "steps": o.steps,
             "accepted_steps": o.accepted_steps,

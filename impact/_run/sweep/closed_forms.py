@@ -13,6 +13,7 @@ from ..._integrate.adhesive_plastic import AdhesivePlastic
 from ..._integrate.curve import AbstractCurveIntegrator, CurveIntegrator
 from ..._integrate.plastic import Plastic
 from ..._integrate.problem import Physics, touch_velocity
+from ..._integrate.viscoelastic import ViscoelasticSprings
 from ..._law.base import AbstractAdhesiveLaw, AbstractPlasticLaw
 from ..._law.thornton import ThorntonNing
 from ..._scene.scene import Scene
@@ -25,11 +26,14 @@ def closed_form_restitution(physics: Physics, choices: "StaticChoices"):
     """The chapter's restitution for one point (traced): Thornton–Ning for the paraboloid with
     Δγa = Δγ, (3.82) for power laws (n > 1/2) and cones (n = 1, c = tan θ) with Δγa = Δγ,
     attach on touch for the paraboloid with Δγa = 0, all without gravity; 1 without adhesion;
-    NaN elsewhere. Maugis–Dugdale and Greenwood–Johnson points get their JKR limit (Λ → ∞,
-    k → ∞): no closed form has a finite range (nor Maugis–Dugdale's approach hysteresis).
+    NaN elsewhere (and for a viscoelastic half-space, which has none). Maugis–Dugdale and
+    Greenwood–Johnson points get their JKR limit (Λ → ∞, k → ∞): no closed form has a finite
+    range (nor Maugis–Dugdale's approach hysteresis).
     Thornton's (1997) closed form for plastic paraboloids without gravity, and Thornton & Ning's
     (1998) with adhesion (`theory.adhesive_plastic_restitution`)."""
     options, law = choices.options, physics.law
+    if isinstance(choices.integrator, ViscoelasticSprings):
+        return jnp.full((), jnp.nan)
     if isinstance(choices.integrator, AdhesivePlastic):
         profile, v = physics.profile, touch_velocity(physics, options)
         assert isinstance(profile, profiles.Paraboloid), "validated: plasticity takes paraboloids only"
@@ -106,6 +110,8 @@ def _damped_name(scene: Scene) -> str:
 def closed_form_name(scene: Scene) -> str:
     """Which closed form `theory_restitution` holds for a scene (as the figure names it)."""
     adhesion = scene.effects.adhesion
+    if scene.effects.viscoelasticity is not None:
+        return "no closed form (viscoelastic half-space)"
     if scene.effects.damping is not None:
         return _damped_name(scene)
     if scene.effects.plasticity is not None:

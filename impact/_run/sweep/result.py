@@ -38,7 +38,7 @@ RESULTS = {
     "separation_velocity": (np.float64, np.nan, "m s-1", "speed when the first contact let go (0 if captured)"),
     "dissipated_energy": (np.float64, np.nan, "J", "energy lost in the first contact"),
     "plastic_work": (np.float64, np.nan, "J", "the part of dissipated_energy lost to plastic flow"),
-    "viscous_work": (np.float64, np.nan, "J", "the part of dissipated_energy lost to damping"),
+    "viscous_work": (np.float64, np.nan, "J", "the part of dissipated_energy lost to damping or a viscoelastic medium"),
     "adhesion_hysteresis": (
         np.float64,
         np.nan,
@@ -137,14 +137,15 @@ class SweepResult:
             wrote it).
         plastic_work: The part of `dissipated_energy` lost to plastic flow [J]; only where the
             base scene names `effects.plasticity`, else None.
-        viscous_work: The part of `dissipated_energy` lost to damping [J]; only where the base
-            scene names `effects.damping`, else None.
+        viscous_work: The part of `dissipated_energy` lost to damping or to the dashpots of a
+            viscoelastic medium [J]; only where the base scene names `effects.damping` or
+            `effects.viscoelasticity`, else None.
         adhesion_hysteresis: The rest of `dissipated_energy`, lost at the jump-in and the
             snap-off of the adhesive contact [J]; only where the base scene names adhesion, else
             None.
-        unrecovered_elastic_energy: The rest of `dissipated_energy` of a damped contact without
-            adhesion, the elastic energy left in the surface [J]; only where the base scene names
-            damping, else None.
+        unrecovered_elastic_energy: The elastic energy left in the surface when the contact
+            ends [J] (of a damped contact without adhesion, the rest of `dissipated_energy`);
+            only where the base scene names damping or viscoelasticity, else None.
         body_velocity_after: The body's velocity after the first contact, lab frame, along its
             approach [m/s] (< 0: rebounding); only with a counterpart, else None.
         counterpart_velocity_after: The counterpart's velocity after the first contact, lab

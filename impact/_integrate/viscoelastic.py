@@ -1,0 +1,270 @@
+"""Impacts on a viscoelastic half-space: the spring array of `_law.viscoelastic_springs` stepped
+at a fixed step (scene: `contact.springs: N`, `solver: {method: midpoint, dt: <s>}`).
+
+Over a step of length h the body moves at the constant speed v½ (its indentation is linear in
+time), so the springs are advanced exactly: each one's state, the times it attaches or lets go,
+and the step's impulse I = ∫F dt, the work W = v½·I, the dashpots' dissipation and the energy of
+the snaps come in closed form. The body follows the implicit midpoint rule
+
+    v½ = (v + v')/2,   v' = v − I(v½)/m,   d' = d + h·v½,
+
+solved by `ITERATIONS` fixed-point evaluations from v½ = v − h·F/(2m) (each contracts the error
+by ≈ (ωh)²/4). Its kinetic energy changes by −v½·I: the work on the springs, exactly. So the
+first contact's energy balance, ½m(v₀² − v²) = W = dissipation + stored energy + energy of the
+snaps, holds to the iteration's residual, and the scheme is second order in h (jumps of the
+force at snaps included: their impulse is integrated exactly along the step).
+
+Free flight is analytic and starts the contact at d = 0 on a medium at rest: without gravity
+(refused with viscoelasticity: between bounces the surface still creeps back, which an analytic
+flight does not see) the body leaves for good after its first contact. A body that turns back
+towards the surface while still attached is captured (the creep that follows is not simulated).
+"""
+
+from typing import ClassVar
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._core.pytree import replace, where
+from .._core.types import Parameter
+from .._law.jkr import hess_coefficients
+from .._law.law import ContactLaw
+from .._law.reach import radius_bound
+from .._law.scales import Scales, energy_scales
+from .._law.viscoelastic import Viscoelastic
+from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
+from .base import AbstractIntegrator
+from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
+from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
+from .flight import land
+from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .transitions import next_phase
+from .work import ContactSummary
+
+# Default array length: the body's extent, or this margin over the bound on the contact radius of
+# the relaxed medium (E∞*: the softest, so the widest contact).
+_LENGTH_MARGIN = 1.25
+
+
+class ViscoelasticProblem(AbstractProblem):
+    """The scaled impact on the spring array of a viscoelastic medium."""
+
+    motion: Motion
+    bounded: Parameter
+    units: Scales
+    array: ViscoelasticArray
+    step: Parameter  # h, scaled
+
+    @property
+    def scales(self) -> Scales:
+        return self.units
+
+    @property
+    def overflow(self) -> jax.Array:
+        return jnp.asarray(False)
+
+
+class Relaxed(eqx.Module):
+    """The medium when the run ends (scaled), and the first contact's snaps."""
+
+    springs: SpringStates  # [capacity]: the first `count` are the array's
+    spacing: jax.Array  # Δx
+    count: jax.Array  # N
+    released: jax.Array  # elastic energy released by the springs that let go in the first contact
+    gained: jax.Array  # elastic energy gained by the springs that jumped onto the indenter in it
+
+
+class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
+    """N springs (`Physics.spring_count`, traced), each the medium's generalized Maxwell element,
+    in `capacity` compiled slots, stepped at dt (s)."""
+
+    capacity: int = eqx.field(static=True)  # slots of the compiled array (≥ N)
+    dt: float  # step (s)
+    max_steps: int = eqx.field(static=True, default=4096)  # steps a contact may take
+
+    ITERATIONS: ClassVar[int] = 3  # evaluations of the springs per step (the implicit midpoint)
+
+    def build(self, physics: Physics, options: Options) -> ViscoelasticProblem:
+        assert not options.gravity, "validated: a viscoelastic impact has no gravity"
+        law, profile, E_star = physics.law, physics.profile, physics.E_star
+        assert isinstance(law, Viscoelastic), f"a viscoelastic array rides a Viscoelastic law, not {type(law).__name__}"
+        speed = touch_velocity(physics, options)
+        if options.adhesive:
+            scales = law.scales(profile, E_star, physics.mass, speed)
+            relaxed, relaxed_attach = hess_coefficients(
+                law.work_of_adhesion, law.approach_work_of_adhesion, scales, E_star
+            )
+        else:
+            scales = energy_scales(profile, E_star, physics.mass, speed)
+            relaxed = relaxed_attach = jnp.zeros(())
+        elastic = ContactLaw(profile, scales, relaxed, relaxed_attach, options.adhesive)
+        touch_speed = speed / scales.velocity
+        reach, bounded = radius_bound(elastic, relaxed_attach, touch_speed)
+        default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * reach)
+        length = jnp.where(jnp.isnan(physics.spring_length), default, physics.spring_length / scales.radial)
+        detach, attach = law.hess_lengths(scales, E_star, options.adhesive)
+        count = physics.spring_count.astype(int)
+        array = spring_array(law.element(scales, E_star), elastic.g, length, count, self.capacity, detach, attach)
+        return ViscoelasticProblem(
+            motion=motion_of(physics, options, scales, -physics.gap / scales.normal, touch_speed),
+            bounded=bounded | jnp.isfinite(elastic.extent()),
+            units=scales,
+            array=array,
+            step=jnp.asarray(self.dt, jnp.float64) / scales.time,
+        )
+
+    def integrate(self, problem: ViscoelasticProblem, options: Options) -> Outcome:
+        return self.integrate_with_springs(problem, options)[0]
+
+    def integrate_with_springs(self, problem: ViscoelasticProblem, options: Options) -> tuple[Outcome, Relaxed]:
+        """The outcome and the medium when the run ends."""
+        rows = options.samples_per_phase * options.max_phases
+        terms = problem.array.element.moduli.shape[-1]
+        zero = jnp.zeros(())
+        start = _Walk(
+            carry=initial_carry(problem, options),
+            springs=SpringStates.virgin(self.capacity, terms),
+            force=zero,
+            contact_steps=jnp.zeros((), int),
+            released=zero,
+            gained=zero,
+            first=_FirstContact(stored=zero, released=zero, gained=zero),
+            stored_rows=jnp.zeros((), int),
+            stride=jnp.ones((), int),
+        )
+
+        def flight(walk: "_Walk") -> "_Walk":
+            touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
+            c = land(problem, options, walk.carry, 0.0, touch, 0.0, samples=False)
+            walk = replace(walk, carry=c, contact_steps=jnp.zeros((), int), released=zero, gained=zero)
+            return _store(walk, problem.array, rows, c.mode == ADVANCE)
+
+        def contact(walk: "_Walk") -> "_Walk":
+            return _store(self._step(problem, walk), problem.array, rows, jnp.asarray(True))
+
+        def running(walk: "_Walk"):
+            return walk.carry.mode != DONE
+
+        def advance(walk: "_Walk") -> "_Walk":
+            return jax.lax.cond(walk.carry.mode == FLIGHT, flight, contact, walk)
+
+        end = jax.lax.while_loop(running, advance, start)
+        outcome = replace(finish(end.carry), first_contact_stored_energy=end.first.stored)
+        relaxed = Relaxed(end.springs, problem.array.spacing, problem.array.count, end.first.released, end.first.gained)
+        return outcome, relaxed
+
+    def _step(self, problem: ViscoelasticProblem, walk: "_Walk") -> "_Walk":
+        """One step of the implicit midpoint rule, with its events."""
+        c, array, h = walk.carry, problem.array, problem.step
+
+        springs, totals, half = self._midpoint(problem, walk)
+        v = c.v - totals.impulse
+        d = c.d + h * half
+        t = c.t + h
+        force = array.force(springs)
+        attached = jnp.any(springs.attached)
+        inward = c.mode == ADVANCE
+        turned = inward & (v <= 0.0)
+        separated = ~inward & ~attached
+        captured = ~inward & attached & (v > 0.0)
+        overflow = array.overflows(springs)
+        out_of_time = t > problem.motion.time_limit
+        exhausted = walk.contact_steps + 1 >= self.max_steps
+        # Where the body let go: the last spring's release inside the step (on the straight path).
+        release = jnp.where(jnp.isfinite(totals.last_release), totals.last_release, h)
+        end_time = jnp.where(separated, c.t + release, t)
+        end_depth = jnp.where(separated, c.d + half * release, d)
+        turn = h * c.v / jnp.where(turned, c.v - v, 1.0)  # where v = 0 at a constant deceleration
+        deepest = jnp.where(turned, c.d + 0.5 * c.v * turn, jnp.maximum(c.d, d))
+        c = log_event(c, c.t + turn, EVENT_CODE["max_indentation"], turned)
+        c = log_event(c, end_time, EVENT_CODE["separation"], separated)
+        c = log_event(c, t, EVENT_CODE["capture"], captured)
+        stops = overflow | out_of_time | exhausted
+        c = log_event(c, t, EVENT_CODE["limit"], (out_of_time | exhausted) & ~separated & ~captured)
+        viscous = totals.dissipation
+        summary = ContactSummary(
+            work=half * totals.impulse - viscous,
+            lowest_force=jnp.minimum(walk.force, force),
+            highest_force=jnp.maximum(walk.force, force),
+            deepest=deepest,
+            viscous_work=viscous,
+        )
+        c = record_contact(c, (end_time, end_depth, v), summary, separated, captured)
+        status = Status.where(
+            overflow,
+            Status.radius_overflow,
+            Status.where(out_of_time, Status.time_limit, Status.where(exhausted, Status.solver_failure, c.status)),
+        )
+        status = Status.where(captured & ~stops, Status.captured, status)
+        following = jnp.where(separated, FLIGHT, jnp.where(turned | ~inward, RECEDE, ADVANCE))
+        phases = c.phases + jnp.asarray(separated | captured | turned, int)
+        c = replace(c, mode=jnp.where(stops | captured, DONE, following), status=status, phases=phases)
+        c = replace(c, steps=c.steps + 1, accepted=c.accepted + 1)
+        released, gained = walk.released + totals.released, walk.gained + totals.gained
+        now = _FirstContact(stored=array.stored(springs), released=released, gained=gained)
+        ended = (c.contacts == 1) & (separated | captured)
+        return replace(
+            walk,
+            carry=c,
+            springs=springs,
+            force=force,
+            contact_steps=walk.contact_steps + 1,
+            released=released,
+            gained=gained,
+            first=where(ended, now, walk.first),
+        )
+
+    def _midpoint(self, problem: ViscoelasticProblem, walk: "_Walk"):
+        """The step's springs, totals and v½ = (v + v')/2 of the implicit midpoint rule: fixed-point
+        evaluations from v½ = v − h·F/2 (scaled mass 1)."""
+        c, array, h = walk.carry, problem.array, problem.step
+
+        def corrected(_, half):
+            return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
+
+        half = jax.lax.fori_loop(0, self.ITERATIONS - 1, corrected, c.v - 0.5 * h * walk.force)
+        springs, totals = array.advance(walk.springs, c.d, half, h)
+        return springs, totals, half
+
+
+class _FirstContact(eqx.Module):
+    stored: jax.Array  # elastic energy the medium holds when the first contact ends
+    released: jax.Array
+    gained: jax.Array
+
+
+class _Walk(eqx.Module):
+    """State of the stepping loop."""
+
+    carry: Carry
+    springs: SpringStates
+    force: jax.Array  # F at the current state
+    contact_steps: jax.Array
+    released: jax.Array  # snaps of the contact under way
+    gained: jax.Array
+    first: _FirstContact
+    stored_rows: jax.Array  # trajectory rows written
+    stride: jax.Array  # steps between stored rows (doubles whenever the rows fill up)
+
+
+def _store(walk: _Walk, array: ViscoelasticArray, rows: int, valid) -> _Walk:
+    """Keep every `stride`-th state as a trajectory row (t, d, v, F, a); when the rows are full,
+    drop every other row and double the stride: any number of steps fits, evenly thinned."""
+    if rows == 0:
+        return walk
+
+    def thin(walk: _Walk) -> _Walk:
+        kept = walk.carry.trajectory[::2]
+        trajectory = jnp.full_like(walk.carry.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
+        carry = replace(walk.carry, trajectory=trajectory)
+        return replace(walk, carry=carry, stored_rows=jnp.asarray((rows + 1) // 2), stride=2 * walk.stride)
+
+    walk = jax.lax.cond(valid & (walk.stored_rows >= rows), thin, lambda walk: walk, walk)
+    c = walk.carry
+    keep = valid & (walk.contact_steps % walk.stride == 0)
+    row = jnp.stack([c.t, c.d, c.v, walk.force, array.contact_radius(walk.springs)])
+    target = jnp.minimum(walk.stored_rows, rows - 1)
+    trajectory = c.trajectory.at[target].set(jnp.where(keep, row, c.trajectory[target]))
+    stored = walk.stored_rows + jnp.asarray(keep, int)
+    return replace(walk, carry=replace(c, trajectory=trajectory), stored_rows=stored)
