@@ -54,7 +54,7 @@ def test_energy_ends_are_refused_where_they_do_not_apply(change, why):
             "method",
             "rk4",
             "unknown method 'rk4'; expected one of: "
-            "tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet, quadrature",
+            "tsit5, dopri5, dopri8, bosh3, heun, kvaerno3, kvaerno5, verlet, midpoint, quadrature",
         ),
     ],
 )
@@ -104,7 +104,7 @@ def test_quadrature_is_refused_where_it_does_not_apply(change, why):
     [
         ({"solver": {"method": "verlet", "dt": 1e-11}}, "contact.springs", "number of springs"),
         ({"solver": {"method": "verlet"}, "contact": {"springs": 100}}, "solver.dt", "time step"),
-        ({"solver": {"method": "tsit5", "dt": 1e-11}}, "solver.dt", "only for method 'verlet'"),
+        ({"solver": {"method": "tsit5", "dt": 1e-11}}, "solver.dt", "only for methods 'verlet' and 'midpoint'"),
         (
             {"solver": {"method": "verlet", "dt": -1.0}, "contact": {"springs": 100}},
             "solver.dt",

@@ -153,7 +153,7 @@ def test_midpoint_steps_only_a_viscoelastic_medium():
     ("prony", "field", "start"),
     [
         ([], "effects.viscoelasticity.prony", "List should have at least 1 item"),
-        ([{"modulus": 1e6, "time": 1.0}] * 17, "effects.viscoelasticity.prony", "List should have at most 16 items"),
+        ([{"modulus": 1e6, "time": 1.0}] * 17, "effects.viscoelasticity.prony", "at most 16 values, got 17"),
         ([{"modulus": 0.0, "time": 1.0}], "effects.viscoelasticity.prony.0.modulus", "0 Pa is outside"),
         ([{"modulus": 1e6, "time": 0.0}], "effects.viscoelasticity.prony.0.time", "0 s is outside"),
         ([{"modulus": 1e6}], "effects.viscoelasticity.prony.0.time", "missing (required)"),
