@@ -31,6 +31,7 @@ from .codes import ADVANCE, DONE, FLIGHT
 from .problem import Options, Physics
 from .springs import AbstractSpringArrayIntegrator, ArrayCarry, SpringArrayProblem, _arc, _spring_event, touch_down
 from .tangential import TangentialMotion, TangentialState
+from .thinning import keep_row
 
 # The friction limits: Coulomb spring by spring, or over the whole contact (Thornton's).
 FRICTION_LIMITS = ("per_spring", "whole_contact")
@@ -127,22 +128,11 @@ def arc_state(attached: Attached, spacing, gravity, d, v, tau):
 
 
 def _store(s: _State, row, rows: int) -> _State:
-    """Keep every `stride`-th row; when the rows are full, drop every other one and double the
-    stride (any number of steps fits, evenly thinned, in time order)."""
+    """The state with `row` kept among its trajectory rows (`keep_row`)."""
     if rows == 0:
         return s
-    full = s.stored >= rows
-
-    def thin(s: _State) -> _State:
-        kept = s.trajectory[::2]
-        trajectory = jnp.full_like(s.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
-        return replace(s, trajectory=trajectory, stored=jnp.asarray((rows + 1) // 2), stride=2 * s.stride)
-
-    s = jax.lax.cond(full, thin, lambda s: s, s)
-    keep = s.steps % s.stride == 0
-    target = jnp.minimum(s.stored, rows - 1)
-    trajectory = s.trajectory.at[target].set(jnp.where(keep, row, s.trajectory[target]))
-    return replace(s, trajectory=trajectory, stored=s.stored + jnp.asarray(keep, int))
+    kept = keep_row(s.trajectory, s.stored, s.stride, s.steps, row)
+    return replace(s, trajectory=kept.trajectory, stored=kept.stored, stride=kept.stride)
 
 
 def _row(c_t, d, v, force, radius, tangential: TangentialState):

@@ -35,6 +35,7 @@ from .carry import Carry, Outcome, finish, initial_carry, log_event, record_cont
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .problem import Motion, Options, Problem
 from .springs import AbstractSpringArrayIntegrator, SpringArrayProblem, touch_down
+from .thinning import keep_row
 from .work import ContactSummary
 
 # Steps allowed in all: a guard against a runaway, far above any scene's steps.
@@ -88,23 +89,12 @@ class _Stretch(eqx.Module):
 
 
 def _store(s: _Stretch, array: ComputedSpringArray, rows: int, valid=True) -> _Stretch:
-    """Keep every `stride`-th state; when the rows are full, drop every other row and double
-    the stride (so any number of steps fits, evenly thinned, in time order)."""
+    """The stretch with its state (t, d, v, F, a) kept among its trajectory rows (`keep_row`)."""
     if rows == 0:
         return s
-    full = s.stored >= rows
-
-    def thin(s: _Stretch) -> _Stretch:
-        kept = s.trajectory[::2]
-        trajectory = jnp.full_like(s.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
-        return replace(s, trajectory=trajectory, stored=(rows + 1) // 2, stride=2 * s.stride)
-
-    s = jax.lax.cond(valid & full, thin, lambda s: s, s)
-    keep = valid & (s.steps % s.stride == 0)
     row = jnp.stack([s.t, s.d, s.v, array.force(s.attached, s.d), s.attached.count * array.spacing])
-    target = jnp.minimum(s.stored, rows - 1)
-    trajectory = s.trajectory.at[target].set(jnp.where(keep, row, s.trajectory[target]))
-    return replace(s, trajectory=trajectory, stored=s.stored + jnp.asarray(keep, int))
+    kept = keep_row(s.trajectory, s.stored, s.stride, s.steps, row, valid)
+    return replace(s, trajectory=kept.trajectory, stored=kept.stored, stride=kept.stride)
 
 
 class VerletCarry(eqx.Module):

@@ -39,6 +39,7 @@ from .carry import Carry, Outcome, finish, initial_carry, log_event, record_cont
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
 from .flight import land
 from .problem import AbstractProblem, Motion, Options, Physics, motion_of, touch_velocity
+from .thinning import keep_row
 from .transitions import next_phase
 from .work import ContactSummary
 
@@ -249,22 +250,11 @@ class _Walk(eqx.Module):
 
 
 def _store(walk: _Walk, array: ViscoelasticArray, rows: int, valid) -> _Walk:
-    """Keep every `stride`-th state as a trajectory row (t, d, v, F, a); when the rows are full,
-    drop every other row and double the stride: any number of steps fits, evenly thinned."""
+    """The walk with its state (t, d, v, F, a) kept among its trajectory rows (`keep_row`)."""
     if rows == 0:
         return walk
-
-    def thin(walk: _Walk) -> _Walk:
-        kept = walk.carry.trajectory[::2]
-        trajectory = jnp.full_like(walk.carry.trajectory, jnp.nan).at[: kept.shape[0]].set(kept)
-        carry = replace(walk.carry, trajectory=trajectory)
-        return replace(walk, carry=carry, stored_rows=jnp.asarray((rows + 1) // 2), stride=2 * walk.stride)
-
-    walk = jax.lax.cond(valid & (walk.stored_rows >= rows), thin, lambda walk: walk, walk)
     c = walk.carry
-    keep = valid & (walk.contact_steps % walk.stride == 0)
     row = jnp.stack([c.t, c.d, c.v, walk.force, array.contact_radius(walk.springs)])
-    target = jnp.minimum(walk.stored_rows, rows - 1)
-    trajectory = c.trajectory.at[target].set(jnp.where(keep, row, c.trajectory[target]))
-    stored = walk.stored_rows + jnp.asarray(keep, int)
-    return replace(walk, carry=replace(c, trajectory=trajectory), stored_rows=stored)
+    kept = keep_row(c.trajectory, walk.stored_rows, walk.stride, walk.contact_steps, row, valid)
+    carry = replace(c, trajectory=kept.trajectory)
+    return replace(walk, carry=carry, stored_rows=kept.stored, stride=kept.stride)

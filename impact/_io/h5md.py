@@ -3,9 +3,10 @@
 (package, jax and diffrax versions, x64), and opening a stored run for reading."""
 
 import getpass
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
@@ -52,6 +53,24 @@ def new_h5md(path: str | Path, author: str | None = None) -> Iterator[h5py.File]
 def write_string(group: h5py.Group, name: str, text: str) -> h5py.Dataset:
     """A variable-length UTF-8 string dataset."""
     return group.create_dataset(name, data=text, dtype=h5py.string_dtype())
+
+
+def write_points(group: h5py.Group, fields: Mapping[str, tuple[str, str]], result: Any) -> None:
+    """One group `name/{step, value}` under `group` for each of `fields` (name → (unit,
+    description)), its values the result's attribute `name`; one `step` dataset numbers the
+    points, hard-linked into every group."""
+    step = None
+    for name, (unit, description) in fields.items():
+        values = getattr(result, name)
+        series = group.create_group(name)
+        if step is None:
+            step = series.create_dataset("step", data=np.arange(len(values), dtype=np.int64))
+        else:
+            series["step"] = step
+        value = series.create_dataset("value", data=values)
+        value.attrs["description"] = description
+        if unit:
+            value.attrs["unit"] = unit
 
 
 def read_string(dataset: h5py.Dataset) -> str:
@@ -121,6 +140,24 @@ def open_run(path: str | Path):
             yield file
         except KeyError as error:
             raise ValueError(f"{path} is not a complete impact run: {error}") from None
+
+
+def holds_kind(path: str | Path, kind: str) -> bool:
+    """Whether an HDF5 file's root says `impact_kind = kind` (False for anything else, or no file)."""
+    try:
+        with h5py.File(path, "r") as file:
+            return file.attrs.get("impact_kind") == kind
+    except OSError:
+        return False
+
+
+@contextmanager
+def open_kind(path: str | Path, kind: str):
+    """`open_run` of a file whose root says `impact_kind = kind`, else ValueError."""
+    with open_run(path) as file:
+        if file.attrs.get("impact_kind") != kind:
+            raise ValueError(f"{path} is not {'an' if kind[0] in 'aeiou' else 'a'} {kind} run")
+        yield file
 
 
 def read_provenance(path: str | Path, stats_group: str = "parameters/solver_stats") -> dict:

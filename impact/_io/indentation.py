@@ -30,12 +30,14 @@ import numpy as np
 from .._run.indentation import IndentationResult, PullOff
 from .._run.units import CURVE_TIME, INDENTATION_CURVE, MAXIMA_UNITS, PULL_OFF_UNITS
 from .h5md import (
+    holds_kind,
     new_h5md,
-    open_run,
+    open_kind,
     read_provenance,
     read_scales,
     read_scene,
     read_string,
+    write_points,
     write_run_stats,
     write_scene,
 )
@@ -46,11 +48,7 @@ SCALES = {"radial": "m", "normal": "m", "force": "N"}
 
 def is_indentation_run(path: str | Path) -> bool:
     """Whether an HDF5 file holds an indentation test (False for anything else, or no file)."""
-    try:
-        with h5py.File(path, "r") as file:
-            return file.attrs.get("impact_kind") == KIND
-    except OSError:
-        return False
+    return holds_kind(path, KIND)
 
 
 def write_indentation(
@@ -61,23 +59,8 @@ def write_indentation(
     with new_h5md(path, author) as file:
         file.attrs["impact_kind"] = KIND
         observables = file.create_group("observables")
-        curve = observables.create_group("curve")
-        step = None
-        for name, (unit, description) in INDENTATION_CURVE.items():
-            group = curve.create_group(name)
-            if step is None:
-                step = group.create_dataset("step", data=np.arange(len(result.force), dtype=np.int64))
-            else:
-                group["step"] = step
-            value = group.create_dataset("value", data=getattr(result, name))
-            value.attrs["description"] = description
-            if unit:
-                value.attrs["unit"] = unit
-        if result.time is not None:
-            group = curve.create_group("time")
-            group["step"] = step
-            value = group.create_dataset("value", data=result.time)
-            value.attrs["description"], value.attrs["unit"] = CURVE_TIME[1], CURVE_TIME[0]
+        timed = {} if result.time is None else {"time": CURVE_TIME}
+        write_points(observables.create_group("curve"), INDENTATION_CURVE | timed, result)
         pull_off = observables.create_group("pull_off")
         pull_off.attrs["description"] = "the last stable state before the contact is lost"
         for name, unit in PULL_OFF_UNITS.items():
@@ -103,9 +86,7 @@ def read_indentation(path: str | Path) -> IndentationResult:
     """The IndentationResult stored by `write_indentation` (the scene rebuilt from its YAML).
 
     Raises FileNotFoundError for a missing file and ValueError for a file that is not one."""
-    with open_run(path) as file:
-        if file.attrs.get("impact_kind") != KIND:
-            raise ValueError(f"{path} is not an indentation run")
+    with open_kind(path, KIND) as file:
         observables = file["observables"]
         curve = observables["curve"]
         pull_off = observables["pull_off"]

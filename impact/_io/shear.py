@@ -23,40 +23,32 @@ import h5py
 import numpy as np
 
 from .._run.shear import HELD_UNITS, SHEAR_CURVE, ShearResult
-from .files import atomic_path
-from .h5md import current_user, open_run, read_provenance, read_scene, read_string, write_header, write_scene
+from .h5md import (
+    holds_kind,
+    new_h5md,
+    open_kind,
+    read_provenance,
+    read_scene,
+    read_string,
+    write_points,
+    write_scene,
+)
 
 KIND = "shear"
 
 
 def is_shear_run(path: str | Path) -> bool:
     """Whether an HDF5 file holds a shear test (False for anything else, or no file)."""
-    try:
-        with h5py.File(path, "r") as file:
-            return file.attrs.get("impact_kind") == KIND
-    except OSError:
-        return False
+    return holds_kind(path, KIND)
 
 
 def write_shear(result: ShearResult, path: str | Path, *, wall_time: float | None = None, author: str | None = None):
     """Store a shear result (and the wall time of its simulation, s), atomically."""
     path = Path(path)
-    with atomic_path(path) as temporary, h5py.File(temporary, "w") as file:
+    with new_h5md(path, author) as file:
         file.attrs["impact_kind"] = KIND
-        write_header(file.create_group("h5md"), author or current_user())
         observables = file.create_group("observables")
-        curve = observables.create_group("shear")
-        step = None
-        for name, (unit, description) in SHEAR_CURVE.items():
-            group = curve.create_group(name)
-            if step is None:
-                step = group.create_dataset("step", data=np.arange(len(result.force), dtype=np.int64))
-            else:
-                group["step"] = step
-            value = group.create_dataset("value", data=getattr(result, name))
-            value.attrs["description"] = description
-            if unit:
-                value.attrs["unit"] = unit
+        write_points(observables.create_group("shear"), SHEAR_CURVE, result)
         held = observables.create_group("held")
         held.attrs["description"] = "the normal state held through the program"
         for name, unit in HELD_UNITS.items():
@@ -76,9 +68,7 @@ def read_shear(path: str | Path) -> ShearResult:
     """The ShearResult stored by `write_shear` (the scene rebuilt from its YAML).
 
     Raises FileNotFoundError for a missing file and ValueError for a file that is not one."""
-    with open_run(path) as file:
-        if file.attrs.get("impact_kind") != KIND:
-            raise ValueError(f"{path} is not a shear run")
+    with open_kind(path, KIND) as file:
         observables = file["observables"]
         curve, held, stats = observables["shear"], observables["held"], file["parameters/stats"]
         values: dict[str, Any] = {name: float(held[name][()]) for name in HELD_UNITS}

@@ -77,25 +77,35 @@ class Viscoelasticity(Section):
     def check(self, scene: "Scene") -> None:
         """Refuse (`FieldProblem`) what a viscoelastic half-space cannot run in `scene`."""
         effects = scene.effects
-        refusals = {
-            "effects.damping": effects.damping is not None
-            and "not with effects.viscoelasticity: the medium's dashpots already dissipate on the springs in "
-            "contact, and a damping force on the same springs would count that dissipation twice",
-            "effects.plasticity": effects.plasticity is not None
-            and "not with effects.viscoelasticity: Thornton's limiting contact pressure is a law of an elastic "
-            "half-space",
-            "effects.gravity": effects.gravity is not None
-            and "not with effects.viscoelasticity: between bounces the surface still creeps back, which the "
-            "analytic flight between contacts does not follow",
-            "effects.friction": effects.friction is not None
-            and "not with effects.viscoelasticity: the tangential springs of a viscoelastic medium (their own "
-            "relaxation, slip against creep) are not implemented",
-            "shear": scene.shear is not None
-            and "not with effects.viscoelasticity: the tangential springs of a viscoelastic medium are not implemented",
-        }
-        for field, why in refusals.items():
-            if why:
-                raise FieldProblem(field, why)
+        refusals = (
+            (
+                "effects.damping",
+                effects.damping,
+                "the medium's dashpots already dissipate on the springs in contact, and a damping force on the "
+                "same springs would count that dissipation twice",
+            ),
+            (
+                "effects.plasticity",
+                effects.plasticity,
+                "Thornton's limiting contact pressure is a law of an elastic half-space",
+            ),
+            (
+                "effects.gravity",
+                effects.gravity,
+                "between bounces the surface still creeps back, which the analytic flight between contacts does "
+                "not follow",
+            ),
+            (
+                "effects.friction",
+                effects.friction,
+                "the tangential springs of a viscoelastic medium (their own relaxation, slip against creep) are "
+                "not implemented",
+            ),
+            ("shear", scene.shear, "the tangential springs of a viscoelastic medium are not implemented"),
+        )
+        for field, section, why in refusals:
+            if section is not None:
+                raise FieldProblem(field, f"not with effects.viscoelasticity: {why}")
         adhesion = effects.adhesion
         if adhesion is not None and not adhesion.zero_range:
             raise FieldProblem(
