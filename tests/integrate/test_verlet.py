@@ -24,9 +24,11 @@ COUNT = 300
 STEPS = np.geomspace(1e-2, 1e-5, 13)  # scaled time
 
 
-def scene(velocity_factor=2.0, **extra):
+def scene(velocity_factor=2.0, effects=None, **extra):
+    """The micro-sphere at `velocity_factor` times its sticking velocity, JKR unless `effects`."""
     v_s = float(theory.thornton_ning_sticking_velocity(MASS, R, E_STAR, WORK))
-    return micro_sphere(velocity_factor * v_s, {"adhesion": {"work_of_adhesion": WORK}}, name="verlet", **extra)
+    effects = {"adhesion": {"work_of_adhesion": WORK}} if effects is None else effects
+    return micro_sphere(velocity_factor * v_s, effects, name="verlet", **extra)
 
 
 @pytest.fixture(scope="module")
