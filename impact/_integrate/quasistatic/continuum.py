@@ -34,10 +34,7 @@ def initial(built: Built, numerics: QuasiStaticNumerics, steps: int) -> Carry:
     """The state before the first step: apart, on the first leg, with empty buffers for the
     curve and its events (or done at once where a branch table overflowed)."""
     carry = Carry(
-        leg=jnp.zeros((), int),
-        direction=jnp.asarray(built.program.directions[0], int),
-        target=built.program.targets[0],
-        landing=jnp.asarray(False),
+        **built.program.start(),
         mode=jnp.asarray(FREE),
         wall=jnp.asarray(False),
         a=jnp.zeros(()),

@@ -116,10 +116,7 @@ def march_curve(
 def initial(march: CurveMarch, numerics: QuasiStaticNumerics, steps: int) -> CurveCarry:
     """Apart, at the depth where the interaction starts, on the first leg; empty buffers."""
     return CurveCarry(
-        leg=jnp.zeros((), int),
-        direction=jnp.asarray(march.program.directions[0], int),
-        target=march.program.targets[0],
-        landing=jnp.asarray(False),
+        **march.program.start(),
         attached=jnp.asarray(False),
         s=jnp.zeros(()),
         segment=jnp.zeros((), int),

@@ -19,6 +19,16 @@ class Program(eqx.Module):
     targets: jax.Array  # [L] where each leg ends (scaled force or indentation); −inf: unload to pull-off
     legs: jax.Array  # legs of the program (≤ L)
 
+    def start(self) -> dict[str, jax.Array]:
+        """A march's place in the program before its first step (`AbstractMarchCarry`'s
+        fields): on the first leg, in its direction, aiming at its target, not landing."""
+        return {
+            "leg": jnp.zeros((), int),
+            "direction": jnp.asarray(self.directions[0], int),
+            "target": self.targets[0],
+            "landing": jnp.asarray(False),
+        }
+
 
 def back_on_leg(c: Carried, program: Program, condition) -> Carried:
     """Where `condition` holds a landing ends: the march aims at its leg's target again, in the

@@ -93,10 +93,7 @@ def initial(built: Built, steps: int) -> SpringCarry:
     """The state before the first step: apart, no spring attached, on the first leg, with empty
     buffers for the curve and its events."""
     return SpringCarry(
-        leg=jnp.zeros((), int),
-        direction=jnp.asarray(built.program.directions[0], int),
-        target=built.program.targets[0],
-        landing=jnp.asarray(False),
+        **built.program.start(),
         touching=jnp.asarray(False),
         k=jnp.zeros((), int),
         d=jnp.zeros(()),
