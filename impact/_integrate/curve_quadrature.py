@@ -13,6 +13,8 @@ jumps between segments, the memory of a hysteretic path and the statuses are the
 (`curve.after_ride`), so the two differ only in how a ride along a segment is followed.
 """
 
+from typing import ClassVar
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -79,6 +81,11 @@ class CurveQuadrature(CurveIntegrator):
     """The equilibrium curve of a curve law (Maugis–Dugdale, Greenwood–Johnson; with
     `hysteresis` the path of a law with approach hysteresis), each ride along a rising segment
     ended by its energy balance and timed by Gauss–Legendre quadrature of dt = dd / v."""
+
+    # No diffrax ride: the phase loop runs op by op at any batch (its rule's arrays are larger
+    # than XLA:CPU's threshold for a whole-kernel loop), the same in any batch, and fastest
+    # unsplit (`impact bench speed`): no cap on the lanes of a call.
+    most_lanes: ClassVar[int | None] = None
 
     def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
         return run_phases(

@@ -22,7 +22,8 @@ from .profiles import Number, ParaboloidSpec, ProfileSpec
 SOLVER_METHODS = tuple(SOLVERS)
 # Fixed-step integrators of the spring array (contact.springs: N).
 SPRING_METHODS = ("verlet",)
-# The continuum law without an ODE solve: each phase ended by its energy and timed by quadrature.
+# The continuum law (or a curve law's continuum curve) without an ODE solve: each phase ended by
+# its energy and timed by quadrature.
 QUADRATURE = "quadrature"
 QUADRATURE_SHAPES = ("paraboloid", "cone", "power_law")  # g = A·xⁿ: the work along a branch in closed form
 METHODS = SOLVER_METHODS + SPRING_METHODS + (QUADRATURE,)
@@ -270,8 +271,8 @@ class Contact(Section):
 
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
-    'quadrature', the continuum law's phases timed by quadrature without an ODE solve; or
-    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
+    'quadrature', the continuum law's phases (or a curve law's rides) timed by quadrature without
+    an ODE solve; or 'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt."""
 
     method: str = Field(
         "tsit5",
@@ -280,7 +281,7 @@ class Solver(Section):
             + ", ".join(METHODS)
             + " ('quadrature': no ODE solve, each contact phase ended by its energy "
             "balance and timed by Gauss quadrature of dt = dd/v; undamped continuum JKR law on a paraboloid, cone or "
-            "power law; rtol and atol unused)"
+            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; rtol and atol unused)"
         ),
     )
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")

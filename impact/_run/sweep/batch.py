@@ -88,9 +88,7 @@ def point_results(choices: StaticChoices, physics: Physics, scales, reads: dict)
         "plastic_work": plastic,
         "viscous_work": viscous,
         "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous),
-        "unrecovered_elastic_energy": unrecovered_elastic_energy(
-            options.adhesive, options.damped, dissipated, viscous
-        ),
+        "unrecovered_elastic_energy": unrecovered_elastic_energy(options.adhesive, options.damped, dissipated, viscous),
         "steps": o.steps,
         "accepted_steps": o.accepted_steps,
         "rejected_steps": o.rejected_steps,
