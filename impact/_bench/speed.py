@@ -39,7 +39,6 @@ from copy import deepcopy
 from pathlib import Path
 
 import jax
-import jax.numpy as jnp
 import numpy as np
 
 from .._core.runtime import compiler_options

@@ -151,7 +151,7 @@ class CurveQuadrature(CurveIntegrator):
         )
         real = jnp.all(node_squared > 0.0) | (span == 0.0)
         speed = derivatives.sqrt(jnp.maximum(node_squared, jnp.finfo(node_squared.dtype).tiny))
-        t_end = c.t + jnp.abs(span) * ordered_sum(ordered_sum(_TIME_WEIGHTS * jnp.abs(slope) / speed))
+        t_end = c.t + jnp.abs(span) * ordered_sum(ordered_sum(jnp.abs(slope) / speed * _TIME_WEIGHTS))
 
         if options.samples_per_phase:
             c = where(active, store_samples(c, options, _rows(problem, options, c, curve, (s_end, t_end, v_end))), c)
