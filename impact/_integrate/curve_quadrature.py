@@ -7,10 +7,11 @@ v²(s) = v₀² − 2∫F d'(s) ds + 2g·(d(s) − d₀) (unit mass, scaled). As
 (`quadrature`), a phase ends at its segment's end where v² > 0 there, else at the first root of
 v² (a turnaround), and lasts t = ∫ d'(s) / |v(s)| ds, by the same graded rule in θ with
 s = s₀ + (s₁ − s₀)·(1 − cos πθ)/2 (which takes away the 1/√ singularity of 1/v at a turnaround).
-The curve has no closed-form work: ∫F d'(s) ds is summed by Gauss–Legendre from the phase's start,
-cell by cell along the segment (`_CumulativeWork`), the curve being smooth on a segment. The
-jumps between segments, the memory of a hysteretic path and the statuses are the ODE rider's
-(`curve.after_ride`), so the two differ only in how a ride along a segment is followed.
+The curve has no closed-form work: ∫F d'(s) ds is summed by Gauss–Legendre from the phase's
+start, cell by cell along the segment (the curve is smooth on a segment), and at the rule's
+nodes by its panels' spectral integration matrices (`_rule`). The jumps between segments, the
+memory of a hysteretic path and the statuses are the ODE rider's (`curve.after_ride`), so the
+two differ only in how a ride along a segment is followed.
 """
 
 from typing import ClassVar
@@ -21,7 +22,7 @@ import numpy as np
 
 from .._core import derivatives
 from .._core.pytree import replace, replace_where, where
-from .._core.quadrature import ordered_sum
+from .._core.quadrature import gauss_legendre, ordered_sum
 from .carry import Carry, Outcome, close_phase, run_phases, store_samples
 from .codes import ADVANCE, DONE, Status
 from .curve import CurveIntegrator, CurveProblem, after_ride
@@ -43,12 +44,6 @@ _STEP_NODES = 8
 _SETTLED = 1e-9
 # The rule in θ of `quadrature` (the same panels), with this many nodes a panel.
 _PANEL_NODES = 12
-
-
-def _legendre(nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes and weights of the Gauss–Legendre rule on [0, 1], as NumPy arrays."""
-    x, w = np.polynomial.legendre.leggauss(nodes)
-    return 0.5 * (x + 1.0), 0.5 * w
 
 
 def _rule() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -112,7 +107,7 @@ class CurveQuadrature(CurveIntegrator):
             return curve.riding(law, s, c.segment)
 
         def work_between(a, b, nodes: int):  # ∫F dd from s = a to b (arrays of one shape)
-            x, w = _legendre(nodes)
+            x, w = gauss_legendre(nodes)
             _, force, slope = riding(a[..., None] + (b - a)[..., None] * x)
             return (b - a) * ordered_sum(force * slope * w)
 
@@ -219,7 +214,7 @@ def _rows(problem: CurveProblem, options: Options, c: Carry, curve, end):
     law, gravity = problem.law, problem.motion.gravity
     s_end, t_end, v_end = end
     theta = jnp.linspace(0.0, 1.0, options.samples_per_phase)
-    nodes, weights = _legendre(SAMPLE_NODES)
+    nodes, weights = gauss_legendre(SAMPLE_NODES)
     span = s_end - c.radius
     lower = jnp.concatenate([theta[:1], theta[:-1]])
     inner = lower[:, None] + (theta - lower)[:, None] * nodes
@@ -227,7 +222,7 @@ def _rows(problem: CurveProblem, options: Options, c: Carry, curve, end):
     inner_points = c.radius + span * (1.0 - jnp.cos(jnp.pi * inner)) / 2.0
 
     def squared(s):  # v² by the work from the start (each sample's own rule: rows only)
-        x, w = _legendre(_CELL_NODES)
+        x, w = gauss_legendre(_CELL_NODES)
         _, force, slope = curve.riding(law, c.radius + (s - c.radius)[..., None] * x, c.segment)
         work = (s - c.radius) * ordered_sum(force * slope * w)
         return squared_speed((c.d, c.v), work, gravity, curve.depth(law, s))
