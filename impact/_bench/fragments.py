@@ -33,13 +33,14 @@ def speed_fragment(rows: list[dict], provenance: dict, command: str) -> str:
     lines = [
         _measured(provenance, command) + (f" Sweeps on {rows[0]['device']}." if rows else ""),
         "",
-        "| workload (`--only`) | points | µs per impact, median (min–max) | max error (against) | steps | compile "
-        "| build / integrate / post, µs | peak RSS |" + (" device peak |" if device else ""),
-        "|---|---|---|---|---|---|---|---|" + ("---|" if device else ""),
+        "| workload (`--only`) | method | points | µs per impact, median (min–max) | max error (against) | steps "
+        "| compile | build / integrate / post, µs | peak RSS |" + (" device peak |" if device else ""),
+        "|---|---|---|---|---|---|---|---|---|" + ("---|" if device else ""),
     ]
     for row in rows:
         line = (
-            f"| {names.get(row['workload'], row['workload'])} (`{row['workload']}`) | {row['points']} "
+            f"| {names.get(row['workload'], row['workload'])} (`{row['workload']}`) | {row['method']} "
+            f"| {row['points']} "
             f"| {microseconds(row['us_per_impact_median'])} ({microseconds(row['us_min'])}–"
             f"{microseconds(row['us_max'])}) | {row['max_error']:.1e} ({row['error_reference']}) "
             f"| {row['steps_mean']:.0f} | {row['compile_s']:.1f} s | {microseconds(row['build_us'])} / "

@@ -13,14 +13,14 @@ For each workload × points count:
 - **compile**: the sweep's compile time (a later row with the same call size reuses the
   compiled batch: 0; a batch stored by an earlier process is loaded instead: run
   `impact --no-cache bench speed` for the compilation itself).
-- **split**: one call of the sweep's size (its points spread over the sweep) through
-  `jit(vmap(build))`, `jit(vmap(build + integrate))` (`solve`, the outcome's fields that the
-  point function reads), each reduced to one number per point (`checksum`), and the
-  sweep's compiled point function, each the median of SPLIT_REPEATS interleaved runs, per
-  impact: build, integrate = the second − the first, post-process = the third − the second (the
-  SI results and the closed form). Where the solve stage takes longer than the whole point
-  function (it keeps fields that the point function's compilation trims), post-processing
-  reads 0 (`split_times`); noise can still make the integration slightly negative.
+- **split**: one call of the sweep's size (its points spread over the sweep) as three compiled
+  programs in a row, each taking the one before's results: build (the scaled problem),
+  integrate (the outcome's fields that the point function reads) and post-process (the SI
+  results and the closed form); per impact, the parts of the run of median total of
+  SPLIT_REPEATS (`staged_us`). Each part is the time between two clock readings, so none is
+  negative and they add up to the staged total; that total exceeds the sweep's time by what
+  the fused point saves (the problem and the outcome written out and read back, three calls).
+- **method**: how the workload's impacts are integrated (`method_label`).
 - the mean solver steps, the peak RSS of the process so far (`resource.getrusage`) and, on
   GPUs, the most memory a device has held so far.
 
@@ -39,21 +39,22 @@ from copy import deepcopy
 from pathlib import Path
 
 import jax
-import jax.numpy as jnp
 import numpy as np
 
 from .._core.runtime import compiler_options
 from .._io.files import write_text
 from .._plots.bench import save_speed_figure
-from .._run.programs import solve
 from .._run.sweep import execute, plan_sweep
-from .._run.sweep.batch import POINT_READS, batch_sharding, compiled_batch, local_devices
+from .._run.sweep.batch import batch_sharding, local_devices, point_reads, point_results
 from .._run.sweep.plan import Plan as SweepPlan
+from .._scene.scene import Scene
+from .._scene.sections import QUADRATURE
 from .._scene.sweep import make_spec
 from .workloads import CLOSED_FORM, TIGHTER_FACTOR, TIGHTER_POINTS, SpeedPlan, Workload
 
 COLUMNS = (
     "workload",
+    "method",
     "points",
     "us_per_impact_median",
     "us_min",
@@ -64,6 +65,7 @@ COLUMNS = (
     "build_us",
     "integrate_us",
     "post_us",
+    "staged_us",
     "steps_mean",
     "springs",
     "chunk",
@@ -88,7 +90,7 @@ def run(folder: str | Path, plan: SpeedPlan, log: Callable[[str], None] = print)
             rows.append(row)
             device = row["device_peak_mb"]
             log(
-                f"[{time.perf_counter() - start:4.0f} s] {workload.key} × {points}: "
+                f"[{time.perf_counter() - start:4.0f} s] {workload.key} ({row['method']}) × {points}: "
                 f"{row['us_per_impact_median']:.3g} µs per impact, error {row['max_error']:.1e} "
                 f"({row['error_reference']}), compile {row['compile_s']:.1f} s, peak RSS {row['peak_rss_mb']:.0f} MB"
                 + (f", device peak {device:.0f} MB" if math.isfinite(device) else "")
@@ -112,6 +114,7 @@ def measure(workload: Workload, points: int, repeats: int, chunk: int | None = N
     build, integrate, post = split(plan, max(first["call_sizes"]), repeats)
     return {
         "workload": workload.key,
+        "method": method_label(plan.spec.scene),
         "points": points,
         "us_per_impact_median": float(np.median(per_impact)),
         "us_min": float(per_impact.min()),
@@ -122,6 +125,7 @@ def measure(workload: Workload, points: int, repeats: int, chunk: int | None = N
         "build_us": build,
         "integrate_us": integrate,
         "post_us": post,
+        "staged_us": build + integrate + post,
         "steps_mean": reduce.steps / points,
         "springs": workload.springs,
         "chunk": first["chunk"],
@@ -163,9 +167,12 @@ class Reduction:
 
 
 def tighter_error(workload: Workload, points: int, reduce: Reduction, chunk: int | None = None) -> float:
-    """Max |e − e_tight| at the strided points, e_tight at rtol and atol / TIGHTER_FACTOR."""
+    """Max |e − e_tight| at the strided points, e_tight at rtol and atol / TIGHTER_FACTOR (of a
+    quadrature workload: by the scene's default ODE solver at its default rtol and atol / that)."""
     scene = deepcopy(workload.scene)
     solver = scene.setdefault("solver", {})
+    if solver.get("method") == QUADRATURE:  # against the ODE solver's tighter run
+        del solver["method"]
     solver["rtol"] = solver.get("rtol", 1e-10) / TIGHTER_FACTOR
     solver["atol"] = solver.get("atol", 1e-12) / TIGHTER_FACTOR
     chosen = np.arange(0, points, reduce.stride)
@@ -179,62 +186,70 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction, chunk: int
     return reduce.error(tight)
 
 
-_STAGES: dict = {}  # jit(vmap(build)) and jit(vmap(solve)) by static choices, this session
-SPLIT_REPEATS = 3  # interleaved runs of each stage: the median is kept
+_STAGES: dict = {}  # the three compiled stages by static choices, this session
+SPLIT_REPEATS = 3  # runs of the three stages in a row: the one of median total is kept
 
 
 def split(plan: SweepPlan, size: int, repeats: int) -> tuple[float, float, float]:
     """(build, integrate, post-process) in µs per impact, on one call of `size` points spread
-    evenly over the sweep's order (every cost, not only the first chunk's)."""
+    evenly over the sweep's order (every cost, not only the first chunk's).
+
+    The point runs as three compiled programs in a row, each taking the one before's results
+    (`stages`); a part is the time between two of the run's clock readings, so the parts are
+    positive and add up to the run's total (`staged_us`, the run of median total)."""
     choices = plan.choices[0]
     if choices not in _STAGES:
-        integrator, options = choices
-        _STAGES[choices] = (
-            jax.jit(
-                jax.vmap(lambda physics: checksum(integrator.build(physics, options))),
-                compiler_options=compiler_options(),
-            ),
-            jax.jit(
-                jax.vmap(lambda physics: checksum(read_by_point(solve(integrator, physics, options)))),
-                compiler_options=compiler_options(),
-            ),
-        )
+        _STAGES[choices] = stages(choices)
+    build, integrate, post = _STAGES[choices]
     devices = local_devices()
     sample = plan.order[np.linspace(0, plan.size - 1, size).round().astype(int)]
     batch = jax.device_put(jax.tree.map(lambda leaf: leaf[sample], plan.physics), batch_sharding(devices))
-    stages = [*_STAGES[choices], compiled_batch(choices, plan.physics, size, devices)[0]]
-    for stage in stages[:2]:
-        jax.block_until_ready(stage(batch))  # compile outside the timing
-    times = np.zeros((min(repeats, SPLIT_REPEATS), len(stages)))
-    for run in range(len(times)):
-        for s, stage in enumerate(stages):
-            t0 = time.perf_counter()
-            jax.block_until_ready(stage(batch))
-            times[run, s] = time.perf_counter() - t0
-    return split_times(*(np.median(times, axis=0) / size * 1e6))
+    jax.block_until_ready(post(batch, integrate(build(batch))))  # compile outside the timing
+    runs = np.array([staged_run(build, integrate, post, batch) for _ in range(min(repeats, SPLIT_REPEATS))])
+    kept = runs[np.argsort(runs.sum(axis=1))[len(runs) // 2]] / size * 1e6
+    return float(kept[0]), float(kept[1]), float(kept[2])
 
 
-def split_times(build: float, solved: float, full: float) -> tuple[float, float, float]:
-    """(build, integrate, post-process) from the times of the three stages (any unit): the
-    differences of the nested stages, build + integrate + post-process = full. The solve stage
-    returns every field of the outcome that the point function reads, the point function only
-    what its results need (XLA trims the rest): where the solve takes longer than the whole,
-    the integration is capped at the whole less the build and post-processing reads 0."""
-    integrate = min(solved, full) - build
-    return float(build), float(integrate), float(full - build - integrate)
+def stages(choices) -> tuple[Callable, Callable, Callable]:
+    """The point function of `choices` as three compiled, vmapped programs: build (physics →
+    problem), integrate (problem → units and the outcome's fields a point reads) and post-process
+    (physics, those → the SI results); run in a row they compute what the point function does."""
+    integrator, options = choices
+
+    def integrate(problem):
+        return problem.scales, point_reads(integrator.integrate(problem, options))
+
+    def post(physics, solved):
+        return point_results(choices, physics, *solved)
+
+    def compiled(function):
+        return jax.jit(jax.vmap(function), compiler_options=compiler_options(platform=local_devices()[0].platform))
+
+    return compiled(lambda physics: integrator.build(physics, options)), compiled(integrate), compiled(post)
 
 
-def read_by_point(solved) -> tuple:
-    """(scales, the outcome's fields the point function reads) of `solve`'s result."""
-    scales, outcome = solved
-    return scales, [getattr(outcome, name) for name in POINT_READS]
+def staged_run(build: Callable, integrate: Callable, post: Callable, batch) -> np.ndarray:
+    """(build, integrate, post-process) in s of one run of the stages in a row: the differences
+    of four clock readings, each taken once the stage's results are ready."""
+    clock = [time.perf_counter()]
+    problem = jax.block_until_ready(build(batch))
+    clock.append(time.perf_counter())
+    solved = jax.block_until_ready(integrate(problem))
+    clock.append(time.perf_counter())
+    jax.block_until_ready(post(batch, solved))
+    clock.append(time.perf_counter())
+    return np.diff(clock)
 
 
-def checksum(tree) -> jax.Array:
-    """The sum of every number in `tree`: a stage's whole work is done (nothing is left out as
-    unused) but only one number per point is written back, like the point function's scalars
-    (returning the tables or the outcome itself costs more than the full point function)."""
-    return sum((jnp.sum(jnp.asarray(leaf, float)) for leaf in jax.tree.leaves(tree)), jnp.zeros(()))
+def method_label(scene: Scene) -> str:
+    """How the scene's impacts are integrated, as a row names it: 'quadrature', a spring array's
+    'exact events' or 'verlet dt … s', else the diffrax solver and its rtol."""
+    solver = scene.solver
+    if solver.method == QUADRATURE:
+        return QUADRATURE
+    if scene.contact.springs != "continuum":
+        return "exact events" if solver.dt is None else f"verlet dt {solver.dt:g} s"
+    return f"{solver.method} rtol {solver.rtol:g}"
 
 
 def device_name() -> str:

@@ -150,7 +150,7 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         work = _work(law, curve, c.radius, s_end)
         low, high = extremes(lambda s: curve.force(law, s), c.radius, s_end)
         advancing = c.mode == ADVANCE
-        nxt, memory = _after(problem, curve, advancing, ride.turned, c.segment, s_end, d_end, c.memory)
+        nxt, memory = after_ride(problem, curve, advancing, ride.turned, c.segment, s_end, d_end, c.memory)
         summary = ContactSummary(work=work, lowest_force=low, highest_force=high, deepest=jnp.maximum(c.d, d_end))
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
@@ -193,7 +193,7 @@ def _work(law: CurveLaw, curve: AbstractCurve, start, end):
     return (end - start) * ordered_sum(weights * force * slope)
 
 
-def _after(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segment, s_end, d_end, memory):
+def after_ride(problem: CurveProblem, curve: AbstractCurve, advancing, turned, segment, s_end, d_end, memory):
     """The phase after a ride along `curve` ended (`Next.radius` holds s), and the memory of a
     curve that `remembers`: re-anchored where loading turns back, cleared where the body leaves."""
     law = problem.law

@@ -40,7 +40,7 @@ from .work import active_branch, branch_work, hold_work, phase_summary, segment_
 
 # Panels of the rule in θ ∈ [0, ½], mirrored onto [½, 1], each with _PANEL_NODES Gauss–Legendre
 # nodes: 80 nodes a leg.
-_PANEL_BREAKS = (0.0, 1e-3, 1e-2, 0.05, 0.2, 0.5)
+PANEL_BREAKS = (0.0, 1e-3, 1e-2, 0.05, 0.2, 0.5)
 _PANEL_NODES = 8
 # Cells scanned for the first root of v² along a leg, then Illinois steps inside the cell.
 _SCAN_CELLS = 8
@@ -50,7 +50,7 @@ _ILLINOIS_STEPS = 12
 # phase ended there would lose that energy, so the run ends with `solver_failure` instead.
 _SETTLED = 1e-9
 # Gauss–Legendre nodes per interval between two trajectory samples.
-_SAMPLE_NODES = 4
+SAMPLE_NODES = 4
 
 
 def _rule() -> tuple[np.ndarray, np.ndarray]:
@@ -58,7 +58,7 @@ def _rule() -> tuple[np.ndarray, np.ndarray]:
     the graded rule on θ ∈ [0, 1]; NumPy arrays (a JAX array made at import would start JAX's
     backend before `jax.distributed.initialize`)."""
     nodes, weights = np.polynomial.legendre.leggauss(_PANEL_NODES)
-    half = np.asarray(_PANEL_BREAKS)
+    half = np.asarray(PANEL_BREAKS)
     breaks = np.concatenate([half, 1.0 - half[::-1][1:]])
     low, width = breaks[:-1, None], np.diff(breaks)[:, None]
     theta = (low + width * (nodes + 1.0) / 2.0).ravel()
@@ -127,7 +127,7 @@ class _Leg:
     def time(self, end, turned):
         """The leg's duration from its start to `end` (a turnaround where `turned`), and whether
         v² > 0 at every node between."""
-        fraction, weight = _RULE
+        fraction, weight = RULE
         span = end - self.start
         x = self.start + span * fraction
         squared = self.balance(end, turned)(x)
@@ -139,7 +139,7 @@ class _Leg:
         """(x, t since the leg's start, v) at the points θ ∈ [0, 1] (increasing, from 0 to 1) of
         the leg to `end` (a turnaround where `turned`): t by a small rule between neighbours,
         scaled to the leg's `duration` (from the full rule), so that the times rise to it."""
-        nodes, weights = np.polynomial.legendre.leggauss(_SAMPLE_NODES)
+        nodes, weights = np.polynomial.legendre.leggauss(SAMPLE_NODES)
         span = end - self.start
         balance = self.balance(end, turned)
         lower = jnp.concatenate([theta[:1], theta[:-1]])
@@ -154,7 +154,7 @@ class _Leg:
         return points, times, velocity
 
 
-_RULE = _rule()
+RULE = _rule()
 
 
 def _contact(problem: Problem, options: Options, c: Carry) -> Carry:

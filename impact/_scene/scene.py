@@ -14,7 +14,7 @@ from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .. import theory
 from .._integrate.base import AbstractIntegrator
-from .._law.base import AbstractContactLaw
+from .._law.base import AbstractContactLaw, AbstractCurveLaw
 from .._law.jkr import Elastic
 from .adhesion import AbstractAdhesion
 from .adhesion.base import edge_integrator
@@ -261,10 +261,13 @@ class Scene(Section):
 
     def _quadrature_refusal(self) -> str | None:
         """Why this scene's contact phases cannot be timed by quadrature, or None where they can:
-        the phases must end from their energy balance, the work along a branch must have its
+        a curve law's rides (`_curve_quadrature_refusal`); else the phases must end from their
+        energy balance, the work along a branch must have its
         closed form (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
         if self.kind != "impact":
             return "times the contact phases of an impact (kind: impact)"
+        if isinstance(self.contact_law(), AbstractCurveLaw):
+            return self._curve_quadrature_refusal()
         why = self._energy_ends_refusal()
         if why is not None:
             return why
@@ -282,6 +285,17 @@ class Scene(Section):
                 f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
                 "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
             )
+        return None
+
+    def _curve_quadrature_refusal(self) -> str | None:
+        """Why this scene's rides along a curve law's equilibrium curve cannot be ended by their
+        energy balance and timed by quadrature, or None where they can."""
+        if self.contact.springs != "continuum":
+            return "rides the continuum law's curve only (contact.springs: continuum)"
+        if self.solver.phase_ends == "integrated":
+            return "ends every phase from its energy balance: leave solver.phase_ends out"
+        if self.limits.duration is not None:
+            return "does not stop a phase midway: leave limits.duration out"
         return None
 
     @model_validator(mode="after")

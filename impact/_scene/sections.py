@@ -25,7 +25,8 @@ SOLVER_METHODS = tuple(SOLVERS)
 # implicit midpoint rule of a viscoelastic half-space's springs (effects.viscoelasticity).
 MIDPOINT = "midpoint"
 SPRING_METHODS = ("verlet", MIDPOINT)
-# The continuum law without an ODE solve: each phase ended by its energy and timed by quadrature.
+# The continuum law (or a curve law's continuum curve) without an ODE solve: each phase ended by
+# its energy and timed by quadrature.
 QUADRATURE = "quadrature"
 QUADRATURE_SHAPES = ("paraboloid", "cone", "power_law")  # g = A·xⁿ: the work along a branch in closed form
 METHODS = SOLVER_METHODS + SPRING_METHODS + (QUADRATURE,)
@@ -273,10 +274,10 @@ class Contact(Section):
 
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
-    'quadrature', the continuum law's phases timed by quadrature without an ODE solve; or
-    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt; or
-    'midpoint', the implicit midpoint rule on the spring array of a viscoelastic half-space
-    (effects.viscoelasticity), its springs advanced exactly over each step dt."""
+    'quadrature', the continuum law's phases (or a curve law's rides) timed by quadrature without
+    an ODE solve; or 'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N)
+    with step dt; or 'midpoint', the implicit midpoint rule on the spring array of a viscoelastic
+    half-space (effects.viscoelasticity), its springs advanced exactly over each step dt."""
 
     method: str = Field(
         "tsit5",
@@ -285,7 +286,7 @@ class Solver(Section):
             + ", ".join(METHODS)
             + " ('quadrature': no ODE solve, each contact phase ended by its energy "
             "balance and timed by Gauss quadrature of dt = dd/v; undamped continuum JKR law on a paraboloid, cone or "
-            "power law; rtol and atol unused)"
+            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; rtol and atol unused)"
         ),
     )
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")

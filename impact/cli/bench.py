@@ -70,9 +70,9 @@ def run_bench_speed(
         command = speed_command(quick, points, only, repeats, chunk)
         write_text(markdown, speed_fragment(rows, provenance("quick" if quick else "full"), command))
         say(f"  {markdown}")
-    # Twelve columns: printed 160 wide whatever the terminal (rich cannot widen `out` per print,
+    # Thirteen columns: printed 180 wide whatever the terminal (rich cannot widen `out` per print,
     # and a narrower table truncates every number); the CSV holds the same rows.
-    Console(width=max(out.width, 160), highlight=False).print(speed_table(rows))
+    Console(width=max(out.width, 180), highlight=False).print(speed_table(rows))
 
 
 def speed_command(quick: bool, points: list[int], only: list[str], repeats: int, chunk: int | None) -> str:
@@ -105,6 +105,7 @@ def speed_table(rows: list[dict]) -> Table:
     table = Table(title=f"What a point costs{device} (µs per impact after compile, median)")
     for heading in (
         "workload",
+        "method",
         "points",
         "chunk",
         "µs/impact",
@@ -117,10 +118,11 @@ def speed_table(rows: list[dict]) -> Table:
         "post",
         "steps",
     ):
-        table.add_column(heading, justify="left" if heading in ("workload", "vs") else "right")
+        table.add_column(heading, justify="left" if heading in ("workload", "method", "vs") else "right")
     for row in rows:
         table.add_row(
             row["workload"],
+            row["method"],
             str(row["points"]),
             str(row["chunk"]),
             microseconds(row["us_per_impact_median"]),

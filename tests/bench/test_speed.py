@@ -1,9 +1,10 @@
 """`impact bench speed` through the command line, on a tiny plan
 (two spring arrays, two point counts): the CSV's rows and columns, the split into parts that add up to
-timed calls, the figure, the Markdown fragment for the docs, and the refusals of bad options."""
+the staged run, the figure, the Markdown fragment for the docs, and the refusals of bad options."""
 
 import csv
 
+import jax
 import numpy as np
 import pytest
 from typer.testing import CliRunner
@@ -12,6 +13,9 @@ from impact._bench import speed
 from impact._bench.speed import COLUMNS, Reduction, speed_csv
 from impact._bench.workloads import CLOSED_FORM, TIGHTER, speed_plan, workloads
 from impact._core.defaults import SPEED_REPEATS
+from impact._run.sweep import plan_sweep
+from impact._run.sweep.batch import point_function
+from impact._scene.sweep import make_spec
 from impact.cli import app
 from impact.cli.bench import speed_command
 
@@ -66,13 +70,14 @@ def test_markdown_fragment_holds_the_runs_table(tiny):
     assert f"`impact bench speed {options}`" in lines[0], lines[0]
     table = [line for line in lines if line.startswith("|")]
     assert _cells(table[0]) == [
-        "workload (`--only`)", "points", "µs per impact, median (min–max)", "max error (against)", "steps",
+        "workload (`--only`)", "method", "points", "µs per impact, median (min–max)", "max error (against)", "steps",
         "compile", "build / integrate / post, µs", "peak RSS",
     ]  # fmt: skip
     assert len(table) == 2 + len(rows)
     for line, row in zip(table[2:], rows, strict=True):
-        name, points, time, error, steps, compile_time, split, rss = _cells(line)
+        name, method, points, time, error, steps, compile_time, split, rss = _cells(line)
         assert name.endswith(f"(`{row['workload']}`)") and int(points) == int(row["points"]), (line, row)
+        assert method == row["method"] == "exact events", (line, row)
         median, low, high = (float(x) for x in time.replace("(", " ").replace(")", " ").replace("–", " ").split())
         for shown, value in ((median, "us_per_impact_median"), (low, "us_min"), (high, "us_max")):
             assert shown == pytest.approx(float(row[value]), rel=5e-3, abs=0.051), (line, row)
@@ -115,28 +120,28 @@ def test_compile_counted_once_per_call_size(tiny):
     assert compile_time[2] == compile_time[3] == 0, compile_time
 
 
-def test_split_parts_add_up_to_timed_calls(tiny):
-    """The split is three nested calls timed: build, build + integrate, the whole point; each
-    part is the difference of two of them, so the parts add up to the whole call, and each
-    partial sum is a time (positive). Not compared with the sweep's time: wall-time ratios
-    on a loaded machine are noise."""
+def test_split_parts_add_up_to_the_staged_run(tiny):
+    """The split is one run of the three stages in a row, each part the time between two clock
+    readings: every part is positive and they add up to the staged total (to the CSV's six
+    digits). Not compared with the sweep's time: wall-time ratios on a loaded machine are noise."""
     _, _, rows = tiny
     for row in rows:
-        build, integrate, post = (float(row[name]) for name in ("build_us", "integrate_us", "post_us"))
-        assert all(np.isfinite([build, integrate, post])), row
-        assert build > 0 and build + integrate > 0 and build + integrate + post > 0, row
+        parts = [float(row[name]) for name in ("build_us", "integrate_us", "post_us")]
+        assert all(part > 0 for part in parts), row
+        assert sum(parts) == pytest.approx(float(row["staged_us"]), rel=1e-5), row
 
 
-@pytest.mark.parametrize(
-    ("stages", "parts"),
-    [((2.0, 7.0, 9.0), (2.0, 5.0, 2.0)), ((2.0, 9.0, 7.0), (2.0, 5.0, 0.0))],
-    ids=["nested", "solve stage longer than the whole"],
-)
-def test_the_split_never_reports_a_negative_post_process(stages, parts):
-    """A solve stage that took longer than the whole point function (measured: attach, the
-    post-process −1.76 µs) leaves post-processing 0, the parts still adding up to the whole."""
-    assert speed.split_times(*stages) == parts
-    assert sum(parts) == stages[2]
+def test_the_stages_compute_what_the_point_function_does():
+    """Build, integrate and post-process run in a row give the sweep's point results, bit for
+    bit (the same operations, only compiled apart); the row names the method."""
+    plan = plan_sweep(make_spec(workloads()[0].scene, {"initial.velocity": np.array([0.02, 0.05])}))
+    choices = plan.choices[0]
+    build, integrate, post = speed.stages(choices)
+    staged = post(plan.physics, integrate(build(plan.physics)))
+    whole = jax.jit(jax.vmap(point_function(choices)))(plan.physics)
+    for name in ("restitution", "contact_time", "max_force", "status"):
+        np.testing.assert_array_equal(np.asarray(staged[name]), np.asarray(whole[name]), err_msg=name)
+    assert speed.method_label(plan.spec.scene) == "tsit5 rtol 1e-10"
 
 
 @pytest.mark.parametrize(
@@ -171,14 +176,16 @@ def test_an_interrupted_run_leaves_no_folder(tmp_path, monkeypatch):
 
 
 def test_plans():
-    """The full plan has every workload of issue #14 and the scan over N = 64…4096; the quick
-    one leaves out the heavy ones; --points replaces every count."""
+    """The full plan has every workload of issue #14, the rate-independent ones once more timed by
+    quadrature, and the scan over N = 64…4096; the quick one leaves out the heavy ones; --points
+    replaces every count."""
     full = speed_plan()
     keys = [workload.key for workload, _ in full.runs()]
-    assert keys[:18] == [
+    assert keys[:22] == [
         "tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity", "gj",
         "tn_energy", "power1.5_energy", "power3_energy", "cone_energy",
         "tn_quadrature", "power1.5_quadrature", "power3_quadrature", "cone_quadrature",
+        "md_quadrature", "attach_quadrature", "gravity_quadrature", "gj_quadrature",
     ]  # fmt: skip
     assert sorted(w.springs for w, _ in full.runs() if w.springs) == [64, 128, 256, 512, 1024, 2048, 4096]
     assert all(100 in counts for _, counts in full.runs())

@@ -39,53 +39,64 @@ POINT_READS = (
 def point_function(choices: StaticChoices) -> Callable:
     """One impact → its scalar results in SI (the arithmetic of `impact._run.impacts.to_result`):
     the columns `SOLVED`, every named loss among them (a sweep keeps those its scene names)."""
-    separated, captured = RESULT_CODE["separated"], RESULT_CODE["captured"]
-    options = choices.options
 
     def point(physics: Physics) -> dict:
         scales, outcome = solve(choices.integrator, physics, choices.options)
-        o = SimpleNamespace(**{name: getattr(outcome, name) for name in POINT_READS})  # only these
-        time_unit, length, force = scales.time, scales.normal, scales.force
-        speed = length / time_unit
-        touch = o.touch_velocity
-        success = (o.status == separated) | (o.status == captured)
-        ratio = o.separation_velocity / jnp.where(touch > 0, touch, 1.0)
-        dissipated = o.first_contact_work * force * length
-        viscous = o.first_contact_viscous_work * force * length
-        stored = o.first_contact_stored_energy * force * length
-        plastic = plastic_work(choices.integrator, physics, o.max_indentation * length, dissipated)
-        rebound = jnp.where(success & jnp.isfinite(o.separation_time), o.separation_velocity * speed, jnp.nan)
-        sliding = point_tangential(outcome.tangential, physics, speed, force * length, rebound)
-        return {
-            **sliding,
-            "restitution": jnp.where((touch > 0) & success, ratio, jnp.nan),
-            "stuck": o.stuck,
-            "status": o.status.astype(jnp.int32),
-            "contact_time": jnp.where(
-                ~jnp.isfinite(o.touch_time),
-                jnp.nan,  # never touched
-                jnp.where(~jnp.isfinite(o.separation_time), jnp.inf, (o.separation_time - o.touch_time) * time_unit),
-            ),
-            "max_indentation": o.max_indentation * length,
-            "max_force": o.max_force * force,
-            "min_force": o.min_force * force,
-            "bounces": o.contacts.astype(jnp.int32),
-            "touch_velocity": touch * speed,
-            "separation_velocity": o.separation_velocity * speed,
-            "dissipated_energy": dissipated,
-            "plastic_work": plastic,
-            "viscous_work": viscous,
-            "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous, stored),
-            "unrecovered_elastic_energy": unrecovered_elastic_energy(
-                options.adhesive, options.damped, dissipated, viscous, stored
-            ),
-            "steps": o.steps,
-            "accepted_steps": o.accepted_steps,
-            "rejected_steps": o.rejected_steps,
-            "theory_restitution": closed_form_restitution(physics, choices),
-        }
+        return point_results(choices, physics, scales, point_reads(outcome))
 
     return point
+
+
+def point_reads(outcome) -> dict:
+    """The fields of an outcome that `point_results` reads (`POINT_READS`, and an oblique
+    impact's `tangential`): XLA drops the rest (the event log) from a compiled point."""
+    return {**{name: getattr(outcome, name) for name in POINT_READS}, "tangential": outcome.tangential}
+
+
+def point_results(choices: StaticChoices, physics: Physics, scales, reads: dict) -> dict:
+    """The scalar results in SI of one impact from its units and the outcome's `point_reads`."""
+    separated, captured = RESULT_CODE["separated"], RESULT_CODE["captured"]
+    options = choices.options
+    o = SimpleNamespace(**reads)
+    time_unit, length, force = scales.time, scales.normal, scales.force
+    speed = length / time_unit
+    touch = o.touch_velocity
+    success = (o.status == separated) | (o.status == captured)
+    ratio = o.separation_velocity / jnp.where(touch > 0, touch, 1.0)
+    dissipated = o.first_contact_work * force * length
+    viscous = o.first_contact_viscous_work * force * length
+    stored = o.first_contact_stored_energy * force * length
+    plastic = plastic_work(choices.integrator, physics, o.max_indentation * length, dissipated)
+    rebound = jnp.where(success & jnp.isfinite(o.separation_time), o.separation_velocity * speed, jnp.nan)
+    sliding = point_tangential(o.tangential, physics, speed, force * length, rebound)
+    return {
+        **sliding,
+        "restitution": jnp.where((touch > 0) & success, ratio, jnp.nan),
+        "stuck": o.stuck,
+        "status": o.status.astype(jnp.int32),
+        "contact_time": jnp.where(
+            ~jnp.isfinite(o.touch_time),
+            jnp.nan,  # never touched
+            jnp.where(~jnp.isfinite(o.separation_time), jnp.inf, (o.separation_time - o.touch_time) * time_unit),
+        ),
+        "max_indentation": o.max_indentation * length,
+        "max_force": o.max_force * force,
+        "min_force": o.min_force * force,
+        "bounces": o.contacts.astype(jnp.int32),
+        "touch_velocity": touch * speed,
+        "separation_velocity": o.separation_velocity * speed,
+        "dissipated_energy": dissipated,
+        "plastic_work": plastic,
+        "viscous_work": viscous,
+        "adhesion_hysteresis": adhesion_hysteresis(options.adhesive, dissipated, plastic, viscous, stored),
+        "unrecovered_elastic_energy": unrecovered_elastic_energy(
+            options.adhesive, options.damped, dissipated, viscous, stored
+        ),
+        "steps": o.steps,
+        "accepted_steps": o.accepted_steps,
+        "rejected_steps": o.rejected_steps,
+        "theory_restitution": closed_form_restitution(physics, choices),
+    }
 
 
 def point_tangential(tangential, physics: Physics, speed, energy, rebound) -> dict:

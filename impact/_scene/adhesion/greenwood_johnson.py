@@ -9,6 +9,7 @@ from pydantic import Field, model_validator
 from ... import theory
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.curve import CurveIntegrator
+from ..._integrate.curve_quadrature import CurveQuadrature
 from ..._law.double_hertz import tip_radius
 from ..._law.greenwood_johnson import GreenwoodJohnson
 from ...profiles import Profile
@@ -16,7 +17,7 @@ from .. import domains as d
 from ..domains import within
 from ..errors import FieldProblem
 from ..profiles import Number
-from ..sections import WorkOfAdhesion
+from ..sections import QUADRATURE, WorkOfAdhesion
 from .base import AbstractAdhesion, adaptive, value
 from .hysteresis import approach_not_above
 
@@ -78,6 +79,8 @@ class GreenwoodJohnsonAdhesion(AbstractAdhesion):
         )
 
     def integrator(self, scene: "Scene") -> AbstractIntegrator:
+        if scene.solver.method == QUADRATURE:
+            return CurveQuadrature()
         return CurveIntegrator(**adaptive(scene))
 
     def describe(self) -> str:

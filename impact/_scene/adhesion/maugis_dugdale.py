@@ -9,6 +9,7 @@ from pydantic import Field, model_validator
 from ... import theory
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.curve import CurveIntegrator
+from ..._integrate.curve_quadrature import CurveQuadrature
 from ..._integrate.dugdale import DugdaleSpringIntegrator
 from ..._law.maugis_dugdale import MaugisDugdale
 from ...profiles import Profile
@@ -16,7 +17,7 @@ from .. import domains as d
 from ..domains import within
 from ..errors import FieldProblem
 from ..profiles import Number
-from ..sections import SOLVER_METHODS, Length, WorkOfAdhesion
+from ..sections import QUADRATURE, SOLVER_METHODS, Length, WorkOfAdhesion
 from ..springs import DUGDALE_MAX_SPRINGS, spring_capacity, unresolved_zone
 from .base import adaptive, value
 from .hysteresis import AbstractHystereticAdhesion
@@ -94,6 +95,8 @@ class MaugisDugdaleAdhesion(AbstractHystereticAdhesion):
         springs = scene.contact.springs
         if springs != "continuum":
             return DugdaleSpringIntegrator(**adaptive(scene), capacity=spring_capacity(springs))
+        if scene.solver.method == QUADRATURE:
+            return CurveQuadrature(hysteresis=self.hysteretic)
         return CurveIntegrator(**adaptive(scene), hysteresis=self.hysteretic)
 
     def describe(self) -> str:
