@@ -146,7 +146,9 @@ def section_at(scene: BaseModel, prefix: str) -> BaseModel:
 
 def with_values(scene: Scene, values: Mapping[str, object]) -> Scene:
     """A copy of `scene` with fields set by dotted path, WITHOUT validation (values may be
-    numpy arrays: the copy then describes a whole batch for vectorized formulas)."""
+    numpy arrays: the copy then describes a whole batch for vectorized formulas). Only fields
+    the sections have can be set, and no choice of a section's kind (a profile's `shape`, an
+    adhesion's `model`): ValueError; a changed kind needs a new scene (`load_scene`)."""
     tree: dict = {}
     for path, value in values.items():
         assign(tree, path.split("."), value)
@@ -154,9 +156,19 @@ def with_values(scene: Scene, values: Mapping[str, object]) -> Scene:
 
 
 Model = TypeVar("Model", bound=BaseModel)
+# The fields that choose a section's class in its union (profiles by shape, adhesions by model).
+_KIND_TAGS = ("shape", "model")
 
 
 def _replaced(model: Model, tree: dict) -> Model:
+    fields = type(model).model_fields
+    for key, sub in tree.items():
+        if key not in fields:
+            raise ValueError(f"{type(model).__name__} has no field {key!r}: with_values sets existing fields")
+        if key in _KIND_TAGS and sub != getattr(model, key):
+            raise ValueError(
+                f"{key} = {sub!r} changes the kind of {type(model).__name__}: load a new scene to change it"
+            )
     update = {key: _replaced_node(getattr(model, key), sub) for key, sub in tree.items()}
     return model.model_copy(update=update)
 
