@@ -20,6 +20,16 @@ def _ms(seconds: float) -> str:
     return f"{seconds * 1e6:.3g} µs"
 
 
+def header(*columns: str) -> list[str]:
+    """The two lines that open a Markdown table of `columns`."""
+    return ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+
+
+def row(*cells: object) -> str:
+    """One line of a Markdown table."""
+    return "| " + " | ".join(str(cell) for cell in cells) + " |"
+
+
 def _err(value: float) -> str:
     return "failed" if not np.isfinite(value) else f"{value:.1e}"
 
@@ -54,11 +64,16 @@ def _summary(data: dict) -> list[str]:
 def cheapest_table(data: dict) -> list[str]:
     """The cheapest setting of each method at each target error, as Markdown table rows."""
     equal = data["equal"]
-    lines = [
-        "| error ≤ | continuum, single | continuum, batched (per impact) | scipy solve_ivp | springs, exact "
-        "| springs, Verlet | scipy ÷ single | scipy ÷ batched |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
+    lines = header(
+        "error ≤",
+        "continuum, single",
+        "continuum, batched (per impact)",
+        "scipy solve_ivp",
+        "springs, exact",
+        "springs, Verlet",
+        "scipy ÷ single",
+        "scipy ÷ batched",
+    )
     cost = equal["cost"]
     for t, target in enumerate(equal["targets"]):
         single = cost["continuum, single"][t]
@@ -66,9 +81,16 @@ def cheapest_table(data: dict) -> list[str]:
         base = cost.get("scipy solve_ivp", np.full(len(equal["targets"]), np.nan))[t]
         solver = equal["best_solver"][float(target)]
         lines.append(
-            f"| {target:.0e} | {_ms(single)}{f' ({solver})' if solver else ''} | {_ms(batched)} | {_ms(base)} | "
-            f"{_ms(cost['springs, exact'][t])} | {_ms(cost['springs, Verlet'][t])} | "
-            f"{_ratio(base, single)} | {_ratio(base, batched)} |"
+            row(
+                f"{target:.0e}",
+                _ms(single) + (f" ({solver})" if solver else ""),
+                _ms(batched),
+                _ms(base),
+                _ms(cost["springs, exact"][t]),
+                _ms(cost["springs, Verlet"][t]),
+                _ratio(base, single),
+                _ratio(base, batched),
+            )
         )
     return lines
 
@@ -90,12 +112,8 @@ def _continuum(data: dict) -> list[str]:
 def continuum_table(cont: dict, batch_error: bool = True) -> list[str]:
     """Every solver × rtol of the continuum law as Markdown table rows; `batch_error` adds the
     batch's own max error (table.md has it, the documentation's fragment leaves it out)."""
-    last = " batch max error |" if batch_error else ""
-    lines = [
-        "| solver | rtol | max error | steps per impact (accepted / rejected) | single impact | batched, per impact |"
-        + last,
-        "|---|---|---|---|---|---|" + ("---|" if batch_error else ""),
-    ]
+    columns = ["solver", "rtol", "max error", "steps per impact (accepted / rejected)", "single impact"]
+    lines = header(*columns, "batched, per impact", *(["batch max error"] if batch_error else []))
     for solver, s in cont["solvers"].items():
         for r, rtol in enumerate(cont["rtols"]):
             failed = s["failures"][r]
@@ -104,13 +122,11 @@ def continuum_table(cont: dict, batch_error: bool = True) -> list[str]:
                 if not failed
                 else f"failed: {failed} ({s['error_max_solved'][r]:.1e} on the rest)"
             )
-            row = (
-                f"| {solver} | {rtol:.0e} | {error} | {np.mean(s['accepted'][r]):.0f} / "
-                f"{np.mean(s['rejected'][r]):.0f} | {_ms(s['time_single_mean'][r])} | {_ms(s['time_batch'][r])} |"
-            )
+            steps = f"{np.mean(s['accepted'][r]):.0f} / {np.mean(s['rejected'][r]):.0f}"
+            cells = [solver, f"{rtol:.0e}", error, steps, _ms(s["time_single_mean"][r]), _ms(s["time_batch"][r])]
             if batch_error:
-                row += f" {_err(s['batch_error'][r]) if np.isfinite(s['time_batch'][r]) else '—'} |"
-            lines.append(row)
+                cells.append(_err(s["batch_error"][r]) if np.isfinite(s["time_batch"][r]) else "—")
+            lines.append(row(*cells))
     return lines
 
 
@@ -123,14 +139,13 @@ def _solve_check(cont: dict) -> list[str]:
         "",
         "Check against `impact._run.impacts.solve` itself (static tolerances, own compile), Thornton–Ning 2·v_s:",
         "",
-        "| solver | rtol | solve: compile | solve: run | traced-rtol run | same e |",
-        "|---|---|---|---|---|---|",
+        *header("solver", "rtol", "solve: compile", "solve: run", "traced-rtol run", "same e"),
     ]
     for solver, s in checks:
         for k, rtol in enumerate(s["check_rtol"]):
+            compile_time, same = f"{s['check_compile'][k]:.1f} s", "yes" if s["check_same"][k] else "no"
             lines.append(
-                f"| {solver} | {rtol:.0e} | {s['check_compile'][k]:.1f} s | {_ms(s['check_time'][k])} | "
-                f"{_ms(s['check_time_traced'][k])} | {'yes' if s['check_same'][k] else 'no'} |"
+                row(solver, f"{rtol:.0e}", compile_time, _ms(s["check_time"][k]), _ms(s["check_time_traced"][k]), same)
             )
     return lines
 
@@ -142,14 +157,11 @@ def _spring_array(springs: dict) -> list[str]:
         "",
         f"## Spring array, exact event-driven stepper (spatial error; fitted order in N: {exact['order']:.2f})",
         "",
-        "| N | e − e_TN | events | time | compile |",
-        "|---|---|---|---|---|",
+        *header("N", "e − e_TN", "events", "time", "compile"),
     ]
     for k, count in enumerate(exact["N"]):
-        lines.append(
-            f"| {count} | {exact['error'][k]:+.2e} | {exact['events'][k]} | {_ms(exact['time'][k])} | "
-            f"{exact['compile'][k]:.1f} s |"
-        )
+        error, compile_time = f"{exact['error'][k]:+.2e}", f"{exact['compile'][k]:.1f} s"
+        lines.append(row(count, error, exact["events"][k], _ms(exact["time"][k]), compile_time))
     lines += [
         "",
         "Time per spring event (a run's time over its events, fixed costs included) and the buffers of the "
@@ -167,23 +179,30 @@ def _spring_array(springs: dict) -> list[str]:
 def _verlet(springs: dict) -> list[str]:
     """Velocity Verlet over (N, Δt): its spatial and time-stepping errors and energy identity."""
     lines = ["", "## Spring array, velocity Verlet (error = spatial part + time-stepping part)", ""]
-    for count, row in springs["verlet"].items():
+    for count, fit in springs["verlet"].items():
         lines.append(
-            f"- N = {count}: spatial part e_exact − e_TN = {row['spatial_error']:+.2e}; time-stepping part "
-            f"|e − e_exact| fitted order in Δt {row['order']:.2f}, bounded by {row['bound']:.2g}·Δt (scaled Δt)"
+            f"- N = {count}: spatial part e_exact − e_TN = {fit['spatial_error']:+.2e}; time-stepping part "
+            f"|e − e_exact| fitted order in Δt {fit['order']:.2f}, bounded by {fit['bound']:.2g}·Δt (scaled Δt)"
         )
     lines += [
         "",
-        "| N | Δt (scaled) | Δt | steps | time | e − e_exact (time stepping) | e − e_TN (total) "
-        "| KE lost − ∮F dd, relative (= ⅛Δt²a₀²: Verlet's identity) |",
-        "|---|---|---|---|---|---|---|---|",
+        *header(
+            "N",
+            "Δt (scaled)",
+            "Δt",
+            "steps",
+            "time",
+            "e − e_exact (time stepping)",
+            "e − e_TN (total)",
+            "KE lost − ∮F dd, relative (= ⅛Δt²a₀²: Verlet's identity)",
+        ),
     ]
-    for count, row in springs["verlet"].items():
-        for k, step in enumerate(row["dt"]):
-            mismatch = (row["energy_lost"][k] - row["work"][k]) / row["energy_lost"][k]
+    for count, run in springs["verlet"].items():
+        for k, step in enumerate(run["dt"]):
+            mismatch = (run["energy_lost"][k] - run["work"][k]) / run["energy_lost"][k]
+            errors = f"{run['time_error'][k]:+.2e}", f"{run['total_error'][k]:+.2e}", f"{mismatch:+.1e}"
             lines.append(
-                f"| {count} | {step:.2e} | {row['dt_si'][k]:.2e} s | {row['steps'][k]} | {_ms(row['time'][k])} | "
-                f"{row['time_error'][k]:+.2e} | {row['total_error'][k]:+.2e} | {mismatch:+.1e} |"
+                row(count, f"{step:.2e}", f"{run['dt_si'][k]:.2e} s", run["steps"][k], _ms(run["time"][k]), *errors)
             )
     return lines
 
@@ -196,13 +215,10 @@ def _scipy(scipy_results: dict) -> list[str]:
         "",
         "## Baseline: scipy.integrate.solve_ivp, (d, v) in JKR units, a(d) by brentq in the right-hand side",
         "",
-        "| method | rtol | max error | right-hand sides per impact | steps per impact | time per impact |",
-        "|---|---|---|---|---|---|",
+        *header("method", "rtol", "max error", "right-hand sides per impact", "steps per impact", "time per impact"),
     ]
     for method, s in scipy_results.items():
         for r, rtol in enumerate(s["rtols"]):
-            lines.append(
-                f"| {method} | {rtol:.0e} | {_err(s['error_max'][r])} | {np.mean(s['nfev'][r]):.0f} | "
-                f"{np.mean(s['steps'][r]):.0f} | {_ms(s['time_mean'][r])} |"
-            )
+            calls, steps = f"{np.mean(s['nfev'][r]):.0f}", f"{np.mean(s['steps'][r]):.0f}"
+            lines.append(row(method, f"{rtol:.0e}", _err(s["error_max"][r]), calls, steps, _ms(s["time_mean"][r])))
     return lines

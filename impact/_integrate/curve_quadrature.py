@@ -23,7 +23,7 @@ import numpy as np
 from .._core import derivatives
 from .._core.pytree import replace, replace_where, where
 from .._core.quadrature import gauss_legendre, ordered_sum
-from .carry import Carry, Outcome, close_phase, run_phases, store_samples
+from .carry import Carry, close_phase, store_samples
 from .codes import ADVANCE, DONE, Status
 from .curve import CurveIntegrator, CurveProblem, after_ride
 from .problem import Options
@@ -81,16 +81,7 @@ class CurveQuadrature(CurveIntegrator):
     # than XLA:CPU's threshold for a whole-kernel loop), the same in any batch, and fastest
     # unsplit (`impact bench speed`): no cap on the lanes of a call.
     most_lanes: ClassVar[int | None] = None
-
-    def integrate(self, problem: CurveProblem, options: Options) -> Outcome:
-        return run_phases(
-            problem,
-            options,
-            self.flight(problem, options),
-            lambda c: self.contact(problem, options, c),
-            memory=self.memory(problem),
-            landed_contact=True,
-        )
+    landed_contact: ClassVar[bool] = True
 
     def contact(self, problem: CurveProblem, options: Options, c: Carry) -> Carry:
         """One ride along a rising segment: its end from the energy balance, its duration by

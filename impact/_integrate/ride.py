@@ -11,7 +11,7 @@ memory it keeps). The phase loop around it is `carry.run_phases`.
 
 import abc
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar
 
 import equinox as eqx
 import jax
@@ -89,6 +89,10 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
     """An adaptive diffrax solver over the contact phases of a law, each a ride ended by its
     located event (`contact`); a subclass supplies the law's part."""
 
+    # Whether the phase loop runs a flight and the contact it lands in as one turn
+    # (`run_phases`): for contact phases that take no diffrax ride.
+    landed_contact: ClassVar[bool] = False
+
     @abc.abstractmethod
     def flight(self, problem: ProblemT, options: Options) -> Callable[[Carry], Carry]:
         """The flight from the carry's state to the next contact (`flight.land`), built once
@@ -145,6 +149,7 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
             self.flight(problem, options),
             lambda c: self.contact(problem, options, c),
             memory=self.memory(problem),
+            landed_contact=self.landed_contact,
         )
 
     def contact(self, problem: ProblemT, options: Options, c: Carry) -> Carry:

@@ -14,20 +14,20 @@ from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .. import theory
 from .._integrate.base import AbstractIntegrator
-from .._law.base import AbstractContactLaw, AbstractCurveLaw
+from .._law.base import AbstractContactLaw
 from .._law.jkr import Elastic
 from .adhesion import AbstractAdhesion
 from .adhesion.base import edge_integrator
 from .cost import check_run_cost
 from .effects import Effects
 from .errors import FieldProblem, SceneError, problems_of
-from .profiles import ParaboloidSpec, PowerLawSpec, ProfileSpec
+from .method_support import energy_ends_refusal, quadrature_refusal
+from .profiles import ParaboloidSpec, ProfileSpec
 from .reading import read_yaml
 from .representable import check_representable, time_unit
 from .sections import (
     MASS_OR_DENSITY,
     QUADRATURE,
-    QUADRATURE_SHAPES,
     SOLVER_METHODS,
     Body,
     Contact,
@@ -232,71 +232,19 @@ class Scene(Section):
 
     @model_validator(mode="after")
     def _energy_ends_supported(self):
-        why = self._energy_ends_refusal()
+        why = energy_ends_refusal(self)
         if self.solver.phase_ends == "energy" and why is not None:
             raise FieldProblem("solver.phase_ends", why)
         return self
-
-    def _energy_ends_refusal(self) -> str | None:
-        """Why this scene's phases cannot end from their energy balance, or None where they can."""
-        adhesion = self.active_adhesion
-        if self.contact.springs != "continuum":
-            return "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
-        if adhesion is not None and not adhesion.zero_range:
-            return f"not with adhesion model {adhesion.name!r}: its phases end where the solver locates them"
-        if self.effects.plasticity is not None:
-            return "not with effects.plasticity: its phases end where the solver locates them"
-        if self.effects.damping is not None:
-            return "not with effects.damping: a damped phase does not keep its energy"
-        return None
 
     @model_validator(mode="after")
     def _quadrature_supported(self):
         if self.solver.method != QUADRATURE:
             return self
-        why = self._quadrature_refusal()
+        why = quadrature_refusal(self)
         if why is not None:
             raise FieldProblem("solver.method", f"'quadrature' {why}")
         return self
-
-    def _quadrature_refusal(self) -> str | None:
-        """Why this scene's contact phases cannot be timed by quadrature, or None where they can:
-        a curve law's rides (`_curve_quadrature_refusal`); else the phases must end from their
-        energy balance, the work along a branch must have its
-        closed form (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
-        if self.kind != "impact":
-            return "times the contact phases of an impact (kind: impact)"
-        if isinstance(self.contact_law(), AbstractCurveLaw):
-            return self._curve_quadrature_refusal()
-        why = self._energy_ends_refusal()
-        if why is not None:
-            return why
-        if self.solver.phase_ends == "integrated":
-            return "ends every phase from its energy balance: leave solver.phase_ends out (or set it to 'energy')"
-        if self.limits.duration is not None:
-            return "does not stop a phase midway: leave limits.duration out"
-        profile = self.contact_profile
-        if profile.shape not in QUADRATURE_SHAPES:
-            return f"needs a profile of the form g = A·xⁿ ({', '.join(QUADRATURE_SHAPES)}), not {profile.shape!r}"
-        adhesion = self.active_adhesion
-        partial = adhesion is not None and 0.0 < adhesion.approach < adhesion.work_of_adhesion
-        if isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial):
-            return (
-                f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
-                "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
-            )
-        return None
-
-    def _curve_quadrature_refusal(self) -> str | None:
-        """Why this scene's rides along a curve law's equilibrium curve cannot be ended by their
-        energy balance and timed by quadrature, or None where they can."""
-        if self.contact.springs != "continuum":
-            return "rides the continuum law's curve only (contact.springs: continuum)"
-        if self.solver.phase_ends == "integrated":
-            return "ends every phase from its energy balance: leave solver.phase_ends out"
-        if self.limits.duration is not None:
-            return "does not stop a phase midway: leave limits.duration out"
-        return None
 
     @model_validator(mode="after")
     def _representable(self):
@@ -349,7 +297,7 @@ class Scene(Section):
         scene allows it and 'integrated' where not."""
         if self.solver.phase_ends is not None:
             return self.solver.phase_ends
-        return "integrated" if self._energy_ends_refusal() is not None else "energy"
+        return "integrated" if energy_ends_refusal(self) is not None else "energy"
 
     @property
     def active_adhesion(self) -> AbstractAdhesion | None:

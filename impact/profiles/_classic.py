@@ -8,6 +8,16 @@ from ._base import FloatParameter, Profile, as_float, float_field, kappa
 from ._functions import artanh_rest
 
 
+def paraboloid_g(x, R) -> Array:
+    """The MDR profile of a paraboloid of radius R (m), (3.44): g = x²/R."""
+    return as_float(x) ** 2 / R
+
+
+def paraboloid_G(x, R) -> Array:
+    """∫₀ˣ g dx' of a paraboloid: x³/(3R)."""
+    return as_float(x) ** 3 / (3 * R)
+
+
 class Paraboloid(Profile):
     """f = r²/(2R), g = x²/R (3.44); R: radius of curvature at the tip (m)."""
 
@@ -17,10 +27,10 @@ class Paraboloid(Profile):
         return as_float(r) ** 2 / (2 * self.R)
 
     def g(self, x):
-        return as_float(x) ** 2 / self.R
+        return paraboloid_g(x, self.R)
 
     def G(self, x):
-        return as_float(x) ** 3 / (3 * self.R)
+        return paraboloid_G(x, self.R)
 
     def radius_scale(self):
         return self.R

@@ -4,6 +4,7 @@ parabolic cap (on a flat punch, a cone, a paraboloid) or a rounded edge (flat pu
 import jax.numpy as jnp
 
 from ._base import FloatParameter, Profile, as_float, float_field
+from ._classic import paraboloid_G, paraboloid_g
 from ._functions import angle_minus_sin_cos, beyond_radius, rounded_edge_G, sin_minus_angle_cos
 
 
@@ -69,10 +70,10 @@ class CappedFlatPunch(Profile):
         return jnp.where(r <= self.b, r**2 / (2 * self.R), jnp.inf)
 
     def g(self, x):
-        return as_float(x) ** 2 / self.R
+        return paraboloid_g(x, self.R)
 
     def G(self, x):
-        return as_float(x) ** 3 / (3 * self.R)
+        return paraboloid_G(x, self.R)
 
     def extent(self):
         return self.b

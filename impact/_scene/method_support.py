@@ -1,0 +1,58 @@
+"""Which scenes the integrators that skip the ODE solve can run: phases ended by their energy
+balance (`solver.phase_ends: energy`) and phases timed by quadrature (`solver.method:
+quadrature`). Each refusal says why, in words a scene file's author can act on."""
+
+from typing import TYPE_CHECKING
+
+from .._law.base import AbstractCurveLaw
+from .profiles import PowerLawSpec
+from .sections import QUADRATURE_SHAPES
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
+
+def energy_ends_refusal(scene: "Scene") -> str | None:
+    """Why the scene's phases cannot end from their energy balance, or None where they can."""
+    adhesion = scene.active_adhesion
+    if scene.contact.springs != "continuum":
+        return "for the continuum law only (contact.springs: continuum): a spring array's events advance exactly"
+    if adhesion is not None and not adhesion.zero_range:
+        return f"not with adhesion model {adhesion.name!r}: its phases end where the solver locates them"
+    if scene.effects.plasticity is not None:
+        return "not with effects.plasticity: its phases end where the solver locates them"
+    if scene.effects.damping is not None:
+        return "not with effects.damping: a damped phase does not keep its energy"
+    return None
+
+
+def quadrature_refusal(scene: "Scene") -> str | None:
+    """Why the scene's contact phases cannot be timed by quadrature, or None where they can: a
+    curve law's rides along its continuum curve; else the phases must end from their energy
+    balance, the work along a branch must have its closed form (ĝ = Â·xⁿ) and loading must start
+    from a jump-in or a tip of finite slope."""
+    if scene.kind != "impact":
+        return "times the contact phases of an impact (kind: impact)"
+    curve = isinstance(scene.contact_law(), AbstractCurveLaw)
+    if curve and scene.contact.springs != "continuum":
+        return "rides the continuum law's curve only (contact.springs: continuum)"
+    why = None if curve else energy_ends_refusal(scene)
+    if why is not None:
+        return why
+    if scene.solver.phase_ends == "integrated":
+        return "ends every phase from its energy balance: leave solver.phase_ends out (or set it to 'energy')"
+    if scene.limits.duration is not None:
+        return "does not stop a phase midway: leave limits.duration out"
+    if curve:
+        return None
+    profile = scene.contact_profile
+    if profile.shape not in QUADRATURE_SHAPES:
+        return f"needs a profile of the form g = A·xⁿ ({', '.join(QUADRATURE_SHAPES)}), not {profile.shape!r}"
+    adhesion = scene.active_adhesion
+    partial = adhesion is not None and 0.0 < adhesion.approach < adhesion.work_of_adhesion
+    if isinstance(profile, PowerLawSpec) and (profile.n < 1.0 or partial):
+        return (
+            f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
+            "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
+        )
+    return None
