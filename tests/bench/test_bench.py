@@ -15,6 +15,8 @@ from impact._bench.plans import OUTPUTS
 from impact._bench.springs import fitted_order
 from impact.cli import app
 
+pytestmark = pytest.mark.slow  # a benchmark run of its own
+
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):

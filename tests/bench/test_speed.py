@@ -131,6 +131,7 @@ def test_split_parts_add_up_to_the_staged_run(tiny):
         assert sum(parts) == pytest.approx(float(row["staged_us"]), rel=1e-5), row
 
 
+@pytest.mark.slow
 def test_the_stages_compute_what_the_point_function_does():
     """Build, integrate and post-process run in a row give the sweep's point results, bit for
     bit (the same operations, only compiled apart); the row names the method."""

@@ -214,6 +214,7 @@ def hostile_scene(draw) -> tuple[bytes, str]:
 
 @_settings(HOSTILE_EXAMPLES)
 @given(hostile=hostile_scene())
+@pytest.mark.slow
 def test_hostile_shapes_are_refused_within_seconds(hostile):
     content, phrase = hostile
     with tempfile.TemporaryDirectory() as folder:

@@ -211,6 +211,7 @@ AS_FROM_A_TERMINAL = (
 )
 
 
+@pytest.mark.slow
 def test_ctrl_c_stops_a_long_run_at_once_and_writes_nothing(tmp_path):
     """A Verlet run of 4e8 steps (minutes), Ctrl-C after 15 s (in its compile or its loop): exit
     code 130 within seconds (the loop runs in XLA, which does not return to Python before it

@@ -372,6 +372,7 @@ def stored_program(tmp_path, monkeypatch, restore_cache) -> Path:
     return path
 
 
+@pytest.mark.slow
 def test_a_flipped_bit_anywhere_in_a_stored_program_is_discarded_and_traced_anew(stored_program):
     """One bit flipped at any of 64 positions spread over the file (its SHA-256 and the program;
     unchecked, some flips fail to deserialize or lower and one hung the StableHLO reader): one

@@ -125,6 +125,7 @@ def test_viscoelastic_paraboloid_follows_schwager_poeschel():
     assert -relative[0] / orders[0] * C1 == pytest.approx(0.798, abs=0.01)
 
 
+@pytest.mark.slow
 def test_strong_damping_converges_under_tolerance_refinement():
     # βv₀^(1/5) = 1: no series applies; the restitution converges as rtol falls (one program:
     # the tolerances are traced).

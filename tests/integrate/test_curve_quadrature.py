@@ -39,6 +39,7 @@ COMPARED = ("restitution", "max_indentation", "max_force", "min_force")
 
 
 @pytest.mark.parametrize("config", SCENES)
+@pytest.mark.slow
 def test_curve_quadrature_is_the_tight_integration(config):
     """Statuses equal (captures and separations); restitution, deepest indentation and force
     extremes within 5e-8 of the tight run's largest value, contact times within 2e-9 (the tight
@@ -60,6 +61,7 @@ def test_curve_quadrature_is_the_tight_integration(config):
 
 
 @pytest.mark.parametrize("config", ["maugis_dugdale_hysteresis.yaml", "hard/19_greenwood_johnson_extremes.yaml"])
+@pytest.mark.slow
 def test_curve_quadrature_is_converged(config, monkeypatch):
     """At twice the nodes of every rule and scan the results move by round-off: restitution,
     deepest indentation and force extremes by ≤ 1e-12 relative, contact times by ≤ 1e-9
@@ -95,6 +97,7 @@ def _point_results(scene, velocity) -> dict:
     }
 
 
+@pytest.mark.slow
 def test_a_curve_sweep_point_does_not_depend_on_its_batch():
     """Bitwise the same results alone, in calls of 7 and in one call of 96 (the curve quadrature
     puts no cap on the lanes of a call)."""
@@ -107,6 +110,7 @@ def test_a_curve_sweep_point_does_not_depend_on_its_batch():
             assert np.array_equal(np.asarray(parts[name]), np.asarray(whole[name]), equal_nan=True), (chunk, name)
 
 
+@pytest.mark.slow
 def test_a_hysteretic_trajectory_is_the_tight_one():
     """The same events (touch, deepest point, the switch onto the detach curve, separation) at
     the same times to 1e-9 of the contact; a passive body (`assert_passive`) whose samples lie on
@@ -123,6 +127,7 @@ def test_a_hysteretic_trajectory_is_the_tight_one():
         assert np.max(np.abs(mine - theirs)) <= 1e-3 * np.max(np.abs(getattr(tight, name))), name
 
 
+@pytest.mark.slow
 def test_curve_bounces_under_gravity_as_the_tight_integration_does():
     """The bead of gravity_bounces.yaml with Maugis–Dugdale adhesion (Λ = 1): the same ten contacts
     and capture, every event at the same time to 1e-9 of the last; restitution and contact time to

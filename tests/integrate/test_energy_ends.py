@@ -53,6 +53,7 @@ def test_thornton_ning_is_exact_at_a_loose_tolerance(factor):
     assert abs(energy.max_force / peak - 1.0) <= 1e-12
 
 
+@pytest.mark.slow
 def test_attach_on_touch_holds_and_is_exact():
     """Δγa = 0: Hertzian loading, a hold at the largest radius, JKR unloading; the hold ends at
     its detach depth with the speed of its closed-form work (our reference,

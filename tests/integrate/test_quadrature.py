@@ -125,6 +125,7 @@ JUST_BELOW_STICKING = 0.30317878887891037  # m/s
 ULP = 2.0**-52
 
 
+@pytest.mark.slow
 def test_quadrature_at_the_sticking_velocity_is_a_physical_outcome():
     """Just below v_s (the point found, ± 4 ulps): captured, e = 0, as dopri8 and the closed form
     say, not solver_failure; at v_s itself (± 4 ulps): a physical outcome, with e within 1e-7 of

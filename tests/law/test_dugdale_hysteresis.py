@@ -235,6 +235,7 @@ def test_hard_cases_at_the_edges_of_the_domain(tabor, share, velocity, status, k
         assert abs(lost - work) <= 1e-8 * 0.5 * MASS * result.touch_velocity**2
 
 
+@pytest.mark.slow
 def test_large_tabor_tends_to_the_jkr_hysteresis_law():
     """Δγa = Δγ/2: e − e_JKR(Δγa) shrinks like 1/Λ (fitted over Λ = 30, 100, 300; measured slope
     −0.98, 8.4e-5 at Λ = 300), as the zone's width b − a → 0 pins the frozen contact at a_max."""

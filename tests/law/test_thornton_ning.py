@@ -57,6 +57,7 @@ def test_above_it_the_restitution_meets_the_closed_form(velocity):
     assert result.plastic_work == float(plastic)
 
 
+@pytest.mark.slow
 def test_the_restitution_is_continuous_at_the_yield_velocity():
     """One side runs the elastic integrator, the other the plastic one: they meet to solver tolerance
     (the closed form's slope adds ~1e-10 over this step)."""

@@ -136,6 +136,7 @@ def test_impact_run_of_the_kharaz_example(tmp_path):
     assert stored.scene.effects.friction is not None and stored.spin_after > 0.0
 
 
+@pytest.mark.slow
 def test_tangential_results_are_differentiable():
     """`impact.as_function` of v_t′ and ω′ against μ and θ (Kharaz example on 200 springs): the
     forward-mode Jacobian (exact on the piece of the spring events and stick–slip pattern the

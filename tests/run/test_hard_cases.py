@@ -138,6 +138,7 @@ def test_08_power_law_n05_above_three_thresholds_is_elastic():
 
 
 @pytest.mark.parametrize("name", ["08_power_law_n05_below_threshold", "08_power_law_n04"])
+@pytest.mark.slow
 def test_08_growing_contact_is_reported_not_simulated_as_garbage(name):
     _, result = run_case(name)
     assert result.status == "unbounded_contact"
@@ -387,6 +388,7 @@ def test_17_maugis_dugdale_deep_on_the_dmt_side():
     finite_range_energy_balance(result, scene)
 
 
+@pytest.mark.slow
 def test_18_maugis_dugdale_deep_on_the_jkr_side():
     scene, result = run_case("18_maugis_large_tabor")
     assert result.status == "separated"

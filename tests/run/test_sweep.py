@@ -377,6 +377,7 @@ def test_two_devices_give_the_results_of_one(grid, jobs):
     assert_same(two, grid.results, names=CLOSE, rtol=1e-11)
 
 
+@pytest.mark.slow
 def test_the_devices_option_shards_the_sweep_over_that_many_cpu_devices(tmp_path, cache_env):
     """`impact sweep --devices 2` starts two host devices (jax 0.10 refuses `jax.config.read`
     of a setting that has a context manager: it is read as an attribute of jax.config)."""

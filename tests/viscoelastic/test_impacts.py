@@ -69,6 +69,7 @@ def test_glassy_limit_is_thornton_ning():
 
 
 @pytest.mark.parametrize("approach", [0.0, WORK])
+@pytest.mark.slow
 def test_relaxed_limit_is_the_rule_of_hess_at_the_instantaneous_modulus(approach):
     """τ → 0: the springs are relaxed (E∞*) but snap at the instantaneous modulus E₀*, so the
     medium is the elastic JKR law of E∞* with the works Δγ·E₀*/E∞* (detaching) and Δγa·E∞*/E₀*
@@ -118,6 +119,7 @@ def test_energy_balance_of_the_first_contact(adhesion):
         assert result.adhesion_hysteresis == pytest.approx(snaps, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_time_step_order_is_two():
     """The implicit midpoint rule with exact springs: e and t_c converge as dt² (De ≈ 1, fitted
     order within 0.1 of 2 over t_c/250 … t_c/1000 against t_c/4000)."""
@@ -131,6 +133,7 @@ def test_time_step_order_is_two():
         assert order == pytest.approx(2.0, abs=0.1), (name, errors)
 
 
+@pytest.mark.slow
 def test_restitution_has_its_minimum_near_deborah_one():
     """e over De = t_c/τ: 1 at both ends (to 1e-6), and a minimum (≈ 0.85 here) between
     De = 0.3 and 3, where the dashpots' time matches the contact's."""

@@ -28,6 +28,7 @@ SCENE = {
 }
 
 
+@pytest.mark.slow
 def test_sweep_over_relaxation_time_and_speed():
     """A grid of τ and v0 in one batch: each point as `simulate` gives it (to 1e-12), the named
     losses (viscous work, the energy left in the medium, the snaps) summing to the loss, and no
@@ -47,6 +48,7 @@ def test_sweep_over_relaxation_time_and_speed():
     assert np.all(np.isnan(result.theory_restitution))
 
 
+@pytest.mark.slow
 def test_derivatives_in_the_prony_term():
     """de/dE₁ and de/dτ₁ by forward mode through the steps (the springs' changes differentiated
     implicitly) against central differences of the same program (relative step 1e-5: to 1e-6)."""

@@ -16,6 +16,8 @@ from impact._run.fit.viscoelastic_curve import viscoelastic_curve_model
 from impact._scene.fit_spec import FitError, load_fit, make_fit_spec, read_table
 from tests.run.fit.fit_examples import FITS, fit_script
 
+pytestmark = pytest.mark.slow  # fits of their own, compiled for these rates
+
 DATA = fit_script("make_viscoelastic_data")
 FIT_FILE = yaml.safe_load((FITS / "viscoelastic_indentation.yaml").read_text())
 TRUTH = {

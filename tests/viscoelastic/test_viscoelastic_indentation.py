@@ -89,6 +89,7 @@ def test_contact_is_lost_where_ting_says():
     assert result.pull_off.indentation > 0.4 * PEAK
 
 
+@pytest.mark.slow
 def test_creep_under_force_control():
     """A standard linear solid under a force ramp, then held: d^(3/2) = 3/(4√R)·∫J(t − s)Ḟ ds with
     the creep compliance J(t) = 1/E∞ − (1/E∞ − 1/E₀)e^(−t/τ_r), τ_r = τE₀/E∞ (to 3e-5: the force

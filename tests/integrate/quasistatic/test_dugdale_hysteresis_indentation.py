@@ -98,6 +98,7 @@ def test_force_control_lets_go_where_the_frozen_zone_opens(share):
 
 
 @pytest.mark.parametrize("control, unload_to", [("force", 0.0), ("displacement", 0.0)])
+@pytest.mark.slow
 def test_cycles_reload_along_the_frozen_zone_onto_the_approach_curve(control, unload_to):
     """Λ = 1, Δγa = Δγ/2, two cycles, the first unloaded to F = 0 (on the frozen zone) or d = 0 (on
     the detach curve): the second loading returns to the first one's approach curve (its peak

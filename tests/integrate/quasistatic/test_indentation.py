@@ -589,6 +589,7 @@ def test_springs_scene():
 # ---------------------------------------------------------------- the example configs
 
 
+@pytest.mark.slow
 def test_configs_meet_their_references():
     paraboloid = impact.simulate(CONFIGS / "indentation_paraboloid.yaml")
     sc = paraboloid.scene
