@@ -17,7 +17,11 @@ force at snaps included: their impulse is integrated exactly along the step).
 Free flight is analytic and starts the contact at d = 0 on a medium at rest: without gravity
 (refused with viscoelasticity: between bounces the surface still creeps back, which an analytic
 flight does not see) the body leaves for good after its first contact. A body that turns back
-towards the surface while still attached is captured (the creep that follows is not simulated).
+towards the surface while still attached is captured (the creep that follows is not simulated)
+where it turns: a step that ends moving inward again is rejected and retaken with the length that
+linear interpolation of v gives for v' = 0, so that, as in the elastic integrators, the first
+contact's work closes at rest (up to ½m·v'², v' of that step second order in h) and the medium's
+state is the turnaround's.
 """
 
 from typing import ClassVar
@@ -133,6 +137,8 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
             first=_FirstContact(stored=zero, released=zero, gained=zero),
             stored_rows=jnp.zeros((), int),
             stride=jnp.ones((), int),
+            landing=jnp.asarray(False),
+            length=jnp.asarray(problem.step),
         )
 
         def flight(walk: "_Walk") -> "_Walk":
@@ -142,7 +148,8 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
             return _store(walk, problem.array, rows, c.mode == ADVANCE)
 
         def contact(walk: "_Walk") -> "_Walk":
-            return _store(self._step(problem, walk), problem.array, rows, jnp.asarray(True))
+            stepped = self._step(problem, walk)  # a rejected step leaves no row
+            return _store(stepped, problem.array, rows, stepped.contact_steps > walk.contact_steps)
 
         def running(walk: "_Walk"):
             return walk.carry.mode != DONE
@@ -156,8 +163,10 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         return outcome, relaxed
 
     def _step(self, problem: ViscoelasticProblem, walk: "_Walk") -> "_Walk":
-        """One step of the implicit midpoint rule, with its events."""
-        c, array, h = walk.carry, problem.array, problem.step
+        """One step of the implicit midpoint rule, with its events; a receding step that would
+        end moving inward while attached is rejected, and retaken (`landing`) with the length that
+        lands on v' = 0, where the body is captured."""
+        c, array, h = walk.carry, problem.array, walk.length
 
         springs, totals, half = self._midpoint(problem, walk)
         v = c.v - totals.impulse
@@ -168,7 +177,9 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         inward = c.mode == ADVANCE
         turned = inward & (v <= 0.0)
         separated = ~inward & ~attached
-        captured = ~inward & attached & (v > 0.0)
+        returning = ~inward & attached & (v > 0.0)
+        landing = returning & ~walk.landing  # retake this step to end where v = 0
+        captured = ~inward & attached & (walk.landing | returning)
         overflow = array.overflows(springs)
         out_of_time = t > problem.motion.time_limit
         exhausted = walk.contact_steps + 1 >= self.max_steps
@@ -176,7 +187,9 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         release = jnp.where(jnp.isfinite(totals.last_release), totals.last_release, h)
         end_time = jnp.where(separated, c.t + release, t)
         end_depth = jnp.where(separated, c.d + half * release, d)
-        turn = h * c.v / jnp.where(turned, c.v - v, 1.0)  # where v = 0 at a constant deceleration
+        # Where v = 0 at a constant deceleration: the turn of loading, or a receding step's length
+        # that lands where the body turns inward.
+        turn = h * c.v / jnp.where(turned | landing, c.v - v, 1.0)
         deepest = jnp.where(turned, c.d + 0.5 * c.v * turn, jnp.maximum(c.d, d))
         c = log_event(c, c.t + turn, EVENT_CODE["max_indentation"], turned)
         c = log_event(c, end_time, EVENT_CODE["separation"], separated)
@@ -205,7 +218,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         released, gained = walk.released + totals.released, walk.gained + totals.gained
         now = _FirstContact(stored=array.stored(springs), released=released, gained=gained)
         ended = (c.contacts == 1) & (separated | captured)
-        return replace(
+        stepped = replace(
             walk,
             carry=c,
             springs=springs,
@@ -215,11 +228,18 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
             gained=gained,
             first=where(ended, now, walk.first),
         )
+        retake = replace(
+            walk,
+            carry=replace(walk.carry, steps=walk.carry.steps + 1, rejected=walk.carry.rejected + 1),
+            landing=jnp.asarray(True),
+            length=turn,
+        )
+        return where(landing, retake, stepped)
 
     def _midpoint(self, problem: ViscoelasticProblem, walk: "_Walk"):
         """The step's springs, totals and v½ = (v + v')/2 of the implicit midpoint rule: fixed-point
         evaluations from v½ = v − h·F/2 (scaled mass 1)."""
-        c, array, h = walk.carry, problem.array, problem.step
+        c, array, h = walk.carry, problem.array, walk.length
 
         def corrected(_, half):
             return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
@@ -247,6 +267,8 @@ class _Walk(eqx.Module):
     first: _FirstContact
     stored_rows: jax.Array  # trajectory rows written
     stride: jax.Array  # steps between stored rows (doubles whenever the rows fill up)
+    landing: jax.Array  # the step under way is the retaken one that ends where the body turns inward
+    length: jax.Array  # the step's length (scaled): the fixed step, or the landing step's
 
 
 def _store(walk: _Walk, array: ViscoelasticArray, rows: int, valid) -> _Walk:
