@@ -153,7 +153,7 @@ CASES = {
         config("rubber_ball_viscoelastic.yaml"), VELOCITY, ((2.0, SEPARATED), (0.2, SEPARATED)), 1e-9
     ),
     "viscoelastic half-space · midpoint": Case(
-        config("viscoelastic_sphere.yaml"), VELOCITY, ((3.0, SEPARATED), (6.0, SEPARATED)), 1e-8, swept=False
+        config("viscoelastic_sphere.yaml"), VELOCITY, ((3.0, SEPARATED), (0.3, CAPTURED)), 1e-8, swept=False
     ),
     "oblique, Coulomb per spring": Case(
         config("oblique_kharaz.yaml"), VELOCITY, ((3.9, SEPARATED), (1.0, SEPARATED)), ROUND_OFF, swept=False
