@@ -31,18 +31,9 @@ def closed_form(result: ShearResult) -> np.ndarray | None:
     modulus, shear_modulus = scene.material.effective_modulus, scene.material.tangential_modulus
     normal = result.normal_force
     radius = np.cbrt(3.0 * normal * scene.body.profile.R / (4.0 * modulus))  # Hertz
-    common = (normal, radius, friction.coefficient, shear_modulus)
-    forces = np.empty_like(result.force)
-    turning = None
-    for leg in np.unique(result.leg):
-        points = result.leg == leg
-        shift = result.displacement[points]
-        if turning is None:
-            forces[points] = theory.cattaneo_mindlin_force(shift, *common)
-        else:
-            forces[points] = theory.mindlin_deresiewicz_force(shift, *turning, *common)
-        turning = (shift[-1], forces[points][-1])
-    return forces
+    return theory.masing_program_force(
+        result.displacement, result.leg, normal, radius, friction.coefficient, shear_modulus
+    )
 
 
 def shear_figure(result: ShearResult) -> "Figure":

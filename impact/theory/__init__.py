@@ -115,6 +115,7 @@ from ._friction import cattaneo_mindlin_stick_radius as cattaneo_mindlin_stick_r
 from ._friction import effective_shear_modulus as effective_shear_modulus
 from ._friction import full_slip_displacement as full_slip_displacement
 from ._friction import gross_sliding_tangent as gross_sliding_tangent
+from ._friction import masing_program_force as masing_program_force
 from ._friction import mindlin_deresiewicz_force as mindlin_deresiewicz_force
 from ._friction import sliding_impact as sliding_impact
 from ._impact import attach_on_touch_energy_loss as attach_on_touch_energy_loss
@@ -302,6 +303,7 @@ __all__ = [
     "cattaneo_mindlin_displacement",
     "cattaneo_mindlin_stick_radius",
     "mindlin_deresiewicz_force",
+    "masing_program_force",
     "gross_sliding_tangent",
     "sliding_impact",
 ]

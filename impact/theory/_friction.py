@@ -20,6 +20,7 @@ displacement at which the whole contact slides. This is Johnson's (7.43) with hi
 import math
 
 import jax.numpy as jnp
+import numpy as np
 
 from .._core.runtime import float64
 from ..profiles import Scalars
@@ -87,6 +88,33 @@ def mindlin_deresiewicz_force(
     until the branch meets the previous turning point."""
     shift = 0.5 * (displacement - turning_displacement)
     return turning_force + 2.0 * cattaneo_mindlin_force(shift, normal_force, contact_radius, coefficient, G_star)
+
+
+def masing_program_force(
+    displacement: np.ndarray,
+    leg: np.ndarray,
+    normal_force: float,
+    contact_radius: float,
+    coefficient: float,
+    G_star: float,
+) -> np.ndarray:
+    """Tangential force Q [N] at each point of a shear program from rest at a constant normal
+    force: Cattaneo–Mindlin on the first leg, then Mindlin–Deresiewicz (Masing) from the last point
+    of the previous leg on each later one. `displacement` [m] and the integer `leg` of each point
+    (0, 1, …, in program order) are arrays of one length; valid while no branch meets an earlier
+    turning point."""
+    common = (normal_force, contact_radius, coefficient, G_star)
+    forces = np.empty_like(displacement, dtype=np.float64)
+    turning = None
+    for number in np.unique(leg):
+        points = leg == number
+        shift = displacement[points]
+        if turning is None:
+            forces[points] = cattaneo_mindlin_force(shift, *common)
+        else:
+            forces[points] = mindlin_deresiewicz_force(shift, *turning, *common)
+        turning = (shift[-1], forces[points][-1])
+    return forces
 
 
 @float64

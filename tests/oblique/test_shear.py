@@ -41,17 +41,7 @@ def slip():
 
 def masing(result):
     """Q of every point after Cattaneo–Mindlin (first leg) and Masing (each leg after a reversal)."""
-    common = (FORCE, hertz_radius(), MU, moduli()[1])
-    forces, turning = np.empty_like(result.force), None
-    for leg in range(int(result.leg.max()) + 1):
-        points = result.leg == leg
-        shift = result.displacement[points]
-        if turning is None:
-            forces[points] = theory.cattaneo_mindlin_force(shift, *common)
-        else:
-            forces[points] = theory.mindlin_deresiewicz_force(shift, *turning, *common)
-        turning = (shift[-1], forces[points][-1])
-    return forces
+    return theory.masing_program_force(result.displacement, result.leg, FORCE, hertz_radius(), MU, moduli()[1])
 
 
 def test_the_example_follows_cattaneo_mindlin_and_masing_to_1e_8():

@@ -66,6 +66,24 @@ def test_masing_branches_close_the_loop():
     assert back == pytest.approx(top, rel=1e-13)
 
 
+def test_a_program_of_legs_follows_its_turning_points():
+    """`masing_program_force` over load to δ*, unload to −δ*, reload to δ*: Cattaneo–Mindlin on
+    the first leg, each later leg a Masing branch from the previous leg's last point, so the loop
+    closes (−Q* at −δ*, Q* again at δ*, 1e-13) and the legs meet where they turn."""
+    turning = 0.7 * SLIP
+    ramp = np.linspace(0.0, 1.0, 11)
+    displacement = np.concatenate([turning * ramp, turning * (1.0 - 2.0 * ramp[1:]), turning * (2.0 * ramp[1:] - 1.0)])
+    leg = np.repeat([0, 1, 2], [11, 10, 10])
+    forces = theory.masing_program_force(displacement, leg, FORCE, RADIUS, MU, G_STAR)
+    top = float(theory.cattaneo_mindlin_force(turning, FORCE, RADIUS, MU, G_STAR))
+    loading = np.asarray(theory.cattaneo_mindlin_force(displacement[:11], FORCE, RADIUS, MU, G_STAR))
+    assert forces[:11] == pytest.approx(loading, rel=1e-15, abs=0.0)
+    assert forces[20] == pytest.approx(-top, rel=1e-13, abs=0.0)
+    assert forces[-1] == pytest.approx(top, rel=1e-13, abs=0.0)
+    unloading = theory.mindlin_deresiewicz_force(displacement[11:21], turning, top, FORCE, RADIUS, MU, G_STAR)
+    assert forces[11:21] == pytest.approx(np.asarray(unloading), rel=1e-15, abs=0.0)
+
+
 @pytest.mark.parametrize("restitution", [1.0, 0.6])
 def test_rigid_sliding_of_a_solid_sphere(restitution):
     """v_t′ = v_t − μ(1 + e)v_n, ω′ = μ(1 + e)v_n/(k²R) with k² = 2/5, and the gross-sliding
