@@ -110,9 +110,10 @@ class Viscoelasticity(Section):
         if adhesion is not None and not adhesion.zero_range:
             raise FieldProblem(
                 "effects.adhesion.model",
-                f"{adhesion.name!r} not with effects.viscoelasticity: its adhesive stress acts on free springs, "
-                "which would creep under it, an equilibrium its curve (that of an elastic medium) does not "
-                "describe; use model 'jkr'",
+                f"{adhesion.name!r} not with effects.viscoelasticity: its adhesive stress loads the free springs "
+                "of the zone around the contact, which creep under that prescribed force, so the zone's radius "
+                "(where the gap reaches the range) depends on their history; their creep under force and the "
+                "range condition solved with it at every step are not implemented; use model 'jkr'",
             )
         if scene.contact.springs == "continuum":
             raise FieldProblem(

@@ -74,9 +74,10 @@ def refusal(base: dict, **changes) -> tuple[str, str]:
         (
             {"effects__adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 1e8}},
             "effects.adhesion.model",
-            "'maugis_dugdale' not with effects.viscoelasticity: its adhesive stress acts on free springs, which "
-            "would creep under it, an equilibrium its curve (that of an elastic medium) does not describe; use "
-            "model 'jkr'",
+            "'maugis_dugdale' not with effects.viscoelasticity: its adhesive stress loads the free springs of the "
+            "zone around the contact, which creep under that prescribed force, so the zone's radius (where the gap "
+            "reaches the range) depends on their history; their creep under force and the range condition solved "
+            "with it at every step are not implemented; use model 'jkr'",
         ),
         (
             {"contact__springs": "continuum"},
