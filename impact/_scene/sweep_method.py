@@ -26,7 +26,7 @@ SOLVER_SECTION = "solver."
 
 
 def names_method(scene: Scene) -> bool:
-    """Whether the scene names its integrator (`solver.method` given, not the default)."""
+    """Whether the scene names its integrator (`solver.method` given, whatever its value)."""
     return "method" in scene.solver.model_fields_set
 
 
