@@ -47,7 +47,8 @@ ELEMENTAL_EMITTERS_FLAG = "--xla_cpu_use_fusion_emitters=false"
 # backend (LLVM) optimization level 0: it compiles much faster, and the results stay bitwise the
 # same, as XLA:CPU compiles without fast-math at any level and, without FMA (`NO_FMA_FLAG`),
 # contracts nothing; its code runs slower, which a single run hardly notices. A sweep's batch and a
-# fit's programs, which run many times, keep the default level (docs/src/accuracy.md, "Latency").
+# fit's programs, which run many times, and the viscoelastic half-space's solve, whose run is long,
+# keep the default level (docs/src/accuracy.md, "Compiling a run quickly").
 RUN_ONCE = {"xla_backend_optimization_level": 0}
 
 
