@@ -48,7 +48,7 @@ from .._run.sweep import execute, plan_sweep
 from .._run.sweep.batch import batch_sharding, local_devices, point_reads, point_results
 from .._run.sweep.plan import Plan as SweepPlan
 from .._scene.scene import Scene
-from .._scene.sections import QUADRATURE
+from .._scene.sections import QUADRATURE, Solver
 from .._scene.sweep import make_spec
 from .workloads import CLOSED_FORM, TIGHTER_FACTOR, TIGHTER_POINTS, SpeedPlan, Workload
 
@@ -103,7 +103,7 @@ def run(folder: str | Path, plan: SpeedPlan, log: Callable[[str], None] = print)
 def measure(workload: Workload, points: int, repeats: int, chunk: int | None = None) -> dict:
     """One row: time, accuracy, compile time and split of `points` impacts of `workload`, in
     calls of `chunk` points (None: the sweep's default for the devices)."""
-    plan = plan_sweep(make_spec(workload.scene, workload.axis(points)))
+    plan = plan_sweep(make_spec(named_method(workload.scene), workload.axis(points)))
     reduce = Reduction(points, workload.reference)
     first = execute(plan, chunk=chunk, on_chunk=reduce.add)
     per_impact = np.asarray([execute(plan, chunk=chunk)["solve_time"] / points for _ in range(repeats)]) * 1e6
@@ -171,8 +171,8 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction, chunk: int
     quadrature workload: by the scene's default ODE solver at its default rtol and atol / that)."""
     scene = deepcopy(workload.scene)
     solver = scene.setdefault("solver", {})
-    if solver.get("method") == QUADRATURE:  # against the ODE solver's tighter run
-        del solver["method"]
+    if solver.get("method", QUADRATURE) == QUADRATURE:  # against the ODE solver's tighter run
+        solver["method"] = Solver.model_fields["method"].default
     solver["rtol"] = solver.get("rtol", 1e-10) / TIGHTER_FACTOR
     solver["atol"] = solver.get("atol", 1e-12) / TIGHTER_FACTOR
     chosen = np.arange(0, points, reduce.stride)
@@ -184,6 +184,14 @@ def tighter_error(workload: Workload, points: int, reduce: Reduction, chunk: int
 
     execute(plan_sweep(make_spec(scene, {"initial.velocity": velocities})), chunk=chunk, on_chunk=keep)
     return reduce.error(tight)
+
+
+def named_method(scene: dict) -> dict:
+    """The workload's scene with its method named (the scene's default ODE solver where it names
+    none): each row times its method as a single run of the scene runs it, where a sweep of a
+    scene without one would choose the quadrature."""
+    solver = {"method": Solver.model_fields["method"].default, **scene.get("solver", {})}
+    return {**scene, "solver": solver}
 
 
 _STAGES: dict = {}  # the three compiled stages by static choices, this session

@@ -43,6 +43,14 @@ SCALAR_LANES = {"xla_cpu_prefer_vector_width": 64}
 # compile the same way.
 ELEMENTAL_EMITTERS_FLAG = "--xla_cpu_use_fusion_emitters=false"
 
+# A program that runs once (a scene's solve, an indentation test's march) compiles with XLA:CPU's
+# backend (LLVM) optimization level 0: it compiles much faster, and the results stay bitwise the
+# same, as XLA:CPU compiles without fast-math at any level and, without FMA (`NO_FMA_FLAG`),
+# contracts nothing; its code runs slower, which a single run hardly notices. A sweep's batch and a
+# fit's programs, which run many times, and the viscoelastic half-space's solve, whose run is long,
+# keep the default level (docs/src/accuracy.md, "Compiling a run quickly").
+RUN_ONCE = {"xla_backend_optimization_level": 0}
+
 
 @functools.cache
 def contracts_multiply_adds() -> bool:
@@ -55,14 +63,17 @@ def contracts_multiply_adds() -> bool:
         return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
 
 
-def compiler_options(platform: str | None = None) -> dict[str, int | bool]:
+def compiler_options(platform: str | None = None, *, once: bool = False) -> dict[str, int | bool]:
     """XLA options of a compiled impact program: scalar lanes where this process fuses
-    multiply–adds (see `NO_FMA_FLAG`). `platform`: that of the devices the program runs on
-    ("cpu", "gpu", ...; default: JAX's default backend), e.g. a sweep's batch given CPU devices on
-    a machine whose default device is a GPU."""
+    multiply–adds (see `NO_FMA_FLAG`), else for a program that runs once (`once`) the quick
+    compile of `RUN_ONCE`. `platform`: that of the devices the program runs on ("cpu", "gpu", ...;
+    default: JAX's default backend), e.g. a sweep's batch given CPU devices on a machine whose
+    default device is a GPU."""
     if (platform or jax.default_backend()) != "cpu":
         return {}  # XLA:CPU's options: a GPU's compiler refuses them ("No such compile option")
-    return dict(SCALAR_LANES) if contracts_multiply_adds() else {}
+    if contracts_multiply_adds():
+        return dict(SCALAR_LANES)
+    return dict(RUN_ONCE) if once else {}
 
 
 def _accelerator_plugins() -> bool:

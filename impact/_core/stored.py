@@ -65,9 +65,10 @@ _LAPACK = b"lapack_"  # the prefix of jaxlib's LAPACK kernels in a program's Sta
 _UNLISTED_KERNELS = ("lapack_dormqr_ffi",)
 
 
-def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
+def call_stored(function: Callable[..., Any], *arguments: Any, once: bool = False) -> Any:
     """`function(*arguments)` compiled, its arrays traced and the rest static (a static part is
-    told apart by its repr); traced only where the cache holds no program of its key.
+    told apart by its repr); traced only where the cache holds no program of its key. `once`: a
+    program that runs once per run, compiled quickly (`runtime.RUN_ONCE`).
 
     `function` returns a pytree of dicts, tuples and lists of arrays (what `jax.export` can
     serialize: an `equinox.Module` is returned as {field name: value}, e.g. by `pytree.fields`).
@@ -79,11 +80,12 @@ def call_stored(function: Callable[..., Any], *arguments: Any) -> Any:
         return function(*eqx.combine(jax.tree.unflatten(structure, values), static))
 
     name = f"{function.__module__}.{function.__qualname__}"
-    key = _key((name, repr(static), str(structure)), leaves)
+    options = compiler_options(once=once)
+    key = _key((name, repr(static), str(structure), repr(options)), leaves)
     if key in _loaded:
         return _loaded[key](*leaves)
-    jitted = jax.jit(traced, compiler_options=compiler_options())
-    compiled = _stored_compiled(key, jitted, leaves, compiler_options())
+    jitted = jax.jit(traced, compiler_options=options)
+    compiled = _stored_compiled(key, jitted, leaves, options)
     if compiled is None:  # not stored: traced here (or by the export that failed: its trace is reused)
         _loaded[key] = jitted
         with _errors_as_nan():

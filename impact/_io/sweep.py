@@ -10,7 +10,8 @@ Layout (values SI, `unit` attributes where dimensioned):
         source.yaml               the sweep file as written (string; absent for the API)
     sweep/                        attrs: mode, shape, points (N of the whole sweep), rows (written
                                   here), expected (rows this file will hold), complete, chunk,
-                                  process_index, process_count, result_codes, timings
+                                  process_index, process_count, result_codes, timings, method
+                                  (the integrator every point ran) and method_choice (why)
         axes/<dotted.path>        the values of each axis (1-D), `unit` where dimensioned
         index[R]                  flat index (C order of `shape`) of the point in each row
         params/<dotted.path>[R]   the swept values of each row (`unit` as the axis)
@@ -27,6 +28,7 @@ while the next chunk computes. A running sweep writes through a journal (`sweep_
 """
 
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 
 import h5py
@@ -77,6 +79,8 @@ def create_sweep_file(path: Path, spec: SweepSpec, *, expected: int, chunk: int,
             process_index=np.int64(share[0]),
             process_count=np.int64(share[1]),
             result_codes=np.array(RESULT_CODES, dtype=h5py.string_dtype()),
+            method=spec.method,
+            method_choice=spec.method_choice,
         )
         axes = group.create_group("axes")
         for axis in spec.axes:
@@ -182,18 +186,21 @@ def truncate(path: Path) -> int:
 
 
 def read_spec(path: Path) -> SweepSpec:
-    """The sweep definition stored in a file."""
+    """The sweep definition stored in a file, with the reason for its method where the file holds it
+    (its definition names the method that ran)."""
     with _open_sweep(path) as file:
-        return spec_from_definition(
+        spec = spec_from_definition(
             read_string(file["parameters/sweep.yaml"]),
             read_string(file["parameters/source.yaml"]) if "parameters/source.yaml" in file else None,
         )
+        choice = file["sweep"].attrs.get("method_choice")
+    return spec if choice is None else replace(spec, method_choice=str(choice))
 
 
 def spec_from_definition(definition: str, source: str | None = None) -> SweepSpec:
     data = yaml.safe_load(definition)
     spec = make_spec(data["scene"], data["axes"], data["mode"], data["order"])
-    return SweepSpec(spec.scene, spec.axes, spec.mode, spec.order, source=source)
+    return replace(spec, source=source)
 
 
 def _rows(file: h5py.File) -> tuple[np.ndarray, dict, dict]:

@@ -171,7 +171,7 @@ def simulate_indentation(scene: Scene) -> IndentationResult:
         from .viscoelastic_indentation import simulate_rate_test  # it builds on this module
 
         return simulate_rate_test(scene)
-    scales, outcome = call_stored(_march_by_field, indentation_loading(scene), indentation_numerics(scene))
+    scales, outcome = call_stored(_march_by_field, indentation_loading(scene), indentation_numerics(scene), once=True)
     return to_indentation_result(scene, SimpleNamespace(**scales), SimpleNamespace(**outcome))
 
 

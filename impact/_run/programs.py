@@ -27,7 +27,7 @@ def solve(integrator: AbstractIntegrator, physics: Physics, options: Options) ->
 def solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Options) -> tuple[Fields, Fields]:
     """`solve`, with the scales and the outcome as {field name: array}; traced only where the
     cache holds no program of its key."""
-    return call_stored(_solve_by_field, integrator, physics, options)
+    return call_stored(_solve_by_field, integrator, physics, options, once=True)
 
 
 def _solve_by_field(integrator: AbstractIntegrator, physics: Physics, options: Options) -> tuple[Fields, Fields]:

@@ -41,7 +41,7 @@ def simulate_rate_test(scene: Scene, numerics: RateNumerics | None = None) -> In
     """Run the viscoelastic indentation scene (its program traced once per machine and
     structure) with its own static choices, or `numerics` (e.g. a larger capacity, shared)."""
     numerics = rate_numerics(scene) if numerics is None else numerics
-    scales, outcome = call_stored(_march_by_field, rate_loading(scene), numerics)
+    scales, outcome = call_stored(_march_by_field, rate_loading(scene), numerics, once=True)
     return to_indentation_result(scene, SimpleNamespace(**scales), SimpleNamespace(**outcome))
 
 

@@ -286,7 +286,8 @@ class Solver(Section):
             + ", ".join(METHODS)
             + " ('quadrature': no ODE solve, each contact phase ended by its energy "
             "balance and timed by Gauss quadrature of dt = dd/v; undamped continuum JKR law on a paraboloid, cone or "
-            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; rtol and atol unused)"
+            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; rtol and atol unused); "
+            "default: tsit5, and in a sweep 'quadrature' where every point allows it"
         ),
     )
     rtol: Annotated[Number, within(d.RTOL)] = Field(1e-10, description="relative tolerance")

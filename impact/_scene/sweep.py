@@ -19,6 +19,7 @@ point through the validators of the sections on its paths (`sweep_points`).
 import copy
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 
 from .cost import check_sweep_cost
@@ -27,7 +28,7 @@ from .paths import NotASection, assign
 from .reading import parse_yaml, read_text, read_yaml
 from .scene import Scene, load_scene
 from .sweep_axes import build_axis
-from .sweep_points import check_points
+from .sweep_method import with_sweep_method
 from .sweep_spec import MODES, ORDERS, SweepSpec
 
 SWEEP_KEYS = ("scene", "set", "axes", "mode", "order")
@@ -57,7 +58,7 @@ def load_sweep(source: "str | Path | Mapping") -> SweepSpec:
     if not isinstance(data["axes"], Mapping):
         raise SweepError([("axes", "must be a mapping of dotted.path: values")])
     spec = make_spec(scene, data["axes"], data.get("mode", "grid"), data.get("order", "cost"))
-    return SweepSpec(spec.scene, spec.axes, spec.mode, spec.order, source=text)
+    return replace(spec, source=text)
 
 
 def _base_scene(entry, folder: Path, changes) -> Scene:
@@ -90,7 +91,9 @@ def _base_scene(entry, folder: Path, changes) -> Scene:
 
 
 def make_spec(scene, axes: Mapping, mode: str = "grid", order: str = "cost") -> SweepSpec:
-    """Validate axes (dotted path → values or generator) over a base scene into a SweepSpec."""
+    """Validate axes (dotted path → values or generator) over a base scene into a SweepSpec, with
+    the method its points run (`sweep_method`: the scene's where it names one, else the quadrature
+    where every point allows it)."""
     try:
         scene = load_scene(scene)
     except SceneError as error:
@@ -126,9 +129,7 @@ def make_spec(scene, axes: Mapping, mode: str = "grid", order: str = "cost") -> 
         if len(set(lengths.values())) > 1:
             listed = ", ".join(f"{path} has {length}" for path, length in lengths.items())
             raise SweepError([("axes", f"zip mode needs axes of equal length: {listed}")])
-    spec = SweepSpec(scene, tuple(built), mode, order)
-    check_points(spec)
-    return spec
+    return with_sweep_method(SweepSpec(scene, tuple(built), mode, order))
 
 
 def _points_written(entries, mode: str) -> int:

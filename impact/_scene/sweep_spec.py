@@ -44,6 +44,13 @@ class SweepSpec:
     mode: str = "grid"
     order: str = "cost"
     source: str | None = field(default=None, repr=False, compare=False)  # verbatim file text
+    # the method the points run (the scene's solver.method) and why (`sweep_method`)
+    method_choice: str = field(default="", compare=False)
+
+    @property
+    def method(self) -> str:
+        """The integrator every point runs (`solver.method` of the scene it runs)."""
+        return self.scene.solver.method
 
     @property
     def shape(self) -> tuple[int, ...]:

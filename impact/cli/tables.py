@@ -14,6 +14,7 @@ from .._plots.figures import si_prefix
 from .._run.impacts import Result
 from .._scene.scene import Scene
 from .._scene.sections import QUADRATURE, SPRING_METHODS
+from .._scene.sweep_method import scene_sweep_method
 
 if TYPE_CHECKING:  # imported by the commands that make them: `impact run` of an impact needs none
     from .._run.indentation import IndentationResult
@@ -255,6 +256,7 @@ def facts_table(scene: Scene) -> Table:
         ("initial", _initial(scene)),
         *effect_rows,
         ("solver", f"{solver.method}, {steps}"),
+        ("in a sweep", "{}: {}".format(*scene_sweep_method(scene))),
     ]
     return key_value_table(f"{scene.name} (SI units)", rows)
 
@@ -327,6 +329,10 @@ def sweep_table(result: "SweepResult", stats: dict) -> Table:
     rows = [
         ("points", f"{result.restitution.size} ({result.spec.mode} {shape}: {', '.join(result.spec.paths)})"),
         ("outcomes", ", ".join(f"{name} {count}" for name, count in counts.items())),
+        (
+            "method",
+            f"{result.spec.method}: {result.spec.method_choice}" if result.spec.method_choice else result.spec.method,
+        ),
     ]
     if "solve_time" in stats:
         rows += _run_rows(stats)

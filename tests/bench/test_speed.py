@@ -135,7 +135,7 @@ def test_split_parts_add_up_to_the_staged_run(tiny):
 def test_the_stages_compute_what_the_point_function_does():
     """Build, integrate and post-process run in a row give the sweep's point results, bit for
     bit (the same operations, only compiled apart); the row names the method."""
-    plan = plan_sweep(make_spec(workloads()[0].scene, {"initial.velocity": np.array([0.02, 0.05])}))
+    plan = plan_sweep(make_spec(speed.named_method(workloads()[0].scene), {"initial.velocity": np.array([0.02, 0.05])}))
     choices = plan.choices[0]
     build, integrate, post = speed.stages(choices)
     staged = post(plan.physics, integrate(build(plan.physics)))

@@ -130,14 +130,15 @@ def test_gravity_drop_bounces_then_is_captured():
 @pytest.mark.slow
 def test_sweep_over_k_balances_energy_and_equals_simulate():
     """`impact.sweep` over k ∈ [1e-3, 1e3] (one compiled group: k is traced): energy balance at
-    every point (1e-7 of the impact energy), simulate's values (rtol 1e-12), Thornton–Ning as the
-    closed form."""
+    every point (1e-7 of the impact energy), simulate's values with the sweep's method named (rtol
+    1e-12; the quadrature: the scene names none), Thornton–Ning as the closed form."""
     factors = [1e-3, 1.0, 1e3]
     result = impact.sweep(gj_scene(velocity=0.5), {"effects.adhesion.k": factors}, chunk=3)
     touch, separation = np.asarray(result.touch_velocity), np.asarray(result.separation_velocity)
     lost = 0.5 * MASS * (touch**2 - separation**2)
     assert np.all(np.abs(lost - np.asarray(result.dissipated_energy)) <= 1e-7 * 0.5 * MASS * touch**2)
-    single = simulate(gj_scene(factors[-1], velocity=0.5))
+    assert result.spec.method == "quadrature"
+    single = simulate(gj_scene(factors[-1], velocity=0.5, solver={"method": "quadrature"}))
     assert math.isclose(float(result.restitution[-1]), single.restitution, rel_tol=1e-12)
     expected = float(theory.thornton_ning_restitution(0.5, MASS, R, E_STAR, WORK))
     assert np.allclose(np.asarray(result.theory_restitution), expected, rtol=1e-14)

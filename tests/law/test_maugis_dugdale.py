@@ -313,13 +313,15 @@ def test_jkr_refuses_dugdale_parameters():
 
 @pytest.mark.slow
 def test_sweeps_over_range_equal_simulate_and_refuse_both_parameters():
-    """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values;
-    sweeping σ0 over a scene that gives h makes invalid points, refused before anything runs."""
+    """`impact.sweep` over h (one compiled group: σ0 and h are traced) gives simulate's values
+    with the sweep's method named (the quadrature: the scene names none); sweeping σ0 over a scene
+    that gives h makes invalid points, refused before anything runs."""
     base = md_scene(adhesion_range=WORK / float(theory.maugis_adhesive_stress(1.0, R, WORK, E_STAR)), velocity=0.5)
     ranges = [1e-9, 1e-10]
     result = impact.sweep(base, {"effects.adhesion.range": ranges}, chunk=2)
+    assert result.spec.method == "quadrature"
     for i, adhesion_range in enumerate(ranges):
-        single = simulate(md_scene(adhesion_range=adhesion_range, velocity=0.5))
+        single = simulate(md_scene(adhesion_range=adhesion_range, velocity=0.5, solver={"method": "quadrature"}))
         assert result.status_names()[i] == single.status
         for name in ("restitution", "max_force", "min_force", "dissipated_energy"):
             assert math.isclose(float(getattr(result, name)[i]), getattr(single, name), rel_tol=1e-12), name

@@ -57,18 +57,25 @@ from impact._run.sweep.plan import plan_sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
-from tests.run.bitwise import assert_bitwise
+from tests.run.bitwise import assert_bitwise, named_method
 from tests.scenes import CONFIGS
 
-# (scene, its changes, lowest and highest velocity in m/s, points): captured and separated
-# points. Each call size compiles once: chunk 1 runs calls of 2 (a point and its copy), chunk 7
-# calls of 6, chunks 64 and the default one call; a curve law's program takes ~10 s to compile,
-# so its two points make one call size, 2, in every chunk; attach hysteresis's seven points
-# make two (chunk 7 is one call of all seven).
+# (scene, its changes, lowest and highest velocity in m/s, points): captured and separated points.
+# Each scene names its method (a sweep of one that names none runs the quadrature). Each call size
+# compiles once: chunk 1 runs calls of 2 (a point and its copy), chunk 7 calls of 6, chunks 64 and
+# the default one call; a curve law's program takes ~10 s to compile, so its two points make one
+# call size, 2, in every chunk; attach hysteresis's seven points make two (chunk 7 is one call of
+# all seven).
 LAWS = {
     "continuum JKR": ("thornton_ning.yaml", {}, 0.25, 5.0, 12),
     "spring array": ("spring_array.yaml", {}, 0.3, 3.0, 12),
-    "attach hysteresis": ("attach_on_touch.yaml", {"effects.adhesion.approach_work_of_adhesion": 0.02}, 0.2, 3.0, 7),
+    "attach hysteresis": (
+        "attach_on_touch.yaml",
+        {"effects.adhesion.approach_work_of_adhesion": 0.02, "solver.method": "tsit5"},
+        0.2,
+        3.0,
+        7,
+    ),
     "Maugis–Dugdale": ("maugis_dugdale.yaml", {}, 0.1, 2.0, 2),  # Λ = 1
     "Greenwood–Johnson": ("greenwood_johnson.yaml", {}, 0.1, 1.0, 2),
 }
@@ -131,7 +138,7 @@ def test_a_power_law_point_does_not_depend_on_its_place_in_a_batch():
     last lane's time falls in the row left over from the 4-row tiles, and its restitution
     moved by 3e-15), and in reverse order: each point's results are bitwise the same wherever
     it sits. (One compiled program: a power law's takes ~20 s to compile.)"""
-    scene = load_scene(CONFIGS / "power_law.yaml")
+    scene = named_method(load_scene(CONFIGS / "power_law.yaml"))  # its ODE solve, not the quadrature
     velocities = np.array([0.12, 2.0, 0.3, 0.12, 2.0, 0.3, 0.3])  # m/s; v_s = 0.1315 m/s: 0.12 sticks
     batched = sweep(scene, {"initial.velocity": velocities.tolist()}, order="given", chunk=64)
     assert batched.stats["call_sizes"] == [7]

@@ -31,7 +31,7 @@ from impact._plots.sweep import restitution_figure
 from impact._run.sweep import empty_results, plan_sweep, result_names, sticking_estimates, sweep
 from impact._run.sweep.closed_forms import sticking_velocity
 from impact._run.sweep.execute import chunks_of, default_chunk
-from impact._scene import sweep as scene_sweep
+from impact._scene import sweep_method
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
 from impact._scene.sweep import make_spec
@@ -483,8 +483,8 @@ def test_the_command_checks_its_points_once(grid, tmp_path, monkeypatch):
     takes the spec it holds (checking 10⁶ points as scenes takes about 20 s). Read without
     it, the file is validated again and gives the same results."""
     checked = []
-    check_points = scene_sweep.check_points
-    monkeypatch.setattr(scene_sweep, "check_points", lambda spec: (checked.append(spec.size), check_points(spec))[1])
+    check_points = sweep_method.check_points  # what `make_spec` checks the points with, its method chosen
+    monkeypatch.setattr(sweep_method, "check_points", lambda spec: (checked.append(spec.size), check_points(spec))[1])
     sweep_file = tmp_path / "grid.yaml"
     sweep_file.write_text(yaml.safe_dump({"scene": str(THORNTON_NING), "axes": GRID}, sort_keys=False))
     result = invoke("sweep", sweep_file, "-o", tmp_path / "out", "--chunk", CHUNK)

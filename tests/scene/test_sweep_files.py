@@ -107,6 +107,11 @@ def test_the_example_sweeps_are_valid():
     assert fast.shape == (10000,) and fast.scene.solver.method == "quadrature"  # `set:` changed the base scene
     assert fast.scene.phase_ends == "energy"
     assert specs["attach_on_touch"].paths == ("initial.velocity", "effects.adhesion.approach_work_of_adhesion")
+    # a scene that names no method is swept with the quadrature where it runs every point
+    methods = {name: spec.method for name, spec in specs.items()}
+    assert methods["power_law"] == "quadrature"  # power_law.yaml names none
+    assert methods["thornton_ning"] == methods["maugis_tabor"] == "tsit5"  # their scenes name it
+    assert methods["rubber_ball_restitution"] == "tsit5"  # damped: the quadrature refuses it
 
 
 def test_api_refuses_bad_axes():

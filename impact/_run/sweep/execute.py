@@ -246,7 +246,9 @@ def sweep(
     """Simulate a scene over axes of its numeric fields (dotted path → values, or a generator
     such as {"geomspace": [0.2, 20, 400]}), combined as a grid or zipped (`mode`).
 
-    Returns every scalar result as an array in the sweep's shape, with the chapter's closed-form
+    The points run the method the scene names (`solver.method`), else the quadrature where every
+    point allows it (`result.spec.method`, `.method_choice`). Returns every scalar result as an
+    array in the sweep's shape, with the chapter's closed-form
     restitution where it has one, each named loss of the scene's effects (plastic work, viscous
     work, adhesion hysteresis, unrecovered elastic energy) and, with a counterpart, both bodies'
     lab velocities; it computes in float64 whatever JAX's global flag. `order`: "cost" runs

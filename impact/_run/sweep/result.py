@@ -107,10 +107,11 @@ def chunk_columns(scene: Scene, params: dict[str, np.ndarray], points: np.ndarra
 class SweepResult:
     """Every scalar result of a sweep as an array in the sweep's shape (grid: one axis per swept
     field, in the order given; zip: one axis), in SI units. Each point's results are those of
-    `impact.Result` for its scene.
+    `impact.Result` for its scene with the sweep's method named (`spec.method`).
 
     Attributes:
-        spec: The validated sweep: the base scene, its axes, the mode and the order.
+        spec: The validated sweep: the base scene, its axes, the mode and the order; `spec.method`, the
+            integrator every point ran, and `spec.method_choice`, why (named by the scene, or chosen).
         params: The swept values of each point, by dotted path [SI].
         restitution: Rebound speed over touch speed of the first contact, dimensionless; 0 if
             captured, nan without a physical outcome.
