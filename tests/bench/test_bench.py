@@ -57,14 +57,14 @@ def test_markdown_fragment_holds_the_runs_tables(quick):
         errors = file["continuum/tsit5/error_max"][()]
         single = file["continuum/tsit5/time_single_mean"][()]
         accepted = file["continuum/tsit5/accepted"][()]
-    assert [float(row[0]) for row in cheapest_rows] == pytest.approx(list(targets))
+    assert [float(row[0]) for row in cheapest_rows] == pytest.approx(list(targets), rel=1e-6, abs=0.0)
     assert len(continuum_rows) == len(rtols)
     for row, rtol, error, times, steps in zip(continuum_rows, rtols, errors, single, accepted, strict=True):
-        assert float(row[1]) == pytest.approx(rtol, rel=0.051)
-        assert float(row[2]) == pytest.approx(error, rel=0.051), row
+        assert float(row[1]) == pytest.approx(rtol, rel=0.051, abs=0.0)
+        assert float(row[2]) == pytest.approx(error, rel=0.051, abs=0.0), row
         assert int(row[3].split(" / ")[0]) == round(float(np.mean(steps))), row
         value, unit = row[4].split()
-        assert float(value) * {"µs": 1e-6, "ms": 1e-3, "s": 1.0}[unit] == pytest.approx(times, rel=5e-3)
+        assert float(value) * {"µs": 1e-6, "ms": 1e-3, "s": 1.0}[unit] == pytest.approx(times, rel=5e-3, abs=0.0)
 
 
 def test_error_falls_as_the_tolerance_tightens(quick):
@@ -156,4 +156,4 @@ def test_equal_error_picks_the_cheapest_reliable_setting():
     failed = np.array([1e-3, np.nan, 1e-9, 1e-10])  # a failed run is no setting to rely on
     assert cheapest([(failed, times)], 1e-4) == 5.0
     assert cheapest([(failed, times), (errors, 2 * times)], 1e-4) == 4.0
-    assert fitted_order([10, 100, 1000], [1e-2, 1e-4, 1e-6]) == pytest.approx(2.0)
+    assert fitted_order([10, 100, 1000], [1e-2, 1e-4, 1e-6]) == pytest.approx(2.0, rel=1e-6, abs=0.0)

@@ -81,7 +81,7 @@ def test_markdown_fragment_holds_the_runs_table(tiny):
         median, low, high = (float(x) for x in time.replace("(", " ").replace(")", " ").replace("–", " ").split())
         for shown, value in ((median, "us_per_impact_median"), (low, "us_min"), (high, "us_max")):
             assert shown == pytest.approx(float(row[value]), rel=5e-3, abs=0.051), (line, row)
-        assert float(error.split()[0]) == pytest.approx(float(row["max_error"]), rel=0.051), (line, row)
+        assert float(error.split()[0]) == pytest.approx(float(row["max_error"]), rel=0.051, abs=0.0), (line, row)
         assert error.endswith(f"({row['error_reference']})")
         assert int(steps) == round(float(row["steps_mean"])), (line, row)
         assert float(compile_time.removesuffix(" s")) == pytest.approx(float(row["compile_s"]), abs=0.051)
@@ -128,7 +128,7 @@ def test_split_parts_add_up_to_the_staged_run(tiny):
     for row in rows:
         parts = [float(row[name]) for name in ("build_us", "integrate_us", "post_us")]
         assert all(part > 0 for part in parts), row
-        assert sum(parts) == pytest.approx(float(row["staged_us"]), rel=1e-5), row
+        assert sum(parts) == pytest.approx(float(row["staged_us"]), rel=1e-5, abs=0.0), row
 
 
 @pytest.mark.slow
@@ -221,6 +221,6 @@ def test_reduction_counts_a_failed_point_as_infinite_error():
     assert reduce.error() == np.inf and reduce.steps == 3
     clean = Reduction(2, CLOSED_FORM)
     clean.add(np.arange(2), {**{k: v[[0, 2]] for k, v in values.items()}})
-    assert clean.error() == pytest.approx(0.1)
+    assert clean.error() == pytest.approx(0.1, rel=1e-6, abs=0.0)
     text = speed_csv([dict.fromkeys(COLUMNS, 1.0)])
     assert text.splitlines()[0] == ",".join(COLUMNS)

@@ -224,7 +224,7 @@ def test_time_step_resolves_the_shortest_contact(thornton_ning_scene):
     scene = thornton_ning_scene
     model = lammps_model(scene)
     speeds = default_velocities(scene)
-    assert np.allclose(speeds, np.linspace(0.15, 1.2, 16), rtol=ROUND_OFF)
+    assert np.allclose(speeds, np.linspace(0.15, 1.2, 16), rtol=ROUND_OFF, atol=0.0)
     shortest = 2.8682 * (1.0472e-14**2 / (1e-6 * 1e18 * 1.2)) ** 0.2  # Hertz, to the 5 digits of its constant
     assert math.isclose(time_step(scene, model, speeds, None), shortest / 2000, rel_tol=1e-4)
     with pytest.raises(CompareError) as caught:

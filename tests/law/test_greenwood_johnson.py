@@ -63,8 +63,8 @@ def test_energy_balance_loop_area_and_pull_off(k):
     assert abs(lost - result.dissipated_energy) <= 1e-7 * energy
     assert abs(result.dissipated_energy - loop_area(k)) <= 1e-6 * energy
     pull_off = float(theory.double_hertz_pull_off(k, R, E_STAR, WORK, 3)[2])
-    assert result.min_force == pytest.approx(pull_off, rel=1e-8)
-    assert result.tabor_parameter == pytest.approx(float(theory.double_hertz_tabor_parameter(k)), rel=1e-12)
+    assert result.min_force == pytest.approx(pull_off, rel=1e-8, abs=0.0)
+    assert result.tabor_parameter == pytest.approx(float(theory.double_hertz_tabor_parameter(k)), rel=1e-12, abs=0.0)
 
 
 def test_restitution_converges_to_thornton_ning_as_k_grows():
@@ -89,8 +89,8 @@ def test_dmt_side_is_reversible(k):
     _, onset_depth, onset_force = map(float, theory.double_hertz_onset(k, R, E_STAR, WORK))
     in_contact = np.flatnonzero(result.contact_radius > 0)
     first = in_contact[0] - 1 if result.force[in_contact[0] - 1] != 0 else in_contact[0]
-    assert result.indentation[first] == pytest.approx(onset_depth, rel=1e-10)
-    assert result.force[first] == pytest.approx(onset_force, rel=1e-8)
+    assert result.indentation[first] == pytest.approx(onset_depth, rel=1e-10, abs=0.0)
+    assert result.force[first] == pytest.approx(onset_force, rel=1e-8, abs=0.0)
 
 
 @pytest.mark.slow
@@ -101,7 +101,7 @@ def test_slow_impacts_are_captured_and_sphere_tips_ride_the_paraboloid():
     assert result.status == "captured" and result.stuck and result.restitution == 0.0
     paraboloid = simulate(gj_scene(3.0))
     sphere = simulate(gj_scene(3.0, profile={"shape": "sphere", "R": R}))
-    assert sphere.restitution == pytest.approx(paraboloid.restitution, rel=1e-9)
+    assert sphere.restitution == pytest.approx(paraboloid.restitution, rel=1e-9, abs=0.0)
 
 
 @pytest.mark.slow
@@ -141,7 +141,7 @@ def test_sweep_over_k_balances_energy_and_equals_simulate():
     single = simulate(gj_scene(factors[-1], velocity=0.5, solver={"method": "quadrature"}))
     assert math.isclose(float(result.restitution[-1]), single.restitution, rel_tol=1e-12)
     expected = float(theory.thornton_ning_restitution(0.5, MASS, R, E_STAR, WORK))
-    assert np.allclose(np.asarray(result.theory_restitution), expected, rtol=1e-14)
+    assert np.allclose(np.asarray(result.theory_restitution), expected, rtol=1e-14, atol=0.0)
 
 
 BASE = {"model": "greenwood_johnson", "work_of_adhesion": WORK, "k": 1.0}
@@ -223,7 +223,7 @@ def test_cli_runs_the_config_and_refuses_approach_with_exit_code_2(tmp_path):
     ran = CliRunner().invoke(app, ["run", str(CONFIG), "-o", str(out)])
     assert ran.exit_code == 0, ran.output
     stored = read_run(out / "run.h5")
-    assert stored.restitution == pytest.approx(simulate(load_scene(CONFIG)).restitution, rel=1e-12)
+    assert stored.restitution == pytest.approx(simulate(load_scene(CONFIG)).restitution, rel=1e-12, abs=0.0)
     bad = tmp_path / "bad.yaml"
     bad.write_text(CONFIG.read_text().replace("    k: 10.0", "    k: 10.0\n    approach_work_of_adhesion: 0.01"))
     refused = CliRunner().invoke(app, ["run", str(bad), "-o", str(tmp_path / "bad")])

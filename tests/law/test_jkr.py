@@ -137,7 +137,7 @@ def test_pull_off_force_is_reached_during_unloading():
     m = MATERIALS["micro"]
     result = simulate(paraboloid_scene("micro", 3 * sticking_velocity("micro")))
     pull_off = -1.5 * np.pi * m["work_of_adhesion"] * m["R"]
-    assert result.min_force == pytest.approx(pull_off, rel=1e-10)
+    assert result.min_force == pytest.approx(pull_off, rel=1e-10, abs=0.0)
 
 
 def power_law_scene(n, c, velocity, approach=None):
@@ -208,9 +208,9 @@ def test_no_adhesion_is_elastic_hertz(adhesion):
     result = simulate(scene)
     assert abs(result.restitution - 1.0) <= 1e-9
     contact_time = float(theory.hertz_contact_time(0.5, m["mass"], m["R"], m["E_star"]))
-    assert result.contact_time == pytest.approx(contact_time, rel=1e-6)
+    assert result.contact_time == pytest.approx(contact_time, rel=1e-6, abs=0.0)
     assert result.max_indentation == pytest.approx(
-        float(theory.hertz_max_indentation(0.5, m["mass"], m["R"], m["E_star"])), rel=1e-8
+        float(theory.hertz_max_indentation(0.5, m["mass"], m["R"], m["E_star"])), rel=1e-8, abs=0.0
     )
     assert result.min_force >= 0.0
 
@@ -235,7 +235,7 @@ def test_spring_array_events_are_exact():
     v_s = sticking_velocity("micro")
     result = simulate(paraboloid_scene("micro", 2 * v_s, contact={"springs": 300}))
     lost = 0.5 * MATERIALS["micro"]["mass"] * (result.touch_velocity**2 - result.separation_velocity**2)
-    assert lost == pytest.approx(result.dissipated_energy, rel=1e-10)
+    assert lost == pytest.approx(result.dissipated_energy, rel=1e-10, abs=0.0)
 
 
 ATTACH_FACTORS = [1.3, 2.0, 5.0, 20.0]
@@ -263,7 +263,7 @@ def test_attach_on_touch_energy_balance(factor):
     velocity = factor * sticking_velocity("micro")
     result = simulate(paraboloid_scene("micro", velocity, approach=0.0, solver=TIGHT))
     lost = 0.5 * m["mass"] * (result.touch_velocity**2 - result.separation_velocity**2)
-    assert lost == pytest.approx(result.dissipated_energy, rel=1e-8)
+    assert lost == pytest.approx(result.dissipated_energy, rel=1e-8, abs=0.0)
 
 
 def test_attach_on_touch_captures_below_its_own_threshold():
@@ -281,8 +281,8 @@ def test_gravity_touchdown_time():
     scene["effects"]["gravity"] = {"g": g}
     result = simulate(scene)
     assert result.events[0][1] == "touch"
-    assert result.events[0][0] == pytest.approx(np.sqrt(2 * gap / g), rel=1e-12)
-    assert result.touch_velocity == pytest.approx(np.sqrt(2 * g * gap), rel=1e-12)
+    assert result.events[0][0] == pytest.approx(np.sqrt(2 * gap / g), rel=1e-12, abs=0.0)
+    assert result.touch_velocity == pytest.approx(np.sqrt(2 * g * gap), rel=1e-12, abs=0.0)
 
 
 @pytest.mark.slow

@@ -115,7 +115,7 @@ def test_zone_without_contact_and_its_junction(tabor):
     problem = problem_of(md_scene(tabor))
     a_c, d_c, force_unit = jkr_units()
     junction = float(problem.curve.junction) * float(problem.scales.radial)
-    assert junction / a_c == pytest.approx(float(theory.maugis_junction_zone_radius(tabor)), rel=1e-12)
+    assert junction / a_c == pytest.approx(float(theory.maugis_junction_zone_radius(tabor)), rel=1e-12, abs=0.0)
     zones = junction * np.array([0.05, 0.3, 0.7, 1.0]) / float(problem.scales.radial)
     depth, force = (np.asarray(v) for v in problem.law.zone(jnp.asarray(zones)))
     d_hat, f_hat = theory.maugis_paraboloid_noncontact(zones * float(problem.scales.radial) / a_c, tabor)
@@ -123,7 +123,7 @@ def test_zone_without_contact_and_its_junction(tabor):
     np.testing.assert_allclose(force * float(problem.scales.force) / force_unit, f_hat, rtol=1e-11)
     # The contact branch starts where the zone ends (a = 0).
     contact = si_contact(problem, 1.0)
-    assert contact[2] == 0.0 and contact[3] == pytest.approx(junction, rel=1e-12)
+    assert contact[2] == 0.0 and contact[3] == pytest.approx(junction, rel=1e-12, abs=0.0)
 
 
 @pytest.mark.slow
@@ -150,7 +150,7 @@ def test_power_law_states_satisfy_3_192(profile, n, c):
 def test_pull_off_force_is_the_minimum_of_3_171(tabor):
     _, _, force_unit = jkr_units()
     assert pull_off(problem_of(md_scene(tabor))) / force_unit == pytest.approx(
-        float(theory.maugis_pull_off(tabor)), rel=1e-9
+        float(theory.maugis_pull_off(tabor)), rel=1e-9, abs=0.0
     )
 
 
@@ -213,7 +213,7 @@ def test_impact_energy_balance_and_reported_tabor(tabor):
     assert result.status == "separated"
     lost, work = kinetic_energy_balance(result)
     assert abs(lost - work) <= 1e-7 * 0.5 * MASS * result.touch_velocity**2
-    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12)
+    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12, abs=0.0)
     for series in (result.t, result.indentation, result.velocity, result.force, result.contact_radius):
         assert np.all(np.isfinite(series))
 
@@ -389,7 +389,7 @@ def test_cli_runs_a_dugdale_scene_stores_tabor_and_refuses_bad_parameters(tmp_pa
     assert run.exit_code == 0, run.output
     assert "Tabor parameter Λ" in run.output
     stored = read_run(tmp_path / "run" / "run.h5")
-    assert stored.tabor_parameter == pytest.approx(1.0, rel=1e-6)
+    assert stored.tabor_parameter == pytest.approx(1.0, rel=1e-6, abs=0.0)
     assert [kind for _, kind in stored.events] == ["touch", "max_indentation", "separation"]
     refused = CliRunner().invoke(
         app, ["run", config, "--set", "effects.adhesion.range=1e-9", "-o", str(tmp_path / "bad")]

@@ -45,7 +45,7 @@ def test_above_it_the_restitution_meets_the_closed_form(velocity):
     assert result.status == "separated"
     assert result.restitution == pytest.approx(closed_form(velocity), abs=1e-8)
     deepest = theory.adhesive_plastic_max_indentation(velocity, MASS, R, E_STAR, WORK, P_Y)
-    assert result.max_indentation == pytest.approx(float(deepest), rel=1e-9)
+    assert result.max_indentation == pytest.approx(float(deepest), rel=1e-9, abs=0.0)
     assert [kind for _, kind in result.events] == ["touch", "yield", "max_indentation", "separation"]
     # the kinetic energy lost splits into the plastic work and the adhesion hysteresis
     energy = 0.5 * MASS * velocity**2
@@ -114,7 +114,7 @@ def test_two_bodies_meet_the_closed_form_with_effective_parameters():
     assert result.restitution == pytest.approx(float(expected), abs=1e-8)
     before = MASS * velocity - other_mass * other_velocity
     after = MASS * result.body_velocity_after + other_mass * result.counterpart_velocity_after
-    assert after == pytest.approx(before, rel=1e-12)
+    assert after == pytest.approx(before, rel=1e-12, abs=0.0)
 
 
 @pytest.mark.slow
@@ -128,16 +128,16 @@ def test_bounces_under_gravity_keep_the_dent():
     kinds = [kind for _, kind in result.events]
     assert kinds.count("yield") == 1 and kinds.count("touch") == 3
     assert result.max_indentation == pytest.approx(
-        float(theory.adhesive_plastic_max_indentation(10.0, MASS, R, E_STAR, WORK, P_Y)), rel=1e-7
+        float(theory.adhesive_plastic_max_indentation(10.0, MASS, R, E_STAR, WORK, P_Y)), rel=1e-7, abs=0.0
     )
     touches = [time for time, kind in result.events if kind == "touch"]
     separations = [time for time, kind in result.events if kind == "separation"]
     g = 9.81
     first_out = result.separation_velocity
     second_in = first_out  # the flight returns to the dent (the levels differ by nanometres)
-    assert (touches[1] - separations[0]) * g / 2 == pytest.approx(first_out, rel=1e-6)
+    assert (touches[1] - separations[0]) * g / 2 == pytest.approx(first_out, rel=1e-6, abs=0.0)
     second_out = (touches[2] - separations[1]) * g / 2
-    assert second_out == pytest.approx(dent_rebound(second_in, 10.0), rel=1e-6)
+    assert second_out == pytest.approx(dent_rebound(second_in, 10.0), rel=1e-6, abs=0.0)
     fresh = float(theory.thornton_ning_restitution(second_in, MASS, R, E_STAR, WORK)) * second_in
     assert abs(second_out - fresh) > 1e-4 * second_in
 

@@ -73,9 +73,9 @@ def test_energy_balance_and_angular_momentum_about_the_contact_point(angle, spin
 def test_without_friction_the_body_slides_on_and_keeps_its_spin():
     """μ = 0: v_t′ = v_t and ω′ = ω exactly, no friction work; contact-point restitution −1."""
     result = impact.simulate(scene(0.4, spin=500.0, coefficient=0.0))
-    assert result.tangential_velocity_after == pytest.approx(SPEED * np.sin(0.4), rel=1e-15)
+    assert result.tangential_velocity_after == pytest.approx(SPEED * np.sin(0.4), rel=1e-15, abs=0.0)
     assert result.spin_after == 500.0 and result.friction_work == 0.0
-    assert result.contact_point_tangential_restitution == pytest.approx(-1.0, rel=1e-14)
+    assert result.contact_point_tangential_restitution == pytest.approx(-1.0, rel=1e-14, abs=0.0)
     assert np.all(result.tangential_force == 0.0)
 
 
@@ -86,13 +86,13 @@ def test_large_angles_slide_as_a_rigid_body():
     1.5e-7 in ω′, O(Δt²)); the stick radius is 0 throughout the contact."""
     result = impact.simulate(scene(1.3))
     velocity, spin = rigid_sliding(result, 1.3)
-    assert result.tangential_velocity_after == pytest.approx(velocity, rel=1e-6)
-    assert result.spin_after == pytest.approx(spin, rel=1e-6)
+    assert result.tangential_velocity_after == pytest.approx(velocity, rel=1e-6, abs=0.0)
+    assert result.spin_after == pytest.approx(spin, rel=1e-6, abs=0.0)
     pressed = result.force > 0
     assert np.max(np.abs(result.tangential_force[pressed] - MU * result.force[pressed])) <= 1e-12 * np.max(result.force)
     assert np.all(result.stick_radius[pressed] == 0.0)
     assert result.rebound_angle == pytest.approx(
-        np.arctan2(velocity, result.restitution * SPEED * np.cos(1.3)), rel=1e-6
+        np.arctan2(velocity, result.restitution * SPEED * np.cos(1.3)), rel=1e-6, abs=0.0
     )
 
 
@@ -108,7 +108,7 @@ def test_gross_sliding_begins_at_the_compliant_threshold():
     assert np.degrees(threshold) == pytest.approx(28.23, abs=0.01)
     above = impact.simulate(scene(threshold + np.radians(0.3)))
     velocity, spin = rigid_sliding(above, threshold + np.radians(0.3), ratio)
-    assert above.spin_after == pytest.approx(spin, rel=1e-6)
+    assert above.spin_after == pytest.approx(spin, rel=1e-6, abs=0.0)
     below = impact.simulate(scene(threshold - np.radians(1.0)))
     spin_below = theory.sliding_impact(*speeds(threshold - np.radians(1.0)), 0.0, 1.0, MU, MASS, R, INERTIA)[1]
     assert abs(below.spin_after / float(spin_below) - 1.0) > 1e-3
@@ -189,8 +189,8 @@ def test_without_slip_against_an_independent_integration():
     800–1600; 6e-5 at N = 200: the spring spacing)."""
     result = impact.simulate(scene(0.3, springs=800, coefficient=100.0, limit="thornton"), trajectory=False)
     velocity, spin = no_slip_reference(0.3)
-    assert result.tangential_velocity_after == pytest.approx(velocity, rel=1e-5)
-    assert result.spin_after == pytest.approx(spin, rel=1e-5)
+    assert result.tangential_velocity_after == pytest.approx(velocity, rel=1e-5, abs=0.0)
+    assert result.spin_after == pytest.approx(spin, rel=1e-5, abs=0.0)
 
 
 def stepper(angle, limit="per_spring"):

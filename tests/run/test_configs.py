@@ -66,8 +66,8 @@ def force_controlled_pull_off(result):
             scene.body.profile.R, scene.material.effective_modulus, scene.effects.adhesion.work_of_adhesion, 3.0
         )
     )
-    assert result.pull_off.force == pytest.approx(F_c, rel=1e-10)
-    assert result.pull_off.contact_radius == pytest.approx(a_c, rel=1e-10)
+    assert result.pull_off.force == pytest.approx(F_c, rel=1e-10, abs=0.0)
+    assert result.pull_off.contact_radius == pytest.approx(a_c, rel=1e-10, abs=0.0)
 
 
 def displacement_controlled_wavy_pull_off(result):
@@ -86,7 +86,7 @@ def displacement_controlled_wavy_pull_off(result):
         return float(theory.wavy_paraboloid_indentation(a, *args))
 
     a = pull_off.contact_radius
-    assert pull_off.indentation == pytest.approx(depth(a), rel=1e-9)
+    assert pull_off.indentation == pytest.approx(depth(a), rel=1e-9, abs=0.0)
     step = 1e-4 * a
     assert depth(a - step) > depth(a) and depth(a + step) > depth(a)
     assert pull_off.indentation < 0.0
@@ -98,10 +98,10 @@ def maugis_dugdale_pull_off(result):
     adhesion = scene.effects.adhesion
     R, E_star = scene.body.profile.R, scene.material.effective_modulus
     tabor = float(theory.tabor_parameter(R, adhesion.adhesive_stress, adhesion.adhesion_range, E_star))
-    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12)
+    assert result.tabor_parameter == pytest.approx(tabor, rel=1e-12, abs=0.0)
     assert thornton_ning(scene, result.touch_velocity) < result.restitution < 1.0
     pull_off = float(theory.maugis_pull_off(tabor)) * 1.5 * math.pi * R * adhesion.work_of_adhesion
-    assert -result.min_force == pytest.approx(pull_off, rel=1e-8)
+    assert -result.min_force == pytest.approx(pull_off, rel=1e-8, abs=0.0)
 
 
 def maugis_dugdale_hysteresis(result):
@@ -126,7 +126,7 @@ def maugis_dugdale_indentation_pull_off(result):
     expected = [v * unit for v, unit in zip(theory.maugis_critical_state(tabor, 1), units, strict=True)]
     pull_off = result.pull_off
     found = [pull_off.contact_radius, pull_off.indentation, pull_off.force]
-    assert found == pytest.approx(expected, rel=1e-6)
+    assert found == pytest.approx(expected, rel=1e-6, abs=0.0)
 
 
 def greenwood_johnson_pull_off(result):
@@ -135,10 +135,12 @@ def greenwood_johnson_pull_off(result):
     scene = result.scene
     adhesion = scene.effects.adhesion
     R, E_star = scene.body.profile.R, scene.material.effective_modulus
-    assert result.tabor_parameter == pytest.approx(float(theory.double_hertz_tabor_parameter(adhesion.k)), rel=1e-12)
+    assert result.tabor_parameter == pytest.approx(
+        float(theory.double_hertz_tabor_parameter(adhesion.k)), rel=1e-12, abs=0.0
+    )
     assert thornton_ning(scene, result.touch_velocity) < result.restitution < 1.0
     pull_off = float(theory.double_hertz_pull_off(adhesion.k, R, E_star, adhesion.work_of_adhesion, 3)[2])
-    assert result.min_force == pytest.approx(pull_off, rel=1e-8)
+    assert result.min_force == pytest.approx(pull_off, rel=1e-8, abs=0.0)
 
 
 def thornton_plastic(result):
@@ -192,8 +194,10 @@ def viscoelastic_energy_balance(result):
     mass, work = result.scene.reduced_mass, result.dissipated_energy
     relaxation = result.relaxation
     snaps = relaxation.released_energy - relaxation.gained_energy
-    assert 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2) == pytest.approx(work, rel=1e-8)
-    assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=1e-8)
+    assert 0.5 * mass * (result.touch_velocity**2 - result.separation_velocity**2) == pytest.approx(
+        work, rel=1e-8, abs=0.0
+    )
+    assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=1e-8, abs=0.0)
     assert result.restitution < thornton_ning(result.scene, result.touch_velocity)
     assert result.viscous_work > 0.25 * 0.5 * mass * result.touch_velocity**2
 

@@ -39,8 +39,8 @@ def by_energy(velocity: float) -> tuple[float, float]:
 def test_yield_velocity_is_thorntons_with_the_exact_coefficient():
     yield_velocity = float(theory.thornton_yield_velocity(MASS, R, E_STAR, P_Y))
     scale = math.sqrt(P_Y**5 / (E_STAR**4 * DENSITY))
-    assert yield_velocity == pytest.approx(math.pi**2 / math.sqrt(40) * scale, rel=1e-14)
-    assert yield_velocity == pytest.approx(1.56 * scale, rel=5e-4)  # Thornton's 1.56 to its digits
+    assert yield_velocity == pytest.approx(math.pi**2 / math.sqrt(40) * scale, rel=1e-14, abs=0.0)
+    assert yield_velocity == pytest.approx(1.56 * scale, rel=5e-4, abs=0.0)  # Thornton's 1.56 to its digits
 
 
 @pytest.mark.parametrize("ratio", [1.5, 10.0, 300.0])
@@ -48,8 +48,10 @@ def test_restitution_is_the_energy_balance_of_the_law(ratio):
     yield_velocity = float(theory.thornton_yield_velocity(MASS, R, E_STAR, P_Y))
     velocity = ratio * yield_velocity
     restitution, deepest = by_energy(velocity)
-    assert float(theory.thornton_restitution(velocity, yield_velocity)) == pytest.approx(restitution, rel=1e-7)
-    assert float(theory.thornton_max_indentation(velocity, MASS, R, E_STAR, P_Y)) == pytest.approx(deepest, rel=1e-7)
+    assert float(theory.thornton_restitution(velocity, yield_velocity)) == pytest.approx(restitution, rel=1e-7, abs=0.0)
+    assert float(theory.thornton_max_indentation(velocity, MASS, R, E_STAR, P_Y)) == pytest.approx(
+        deepest, rel=1e-7, abs=0.0
+    )
 
 
 def test_restitution_is_one_up_to_the_yield_velocity_and_continuous_there():

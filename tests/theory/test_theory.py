@@ -141,9 +141,9 @@ def test_special_cases_agree(xi):
         assert np.allclose((sphere / parab - 1) / alpha2, C, rtol=0, atol=10 * alpha2)
     for v, m, R, E, w in [(1.0, 1e-3, 2e-6, 1e9, 0.1), (2.0, 1e-12, 5e-9, 7e10, 0.5)]:
         e_pl = theory.power_law_restitution(v, m, 2, 0.5 / R, E, w)
-        assert np.isclose(e_pl, theory.thornton_ning_restitution(v, m, R, E, w), rtol=1e-13)
+        assert np.isclose(e_pl, theory.thornton_ning_restitution(v, m, R, E, w), rtol=1e-13, atol=0.0)
         v_pl = theory.power_law_sticking_velocity(m, 2, 0.5 / R, E, w)
-        assert np.isclose(v_pl, theory.thornton_ning_sticking_velocity(m, R, E, w), rtol=1e-13)
+        assert np.isclose(v_pl, theory.thornton_ning_sticking_velocity(m, R, E, w), rtol=1e-13, atol=0.0)
 
 
 def test_jump_in():
@@ -151,13 +151,13 @@ def test_jump_in():
     F₀ = −2E* G(a₀) for a power law; rtol 1e-12."""
     R = 2e-6
     a0, F0 = map(float, theory.paraboloid_jump_in(R, *MAT))
-    assert np.isclose(a0, brentq(lambda a: a**2 / R - dl(a), 1e-3 * R, R, **ROOT), rtol=1e-12)
-    assert np.isclose(F0, -8 / 9 * 1.5 * np.pi * DGAMMA * R, rtol=1e-12)
+    assert np.isclose(a0, brentq(lambda a: a**2 / R - dl(a), 1e-3 * R, R, **ROOT), rtol=1e-12, atol=0.0)
+    assert np.isclose(F0, -8 / 9 * 1.5 * np.pi * DGAMMA * R, rtol=1e-12, atol=0.0)
     n, c = 3.0, c_of(3.0)
     g, _, G = power_law_profile(n, c)
     a0, F0 = map(float, theory.power_law_jump_in(n, c, *MAT))
-    assert np.isclose(g(a0), dl(a0), rtol=1e-12)
-    assert np.isclose(F0, -2 * E_STAR * G(a0), rtol=1e-12)
+    assert np.isclose(g(a0), dl(a0), rtol=1e-12, atol=0.0)
+    assert np.isclose(F0, -2 * E_STAR * G(a0), rtol=1e-12, atol=0.0)
 
 
 # --- restitution: energy balance of the reversible JKR impact -----------------------------------
@@ -224,10 +224,10 @@ def test_restitution_limits():
     def e(v):
         return float(theory.thornton_ning_restitution(v, m, R, E, w))
 
-    assert np.isclose(float(theory.thornton_ning_beta(vs, m, R, E, w)), 1.0, rtol=1e-14)
+    assert np.isclose(float(theory.thornton_ning_beta(vs, m, R, E, w)), 1.0, rtol=1e-14, atol=0.0)
     assert e(0.5 * vs) == 0.0 and e(vs) < 1e-7
     assert 0 < e(1.0001 * vs) < 0.02
-    assert np.isclose(1 - e(1e3 * vs), 0.5e-6, rtol=1e-5)
+    assert np.isclose(1 - e(1e3 * vs), 0.5e-6, rtol=1e-5, atol=0.0)
     for n in (0.75, 3.0):
         vs = float(theory.power_law_sticking_velocity(m, n, 1e3, E, w))
         assert float(theory.power_law_restitution(0.99 * vs, m, n, 1e3, E, w)) == 0.0
@@ -263,7 +263,7 @@ def test_sphere_critical_jit_vmap_grad():
         return theory.sphere_critical(r, *MAT, 3.0)[2]
 
     h = 1e-11
-    assert np.isclose(jax.grad(f)(1e-6), (f(1e-6 + h) - f(1e-6 - h)) / (2 * h), rtol=1e-6)
+    assert np.isclose(jax.grad(f)(1e-6), (f(1e-6 + h) - f(1e-6 - h)) / (2 * h), rtol=1e-6, atol=0.0)
 
 
 # --- Hertz impact: exact contact time vs the equation of motion ----------------------------------

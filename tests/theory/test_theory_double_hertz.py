@@ -76,8 +76,8 @@ def test_pull_off_under_force_control_is_the_minimum_of_F(k):
     c0 = float(theory.double_hertz_onset(k, R, E_STAR, DGAMMA)[0])
     root = brentq(lambda a: float(slope(a)), 1e-9 * c0, 10 * c0 * max(1.0, k), xtol=1e-16 * c0, rtol=1e-15)
     a, _, F = map(float, theory.double_hertz_pull_off(k, R, E_STAR, DGAMMA, 3))
-    assert a == pytest.approx(root, rel=1e-8)
-    assert F == pytest.approx(float(theory.double_hertz_force(root, k, R, E_STAR, DGAMMA)), rel=1e-8)
+    assert a == pytest.approx(root, rel=1e-8, abs=0.0)
+    assert F == pytest.approx(float(theory.double_hertz_force(root, k, R, E_STAR, DGAMMA)), rel=1e-8, abs=0.0)
 
 
 @pytest.mark.parametrize("k", FACTORS)
@@ -94,19 +94,23 @@ def test_pull_off_under_displacement_control(k):
         return
     slope = jax.jit(jax.grad(lambda a: theory.double_hertz_indentation(a, k, R, E_STAR, DGAMMA)))
     root = brentq(lambda a: float(slope(a)), 1e-9 * c0, 10 * c0 * max(1.0, k), xtol=1e-16 * c0, rtol=1e-15)
-    assert a == pytest.approx(root, rel=1e-8)
-    assert d == pytest.approx(float(theory.double_hertz_indentation(root, k, R, E_STAR, DGAMMA)), rel=1e-8)
-    assert F == pytest.approx(float(theory.double_hertz_force(root, k, R, E_STAR, DGAMMA)), rel=1e-8)
+    assert a == pytest.approx(root, rel=1e-8, abs=0.0)
+    assert d == pytest.approx(float(theory.double_hertz_indentation(root, k, R, E_STAR, DGAMMA)), rel=1e-8, abs=0.0)
+    assert F == pytest.approx(float(theory.double_hertz_force(root, k, R, E_STAR, DGAMMA)), rel=1e-8, abs=0.0)
 
 
 def test_jkr_and_dmt_limits():
     """Force control: F → −(3/2)πRΔγ at k = 1e4 (JKR) and −2πRΔγ at k = 1e-4 (DMT, Bradley),
     both to 1e-3 relative; displacement control at k = 1e4: the JKR −(5/6)πRΔγ to 1e-3."""
     scale = np.pi * R * DGAMMA
-    assert float(theory.double_hertz_pull_off(1e4, R, E_STAR, DGAMMA, 3)[2]) == pytest.approx(-1.5 * scale, rel=1e-3)
-    assert float(theory.double_hertz_pull_off(1e-4, R, E_STAR, DGAMMA, 3)[2]) == pytest.approx(-2 * scale, rel=1e-3)
+    assert float(theory.double_hertz_pull_off(1e4, R, E_STAR, DGAMMA, 3)[2]) == pytest.approx(
+        -1.5 * scale, rel=1e-3, abs=0.0
+    )
+    assert float(theory.double_hertz_pull_off(1e-4, R, E_STAR, DGAMMA, 3)[2]) == pytest.approx(
+        -2 * scale, rel=1e-3, abs=0.0
+    )
     displaced = float(theory.double_hertz_pull_off(1e4, R, E_STAR, DGAMMA, 1)[2])
-    assert displaced == pytest.approx(-5 / 6 * scale, rel=1e-3)
+    assert displaced == pytest.approx(-5 / 6 * scale, rel=1e-3, abs=0.0)
 
 
 def test_equivalent_dugdale_parameters():
@@ -116,9 +120,9 @@ def test_equivalent_dugdale_parameters():
         stress = float(theory.double_hertz_adhesive_stress(k, R, E_STAR, DGAMMA))
         reach = float(theory.double_hertz_range(k, R, E_STAR, DGAMMA))
         tabor = float(theory.double_hertz_tabor_parameter(k))
-        assert stress * reach == pytest.approx(DGAMMA, rel=1e-12)
-        assert float(theory.tabor_parameter(R, stress, reach, E_STAR)) == pytest.approx(tabor, rel=1e-12)
-        assert float(theory.double_hertz_factor(tabor)) == pytest.approx(k, rel=1e-12)
+        assert stress * reach == pytest.approx(DGAMMA, rel=1e-12, abs=0.0)
+        assert float(theory.tabor_parameter(R, stress, reach, E_STAR)) == pytest.approx(tabor, rel=1e-12, abs=0.0)
+        assert float(theory.double_hertz_factor(tabor)) == pytest.approx(k, rel=1e-12, abs=0.0)
 
 
 def test_gradient_of_the_pull_off_force():
@@ -128,7 +132,7 @@ def test_gradient_of_the_pull_off_force():
     step = 1e-4 * k
     upper = float(theory.double_hertz_pull_off(k + step, R, E_STAR, DGAMMA, 3)[2])
     lower = float(theory.double_hertz_pull_off(k - step, R, E_STAR, DGAMMA, 3)[2])
-    assert exact == pytest.approx((upper - lower) / (2 * step), rel=1e-6)
+    assert exact == pytest.approx((upper - lower) / (2 * step), rel=1e-6, abs=0.0)
 
 
 def test_transition_figure_compares_both_models_within_one_and_a_half_percent():

@@ -231,7 +231,7 @@ def test_critical_states_of_both_controls(tabor):
     control d̃ is the lowest indentation: below the junction's and the contact branch's on a fine
     scan, and (Λ < 0.82) the zone's closed form at b̃ = 8Λ/(3π) (3.176)."""
     force = theory.maugis_critical_state(tabor, 3)
-    assert force[2] == pytest.approx(-theory.maugis_pull_off(tabor), rel=1e-15)
+    assert force[2] == pytest.approx(-theory.maugis_pull_off(tabor), rel=1e-15, abs=0.0)
     a, d, F = theory.maugis_critical_state(tabor, 1)
     excess = np.exp(np.linspace(-30.0, 30.0, 200001))
     _, depths, _ = theory.maugis_paraboloid(1.0 + excess, tabor)
@@ -239,10 +239,10 @@ def test_critical_states_of_both_controls(tabor):
     zone = 8 * tabor / (3 * np.pi)
     if zone < theory.maugis_junction_zone_radius(tabor):
         noncontact = tuple(float(value) for value in theory.maugis_paraboloid_noncontact(zone, tabor))
-        assert (float(a), float(d), float(F)) == pytest.approx((0.0, *noncontact), rel=1e-15)
-        assert F == pytest.approx(-32 * tabor**3 / (9 * np.pi), rel=1e-14)
+        assert (float(a), float(d), float(F)) == pytest.approx((0.0, *noncontact), rel=1e-15, abs=0.0)
+        assert F == pytest.approx(-32 * tabor**3 / (9 * np.pi), rel=1e-14, abs=0.0)
     else:
-        assert a > 0 and d == pytest.approx(np.nanmin(depths), rel=1e-8)  # the scan: 3e-4 apart in ln(κ − 1)
+        assert a > 0 and d == pytest.approx(np.nanmin(depths), rel=1e-8, abs=0.0)  # the scan: 3e-4 apart in ln(κ − 1)
 
 
 @pytest.mark.parametrize(("tabor", "tolerance"), [(10.0, 1e-2), (30.0, 1e-3)])

@@ -57,8 +57,8 @@ def test_elastic_limits_without_adhesion(time, modulus):
     result = run(scene(time), contact_time(modulus) / STEPS)
     assert result.status == "separated"
     assert result.restitution == pytest.approx(1.0, abs=1e-6)
-    assert result.contact_time == pytest.approx(contact_time(modulus), rel=1e-6)
-    assert result.max_force == pytest.approx(float(theory.hertz_max_force(SPEED, MASS, R, modulus)), rel=1e-6)
+    assert result.contact_time == pytest.approx(contact_time(modulus), rel=1e-6, abs=0.0)
+    assert result.max_force == pytest.approx(float(theory.hertz_max_force(SPEED, MASS, R, modulus)), rel=1e-6, abs=0.0)
 
 
 def test_glassy_limit_is_thornton_ning():
@@ -116,7 +116,7 @@ def test_energy_balance_of_the_first_contact(adhesion):
     if adhesion is None:
         assert abs(snaps) < 1e-12 * work and result.adhesion_hysteresis == 0.0  # springs attach at rest
     else:
-        assert result.adhesion_hysteresis == pytest.approx(snaps, rel=1e-6)
+        assert result.adhesion_hysteresis == pytest.approx(snaps, rel=1e-6, abs=0.0)
 
 
 def test_a_captured_body_comes_to_rest_where_its_first_contact_closes():
@@ -140,10 +140,11 @@ def test_a_captured_body_comes_to_rest_where_its_first_contact_closes():
 @pytest.mark.slow
 def test_time_step_order_is_two():
     """The implicit midpoint rule with exact springs: e and t_c converge as dt² (De ≈ 1, fitted
-    order within 0.1 of 2 over t_c/250 … t_c/1000 against t_c/4000)."""
+    order within 0.1 of 2 over t_c/125 … t_c/500 against t_c/2000: measured 2.04 for both, as
+    over t_c/250 … t_c/1000 against t_c/4000)."""
     tau = contact_time(RELAXED + 0.5 * ARM)
-    reference = run(scene(tau), tau / 4000)
-    steps = np.array([250, 500, 1000])
+    reference = run(scene(tau), tau / 2000)
+    steps = np.array([125, 250, 500])
     results = [run(scene(tau), tau / k) for k in steps]
     for name in ("restitution", "contact_time"):
         errors = np.abs([getattr(result, name) - getattr(reference, name) for result in results])
@@ -179,7 +180,7 @@ def test_medium_state_in_run_file(tmp_path):
     # the stored energy is that of the springs: ½E∞u² + ½E₁q² per width, both sides
     width = relaxation.spring_position[1] - relaxation.spring_position[0]
     energy = width * np.sum(RELAXED * relaxation.displacement**2 + ARM * relaxation.arm_stretch[:, 0] ** 2)
-    assert energy == pytest.approx(relaxation.stored_energy, rel=1e-12)
+    assert energy == pytest.approx(relaxation.stored_energy, rel=1e-12, abs=0.0)
 
 
 def test_counterpart_moves_with_the_reduced_mass():
@@ -190,4 +191,4 @@ def test_counterpart_moves_with_the_reduced_mass():
     two["counterpart"] = {"mass": 2 * MASS}
     one, pair = run(scene(tau), tau / FEW_STEPS), run(two, tau / FEW_STEPS)
     assert pair.restitution == pytest.approx(one.restitution, abs=1e-12)
-    assert pair.body_velocity_after == pytest.approx(0.5 * (SPEED - one.separation_velocity), rel=1e-12)
+    assert pair.body_velocity_after == pytest.approx(0.5 * (SPEED - one.separation_velocity), rel=1e-12, abs=0.0)

@@ -35,28 +35,28 @@ def released(time, t1):
 def test_relaxation_modulus_runs_from_instantaneous_to_relaxed():
     moduli, times = jnp.asarray(MODULI), jnp.asarray(TIMES)
     values = np.asarray(theory.prony_relaxation_modulus(np.array([0.0, 0.1, 1e3]), E_RELAXED, moduli, times))
-    assert values == pytest.approx([E_RELAXED + MODULI.sum(), relaxation(0.1), E_RELAXED], rel=1e-15)
+    assert values == pytest.approx([E_RELAXED + MODULI.sum(), relaxation(0.1), E_RELAXED], rel=1e-15, abs=0.0)
 
 
 @pytest.mark.parametrize("X", [1e-9, 1e-3, 0.2, np.nextafter(0.5, 0), 0.5, 3.0, 40.0, 1e4])
 def test_kernel_is_the_hereditary_integral(X):
     """H(X) = e^(−X)∫₀^X e^u·√u du (series below ½, Dawson's integral above), to 1e-12."""
     expected = quad(lambda u: np.exp(u - X) * np.sqrt(u), 0.0, X, epsabs=0, epsrel=1e-13, limit=400)[0]
-    assert float(theory.lee_radok_kernel(X)) == pytest.approx(expected, rel=1e-12)
+    assert float(theory.lee_radok_kernel(X)) == pytest.approx(expected, rel=1e-12, abs=0.0)
 
 
 @pytest.mark.parametrize("time", [0.05, 0.4, 1.0, 1.2, 3.0])
 def test_lee_radok_force_during_loading_and_hold(time):
     """A ramp to RAMP, then held: the closed form is the hereditary integral (to 1e-12)."""
     force = theory.lee_radok_force(time, RATE, R, E_RELAXED, jnp.asarray(MODULI), jnp.asarray(TIMES), RAMP)
-    assert float(force) == pytest.approx(hereditary(time, min(time, RAMP)), rel=1e-12)
+    assert float(force) == pytest.approx(hereditary(time, min(time, RAMP)), rel=1e-12, abs=0.0)
 
 
 @pytest.mark.parametrize(("times", "modulus"), [(np.array([1e-30]), E_RELAXED), (np.array([1e30]), E_RELAXED + 2e6)])
 def test_lee_radok_limits_are_hertz(times, modulus):
     """τ → 0: Hertz with E∞*; τ → ∞: Hertz with E₀* = E∞* + E₁, (4/3)E*√R·d^(3/2) (to 1e-14)."""
     force = theory.lee_radok_force(0.7, RATE, R, E_RELAXED, jnp.asarray([2e6]), jnp.asarray(times))
-    assert float(force) == pytest.approx(4 / 3 * modulus * np.sqrt(R) * (0.7 * RATE) ** 1.5, rel=1e-14)
+    assert float(force) == pytest.approx(4 / 3 * modulus * np.sqrt(R) * (0.7 * RATE) ** 1.5, rel=1e-14, abs=0.0)
 
 
 def ting_root(time):
@@ -95,9 +95,9 @@ def test_ting_elastic_limit_follows_the_indentation():
     time = 1.9
     depth = RATE * (2 * RAMP + HOLD - time)
     t1 = float(theory.ting_contact_time(time, E_RELAXED, moduli, times, RAMP, HOLD))
-    assert t1 == pytest.approx(2 * RAMP + HOLD - time, rel=1e-12)
+    assert t1 == pytest.approx(2 * RAMP + HOLD - time, rel=1e-12, abs=0.0)
     force = float(theory.ting_force(time, RATE, R, E_RELAXED, moduli, times, RAMP, HOLD))
-    assert force == pytest.approx(4 / 3 * 3e6 * np.sqrt(R) * depth**1.5, rel=1e-12)
+    assert force == pytest.approx(4 / 3 * 3e6 * np.sqrt(R) * depth**1.5, rel=1e-12, abs=0.0)
 
 
 def test_closed_forms_differentiate_in_the_prony_terms():
@@ -114,4 +114,4 @@ def test_closed_forms_differentiate_in_the_prony_terms():
         shift = np.zeros(2)
         shift[index] = step
         central = (float(force(point + shift)) - float(force(point - shift))) / (2 * step)
-        assert gradient[index] == pytest.approx(central, rel=1e-7)
+        assert gradient[index] == pytest.approx(central, rel=1e-7, abs=0.0)

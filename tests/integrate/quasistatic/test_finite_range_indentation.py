@@ -75,7 +75,7 @@ def test_maugis_pull_off_is_the_critical_state_of_3_171(control, xi):
         np.testing.assert_allclose(found[2], expected[2], rtol=1e-6)
         np.testing.assert_allclose(found, expected, rtol=1e-6, atol=1e-12)
         if xi == 3:
-            assert found[2] == pytest.approx(-float(th.maugis_pull_off(tabor)), rel=1e-12)
+            assert found[2] == pytest.approx(-float(th.maugis_pull_off(tabor)), rel=1e-12, abs=0.0)
 
 
 def test_maugis_displacement_control_lets_go_of_the_zone_for_small_tabor():
@@ -96,9 +96,9 @@ def test_maugis_limits_dmt_and_jkr(control, xi):
     critical state of the control (3.45) to 1e-6 (F̃ − F̃_JKR = 1/(12Λ²) under force control)."""
     dmt = normalized_pull_off(maugis(1e-3, control))[2]
     if xi == 3:
-        assert dmt == pytest.approx(-4.0 / 3.0, rel=4e-5)
+        assert dmt == pytest.approx(-4.0 / 3.0, rel=4e-5, abs=0.0)
     else:
-        assert dmt == pytest.approx(-32e-9 / (9 * math.pi), rel=1e-9)
+        assert dmt == pytest.approx(-32e-9 / (9 * math.pi), rel=1e-9, abs=0.0)
     a_c, d_c, F_c = (float(v) for v in th.paraboloid_critical(R, E_STAR, WORK, xi))
     jkr = normalized_pull_off(maugis(1e3, control))
     np.testing.assert_allclose(jkr, [a_c / A_JKR, d_c / D_JKR, F_c / F_JKR], rtol=1e-6)
@@ -115,11 +115,11 @@ def test_maugis_cycles_partial_unloading_and_force_control_landing():
     assert kinds == ["touch", "snap_in", "reversal", "reversal", "reversal", "pull_off"]
     h = WORK / float(th.maugis_adhesive_stress(1.0, R, WORK, E_STAR))
     touch, landing = cycled.events[0][0], cycled.events[1][0]
-    assert cycled.indentation[touch] == pytest.approx(-h, rel=1e-12) and cycled.force[touch] == 0.0
+    assert cycled.indentation[touch] == pytest.approx(-h, rel=1e-12, abs=0.0) and cycled.force[touch] == 0.0
     assert abs(cycled.force[landing]) < 1e-12 * F_JKR  # the jump-in lands at the applied F = 0
     reversals = [index for index, kind in cycled.events if kind == "reversal"]
     np.testing.assert_allclose(cycled.force[reversals], [4 * F_JKR, 0.0, 4 * F_JKR], atol=1e-12 * F_JKR)
-    assert cycled.max_force == pytest.approx(4 * F_JKR, rel=1e-12)
+    assert cycled.max_force == pytest.approx(4 * F_JKR, rel=1e-12, abs=0.0)
 
 
 def test_maugis_displacement_loop_dissipates_the_area_of_its_jumps():
@@ -146,7 +146,7 @@ def test_maugis_displacement_loop_dissipates_the_area_of_its_jumps():
     d = 0.5 * D_JKR
     up = np.interp(d, result.indentation[loading][2:], result.force[loading][2:])
     down = np.interp(d, result.indentation[unloading][::-1], result.force[unloading][::-1])
-    assert up == pytest.approx(down, rel=1e-3)  # linear between the 33 samples of a piece
+    assert up == pytest.approx(down, rel=1e-3, abs=0.0)  # linear between the 33 samples of a piece
 
 
 @pytest.mark.slow
@@ -169,7 +169,7 @@ def test_power_laws_tend_to_their_jkr_and_dmt_limits(n, c):
     assert errors[1] < 1e-6 and 80 < errors[0] / errors[1] < 120
     stress = 1e5
     dmt = float(th.power_law_dmt_pull_off(n, c, WORK, WORK / stress))
-    assert -pull_off(stress) == pytest.approx(dmt, rel=2e-3)
+    assert -pull_off(stress) == pytest.approx(dmt, rel=2e-3, abs=0.0)
 
 
 # ---------------------------------------------------------------- Greenwood–Johnson
@@ -195,8 +195,8 @@ def test_double_hertz_limits_and_curve_points():
     point in contact lies on F(a), d(a) of (3.198)–(3.201) to 1e-10."""
     dmt = double_hertz(1e-4, "force", 4 * F_JKR)
     jkr = double_hertz(1e4, "force", 4 * F_JKR)
-    assert dmt.pull_off.force == pytest.approx(-2 * math.pi * R * WORK, rel=1e-3)
-    assert jkr.pull_off.force == pytest.approx(-1.5 * math.pi * R * WORK, rel=1e-3)
+    assert dmt.pull_off.force == pytest.approx(-2 * math.pi * R * WORK, rel=1e-3, abs=0.0)
+    assert jkr.pull_off.force == pytest.approx(-1.5 * math.pi * R * WORK, rel=1e-3, abs=0.0)
     result = double_hertz(3.0, "displacement", 4 * D_JKR)
     contact = result.contact_radius > 0
     a = result.contact_radius[contact]
@@ -231,8 +231,8 @@ def test_pulled_off_mid_program_then_touches_again(control):
 def test_a_large_peak_rides_far_out_and_back():
     """A peak of 10⁴ JKR pull-off forces: still the same pull-off (the curve reaches beyond it)."""
     far = maugis(1.0, "force", peak=1e4 * F_JKR)
-    assert far.max_force == pytest.approx(1e4 * F_JKR, rel=1e-12)
-    assert far.pull_off.force == pytest.approx(-float(th.maugis_pull_off(1.0)) * F_JKR, rel=1e-12)
+    assert far.max_force == pytest.approx(1e4 * F_JKR, rel=1e-12, abs=0.0)
+    assert far.pull_off.force == pytest.approx(-float(th.maugis_pull_off(1.0)) * F_JKR, rel=1e-12, abs=0.0)
 
 
 @pytest.mark.parametrize(
@@ -285,7 +285,7 @@ def test_hdf5_round_trip_and_figures_draw_both_limits(tmp_path):
     assert back.scene == result.scene and back.pull_off == result.pull_off and back.events == result.events
     np.testing.assert_array_equal(back.force, result.force)
     a, d, F = dmt_limit(result)
-    assert F[0] == pytest.approx(-2 * math.pi * R * WORK, rel=1e-9)  # f(b) = h: b² = 2Rh, πσ0b² (3.180)
+    assert F[0] == pytest.approx(-2 * math.pi * R * WORK, rel=1e-9, abs=0.0)  # f(b) = h: b² = 2Rh, πσ0b² (3.180)
     assert d[-1] <= 1.02 * result.max_indentation
     paths = save_indentation_figures(result, tmp_path)
     assert all(path.read_bytes().startswith(b"\x89PNG") for path in paths)

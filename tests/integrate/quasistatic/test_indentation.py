@@ -89,7 +89,7 @@ def test_paraboloid_pull_off_and_universal_curves(control, xi):
     )
     kinds = [k for _, k in result.events]
     assert kinds == ["touch", "snap_in", "reversal", "pull_off"]  # the JKR jump-in, then the pull-off
-    assert result.max_force == pytest.approx(loaded_past(critical, xi), rel=1e-12) if xi == 3 else True
+    assert result.max_force == pytest.approx(loaded_past(critical, xi), rel=1e-12, abs=0.0) if xi == 3 else True
 
 
 @pytest.mark.slow
@@ -168,7 +168,7 @@ def test_power_law_half_threshold(control, xi):
     control); under force control the threshold is three times larger."""
     threshold = float(th.power_law_half_threshold(E_STAR, WORK, xi))
     assert float(th.power_law_half_threshold(E_STAR, WORK)) == pytest.approx(
-        1.9120 * math.sqrt(WORK / E_STAR), rel=1e-4
+        1.9120 * math.sqrt(WORK / E_STAR), rel=1e-4, abs=0.0
     )
     peak = 1e-6 if xi == 3 else 1e-8
     below = run(dict(shape="power_law", n=0.5, c=0.98 * threshold), control, peak)
@@ -179,7 +179,7 @@ def test_power_law_half_threshold(control, xi):
     np.testing.assert_array_equal(pull_off(above), [0.0, 0.0, 0.0])  # the radius shrinks to zero
     if xi == 1:  # d = (κc − √(2πΔγ/E*))√a at the peak
         slope = float(pr.kappa(0.5)) * 1.02 * threshold - math.sqrt(2 * math.pi * WORK / E_STAR)
-        assert above.max_contact_radius == pytest.approx((peak / slope) ** 2, rel=1e-12)
+        assert above.max_contact_radius == pytest.approx((peak / slope) ** 2, rel=1e-12, abs=0.0)
 
 
 # ---------------------------------------------------------------- two critical states: §3.5.8–3.5.12
@@ -224,7 +224,7 @@ def test_truncated_cone_both_sides_of_its_threshold(control, xi):
     np.testing.assert_allclose(
         snap, [float(v) for v in th.truncated_cone_critical(b, theta, E_STAR, w_mid, xi, 1)], rtol=1e-10
     )
-    assert mid.pull_off.contact_radius == pytest.approx(b, rel=1e-12)
+    assert mid.pull_off.contact_radius == pytest.approx(b, rel=1e-12, abs=0.0)
     np.testing.assert_allclose(
         pull_off(high), [float(v) for v in th.truncated_cone_critical(b, theta, E_STAR, w_high, xi, 1)], rtol=1e-10
     )
@@ -249,7 +249,7 @@ def test_truncated_paraboloid_both_sides_of_its_threshold(control, xi):
     (w_low, low), (w_mid, mid), (w_high, high) = scan(
         profile, beta, expected, [0.95 * threshold, 3.2, 6.0], control, xi
     )
-    assert low.pull_off.contact_radius == pytest.approx(b, rel=1e-12)
+    assert low.pull_off.contact_radius == pytest.approx(b, rel=1e-12, abs=0.0)
     (snap,) = before_events(mid, "snap_out")
     np.testing.assert_allclose(
         snap, [float(v) for v in th.truncated_paraboloid_critical(b, R, E_STAR, w_mid, xi, 1)], rtol=1e-10
@@ -266,14 +266,14 @@ def test_capped_flat_punch_three_regimes(control, xi):
     at the edge on (3.104)."""
     b, R = 1e-7, 1e-6
     low, high = (float(v) for v in th.capped_flat_punch_thresholds(b, R, E_STAR))
-    assert high == pytest.approx(9 * low, rel=1e-14)
+    assert high == pytest.approx(9 * low, rel=1e-14, abs=0.0)
     edges = []
     for work in (0.5 * low, 3 * low, 3 * high):
         critical = th.capped_flat_punch_critical(b, R, E_STAR, work, xi)
         peak = loaded_past(critical, xi, 5.0) + (0.0 if xi == 3 else 2 * b**2 / R)
         result = run(dict(shape="capped_flat_punch", b=b, R=R), control, peak, work=work)
         assert_pull_off(result, critical)
-        edges.append(result.pull_off.contact_radius == pytest.approx(b, rel=1e-12))
+        edges.append(result.pull_off.contact_radius == pytest.approx(b, rel=1e-12, abs=0.0))
         # (3.104) at the edge, in the units (3.102)
         a_c, d_c, F_c = (float(v) for v in th.paraboloid_critical(R, E_STAR, work, 3))
         at_edge = np.isclose(result.contact_radius, b, rtol=1e-12, atol=0)
@@ -334,7 +334,7 @@ def test_capped_paraboloid_regimes(control, xi):
     np.testing.assert_allclose(
         pull_off(results[0][1]), [float(v) for v in th.paraboloid_critical(R1, E_STAR, results[0][0], xi)], rtol=1e-10
     )
-    assert results[1][1].pull_off.contact_radius == pytest.approx(b, rel=1e-12)
+    assert results[1][1].pull_off.contact_radius == pytest.approx(b, rel=1e-12, abs=0.0)
     work, result = results[3]
     np.testing.assert_allclose(
         pull_off(result), [float(v) for v in th.capped_paraboloid_critical(b, R1, R2, E_STAR, work, xi, 1)], rtol=1e-10
@@ -397,11 +397,11 @@ def test_wavy_paraboloid(control, xi):
     lowest_d = lowest(lambda x: wavy_reference(x, h_hat, gamma_bar)[0], top)
     if xi == 3:
         F_hat = result.pull_off.force / force_unit
-        assert F_hat == pytest.approx(lowest_F, rel=1e-9)
+        assert F_hat == pytest.approx(lowest_F, rel=1e-9, abs=0.0)
         assert F_hat == pytest.approx(-1.3192164, abs=1e-6) and F_hat < -1.3
     else:
-        assert result.pull_off.indentation / depth_unit == pytest.approx(lowest_d, rel=1e-9)
-    assert np.min(result.force) / force_unit == pytest.approx(lowest_F, rel=1e-9)  # (Fig. 3.27)
+        assert result.pull_off.indentation / depth_unit == pytest.approx(lowest_d, rel=1e-9, abs=0.0)
+    assert np.min(result.force) / force_unit == pytest.approx(lowest_F, rel=1e-9, abs=0.0)  # (Fig. 3.27)
 
 
 def lowest(fun, top, points=20001):
@@ -461,9 +461,11 @@ def test_constant_stress_pull_off_and_force_ratio(control, xi):
     order = np.argsort(result.indentation[held])
     assert np.min(result.indentation[held]) < d_uniform < np.max(result.indentation[held])
     F = np.interp(d_uniform, result.indentation[held][order], result.force[held][order])  # F is linear in d here
-    assert F == pytest.approx(F_uniform, rel=1e-12)
+    assert F == pytest.approx(F_uniform, rel=1e-12, abs=0.0)
     ratio = -result.pull_off.force / (np.pi * stress * a**2) - 1
-    assert ratio == pytest.approx(float(th.kendall_to_optimal_ratio(a, stress, E_STAR, WORK / stress)), rel=1e-12)
+    assert ratio == pytest.approx(
+        float(th.kendall_to_optimal_ratio(a, stress, E_STAR, WORK / stress)), rel=1e-12, abs=0.0
+    )
 
 
 # ---------------------------------------------------------------- hysteresis, programs, no adhesion
@@ -490,7 +492,7 @@ def test_hysteretic_attachment_and_cycles(control, xi):
     assert [k for _, k in result.events].count("pull_off") == 1 and [k for _, k in result.events].count("touch") == 1
     value = result.force if xi == 3 else result.indentation
     for leg in (1, 3):
-        assert np.min(value[result.leg == leg]) == pytest.approx(0.3 * peak, rel=1e-12)
+        assert np.min(value[result.leg == leg]) == pytest.approx(0.3 * peak, rel=1e-12, abs=0.0)
 
 
 @pytest.mark.parametrize("control, xi", CONTROLS)
