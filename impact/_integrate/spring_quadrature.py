@@ -140,7 +140,8 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     lower, upper = table.lower, table.upper
     spans = (upper > lower) & jnp.isfinite(upper)
     work_in = jnp.where(spans, array.work(loaded, lower, jnp.where(spans, upper, lower)), 0.0)
-    squared_up = c.v**2 - 2.0 * jnp.cumsum(work_in) + 2.0 * gravity * jnp.where(spans, upper, lower)
+    prefix_in = jnp.concatenate([jnp.zeros(1), jnp.cumsum(work_in)])
+    squared_up = c.v**2 - 2.0 * prefix_in[1:] + 2.0 * gravity * jnp.where(spans, upper, lower)
     reached = (squared_up > 0.0) & jnp.isfinite(upper) & (counts <= table.count)
     first = jnp.argmax(jnp.concatenate([~reached, jnp.ones(1, bool)]))
     overflow = first > table.count  # the contact outgrew the array
@@ -160,7 +161,8 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     loading = counts <= top
     end_in = jnp.where(counts == top, deepest, upper)
     spans_in = loading & (end_in > lower)
-    work_load = jnp.sum(jnp.where(spans_in, array.work(loaded, lower, jnp.where(spans_in, end_in, lower)), 0.0))
+    last_in = _attached(top, table.prefix[top])
+    work_load = prefix_in[top] + array.work(last_in, lower[top], jnp.maximum(deepest, lower[top]))
 
     # Unloading from (deepest, 0) with the k* springs: spring j is attached while d > m_j; the
     # body is captured in the first segment (the largest count) whose lower end it does not reach.
@@ -196,8 +198,11 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     unloading = ~overflow & (counts[1:] >= last)
     end_out = jnp.where((counts[1:] == last) & captured, capture_depth, lower_out)
     spans_back = unloading & (end_out < upper_out)
-    work_unload = jnp.sum(
-        jnp.where(spans_back, array.work(unloaded, upper_out, jnp.where(spans_back, end_out, upper_out)), 0.0)
+    last_out = _attached(last, table.prefix[last])
+    work_unload = jnp.where(
+        overflow,
+        0.0,
+        below_work[last - 1] - work_out[last - 1] + array.work(last_out, upper_out[last - 1], end_out[last - 1]),
     )
     separated = ~overflow & ~captured
 
