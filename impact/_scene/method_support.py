@@ -86,9 +86,10 @@ def spring_quadrature_refusal(scene: "Scene") -> str | None:
         return "ends every contact from its energy balance: leave solver.phase_ends out"
     if scene.limits.duration is not None:
         return "does not stop a contact midway: leave limits.duration out"
-    if scene.contact.springs > SPRING_QUADRATURE_MAX_SPRINGS:
+    springs = scene.contact.springs
+    if isinstance(springs, int) and springs > SPRING_QUADRATURE_MAX_SPRINGS:
         return (
             f"holds at most {SPRING_QUADRATURE_MAX_SPRINGS} springs (its work and memory grow with N at every "
-            f"point), not {scene.contact.springs}: leave solver.method out (the exact event loop takes any N)"
+            f"point), not {springs}: leave solver.method out (the exact event loop takes any N)"
         )
     return None

@@ -275,9 +275,10 @@ class Contact(Section):
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
     'quadrature', the continuum law's phases (or a curve law's rides) timed by quadrature without
-    an ODE solve (on a JKR spring array, each contact computed whole from prefix sums); or 'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N)
-    with step dt; or 'midpoint', the implicit midpoint rule on the spring array of a viscoelastic
-    half-space (effects.viscoelasticity), its springs advanced exactly over each step dt."""
+    an ODE solve (on a JKR spring array, each contact computed whole from prefix sums); or
+    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt;
+    or 'midpoint', the implicit midpoint rule on the spring array of a viscoelastic half-space
+    (effects.viscoelasticity), its springs advanced exactly over each step dt."""
 
     method: str = Field(
         "tsit5",
