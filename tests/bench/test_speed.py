@@ -77,7 +77,7 @@ def test_markdown_fragment_holds_the_runs_table(tiny):
     for line, row in zip(table[2:], rows, strict=True):
         name, method, points, time, error, steps, compile_time, split, rss = _cells(line)
         assert name.endswith(f"(`{row['workload']}`)") and int(points) == int(row["points"]), (line, row)
-        assert method == row["method"] == "exact events", (line, row)
+        assert method == row["method"] == "prefix sums", (line, row)
         median, low, high = (float(x) for x in time.replace("(", " ").replace(")", " ").replace("–", " ").split())
         for shown, value in ((median, "us_per_impact_median"), (low, "us_min"), (high, "us_max")):
             assert shown == pytest.approx(float(row[value]), rel=5e-3, abs=0.051), (line, row)

@@ -11,7 +11,7 @@ import yaml
 import impact
 from impact import simulate
 from impact._integrate.codes import RESULT_CODE
-from impact._integrate.spring_quadrature import SpringQuadrature
+from impact._integrate.spring_quadrature import SpringQuadrature, angle
 from impact._integrate.springs import SpringArray
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep import sweep
@@ -157,3 +157,17 @@ def test_prefix_sums_are_refused_where_they_do_not_apply(change, why):
     with pytest.raises(impact.SceneError) as error:
         impact.load_scene(data)
     assert dict(error.value.problems)["solver.method"] == why
+
+
+def test_the_vectorised_angle_is_atan2_to_a_few_ulps():
+    """Over every octant, 16 decades of each coordinate and the axes: within 8 ulps of the angle
+    (measured 6). (A negative zero x reads as +0: the arcs never meet it.)"""
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=20000) * 10.0 ** rng.uniform(-8, 8, 20000)
+    y = rng.normal(size=20000) * 10.0 ** rng.uniform(-8, 8, 20000)
+    x = np.concatenate([x, [0.0, 0.0, 1.0, -1.0, 1.0, 0.0, -1.0, 1e-300, 1.0, -1.0]])
+    y = np.concatenate([y, [0.0, 1.0, 0.0, 0.0, 1.0, -1.0, 1e-20, 1.0, -1e-300, -1e-17]])
+    with jax.enable_x64(True):
+        mine = np.asarray(jax.jit(angle)(y, x))
+    exact = np.arctan2(y, x)
+    assert np.all(np.abs(mine - exact) <= 8 * np.spacing(np.abs(exact)) + 1e-320)
