@@ -64,6 +64,8 @@ class SpringQuadrature(AbstractSpringArrayIntegrator):
 
         start = initial_carry(inner, options)
         start = jax.lax.cond(start.mode == FLIGHT, flight, lambda c: c, start)
+        if not options.gravity:  # one contact at most: the flight after it never lands
+            return finish(turn(start))
         return finish(jax.lax.while_loop(running, turn, start))
 
 
