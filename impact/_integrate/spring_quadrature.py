@@ -151,6 +151,17 @@ def angle(y, x):
     return jnp.where(y < 0.0, -base, base)
 
 
+def _total(values):
+    """Σ of a 1-D array by a fixed pairwise tree of elementwise adds (the same in any batch, as
+    `jnp.sum`'s reduce is not on XLA:CPU)."""
+    size = 1 << (values.shape[0] - 1).bit_length()
+    values = jnp.pad(values, (0, size - values.shape[0]))
+    while values.shape[0] > 1:
+        half = values.shape[0] // 2
+        values = values[:half] + values[half:]
+    return values[0]
+
+
 def _attached(counts, prefix) -> Attached:
     """k springs with S_k, elementwise over arrays of counts."""
     return Attached(counts, prefix, jnp.zeros_like(prefix))
@@ -159,14 +170,16 @@ def _attached(counts, prefix) -> Attached:
 def _durations(attached: Attached, spacing, gravity, start, end):
     """Durations of whole arcs from `start` = (d, v) to `end` = (d, v) (arrays of segments): the
     angle swept in the phase plane of the harmonic motion with k springs, (x, y) = (d − d_eq,
-    −v/ω) = A·(cos θ, sin θ), is atan2 of the cross and dot products of its ends, over ω; with no
-    spring attached, the ballistic 2·(d₁ − d₀)/(v₀ + v₁)."""
+    −v/ω) = A·(cos θ, sin θ), is atan2 of the cross and dot products of its ends, over ω; both
+    products are taken times ω⁴, with ω²·(d − d_eq) = F(d) − g, so that no division is needed
+    but the last. With no spring attached, the ballistic 2·(d₁ − d₀)/(v₀ + v₁)."""
     k = attached.count.astype(spacing.dtype)
-    omega = jnp.sqrt(2.0 * spacing * jnp.maximum(k, 1.0))
-    balance = (2.0 * spacing * attached.profile_sum() + gravity) / omega**2
+    stiffness = 2.0 * spacing * jnp.maximum(k, 1.0)  # ω²
+    omega = jnp.sqrt(stiffness)
     (d0, v0), (d1, v1) = start, end
-    x0, y0, x1, y1 = d0 - balance, -v0 / omega, d1 - balance, -v1 / omega
-    harmonic = angle(x0 * y1 - y0 * x1, x0 * x1 + y0 * y1) / omega
+    load = 2.0 * spacing * attached.profile_sum() + gravity  # ω²·d_eq
+    x0, x1 = stiffness * d0 - load, stiffness * d1 - load
+    harmonic = angle(omega * (v0 * x1 - x0 * v1), x0 * x1 + stiffness * v0 * v1) / omega
     sum_speed = v0 + v1
     free = 2.0 * (d1 - d0) / jnp.where(sum_speed != 0.0, sum_speed, 1.0)
     return jnp.where(attached.count == 0, free, harmonic)
@@ -200,8 +213,7 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     )
     deepest = jnp.where(overflow, upper[top], turn_depth)
     speed_in = jnp.where(overflow, speed_up[top], 0.0)
-    load_time = _running(jnp.add, duration_in)
-    turn_time = c.t + load_time[-1] + jnp.where(overflow, 0.0, turn_arc)
+    turn_time = c.t + _total(duration_in) + jnp.where(overflow, 0.0, turn_arc)
     loading = counts <= top
     end_in = jnp.where(counts == top, deepest, upper)
     spans_in = loading & (end_in > lower)
@@ -238,8 +250,7 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
         lower_out[last - 1],
         False,
     )
-    later = _running(jnp.add, duration_out, reverse=True)  # from the turnaround to the end of k's stretch
-    end_time = turn_time + later[0] + jnp.where(captured, capture_arc, 0.0)
+    end_time = turn_time + _total(duration_out) + jnp.where(captured, capture_arc, 0.0)
     unloading = ~overflow & (counts[1:] >= last)
     end_out = jnp.where((counts[1:] == last) & captured, capture_depth, lower_out)
     spans_back = unloading & (end_out < upper_out)
@@ -278,7 +289,8 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     if options.samples_per_phase:
         # The states after the events, in their order: the start of every stretch ridden in
         # (time, d, v, F, a), the turnaround, the start of every stretch ridden out, the end.
-        load_start = c.t + jnp.concatenate([jnp.zeros(1), load_time[:-1]])
+        load_start = c.t + jnp.concatenate([jnp.zeros(1), _running(jnp.add, duration_in)[:-1]])
+        later = _running(jnp.add, duration_out, reverse=True)  # from the turnaround to the end of k's stretch
         out_start = turn_time + jnp.append(later[1:], 0.0)[::-1]
         radius = counts * spacing
         states = jnp.concatenate(
