@@ -7,17 +7,18 @@ M_i = max_{j≤i} h_attach(x_j) (a cascade where a threshold is already passed),
 count is a step function of d alone, with steps at the M_i: the loading segment of k springs
 spans [M_{k−1}, M_k] (clamped to d ≥ 0; empty for the springs of the jump-in and of a cascade).
 Its work is closed-form (F linear in d), so v² at every segment's end is one prefix sum,
-v² = v₀² − 2Σ∫F dd + 2g·d, and the harmonic arc of each segment (`springs._arc`, ballistic with
-no spring attached) is timed from its two ends at once. The potential is convex on a segment
-(quadratic, k ≥ 0), so the turnaround lies in the first segment whose arc turns. Moving out,
+v² = v₀² − 2Σ∫F dd + 2g·d, and the harmonic arc of each whole segment (ballistic with no
+spring attached) is timed from its two ends at once (`_durations`). The potential is convex on a
+segment (quadratic, k ≥ 0), so the turnaround lies in the first segment whose end the body does
+not reach; its arc, and a capture's, are the event loop's (`springs._arc`). Moving out,
 spring j (of the k* attached at the turnaround) detaches once d falls to the suffix minimum
 m_j = min_{j≤i<k*} h_detach(x_i) (the rule of Heß, (3.26), its cascades), so unloading is the
-same construction in reverse: the body separates at m_0 or is captured in the last segment
-whose arc turns. Flights between contacts (gravity, bounces) are the analytic ones of every
-integrator.
+same construction in reverse: the body separates at m_0 or is captured in the first segment
+(the largest count) whose lower end it does not reach. Flights between contacts (gravity,
+bounces) are the analytic ones of every integrator.
 
-The result is the event loop's (`SpringArray`) to round-off: the same arcs, with the speed at
-each event from the energy balance instead of the previous arc. The cost is O(N) vector work per
+The result is the event loop's (`SpringArray`) to round-off: the same harmonic arcs, with the
+speed at each event from the energy balance instead of the previous arc. The cost is O(N) vector work per
 contact with no sequential dependence; N may still be traced, up to the compiled `capacity`.
 Trajectory rows are the states after the events of a contact, `samples_per_phase` of them
 evenly spaced in event order (the event loop stores every event, strided to its buffer).
