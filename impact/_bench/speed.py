@@ -52,6 +52,8 @@ from .._scene.sections import QUADRATURE, Solver
 from .._scene.sweep import make_spec
 from .workloads import CLOSED_FORM, TIGHTER_FACTOR, TIGHTER_POINTS, SpeedPlan, Workload
 
+SPRING_QUADRATURE_LABEL = "prefix sums"  # a spring array's contacts computed whole (`solver.method: quadrature`)
+
 COLUMNS = (
     "workload",
     "method",
@@ -251,10 +253,11 @@ def staged_run(build: Callable, integrate: Callable, post: Callable, batch) -> n
 
 def method_label(scene: Scene) -> str:
     """How the scene's impacts are integrated, as a row names it: 'quadrature', a spring array's
-    'exact events' or 'verlet dt … s', else the diffrax solver and its rtol."""
+    'prefix sums' (`solver.method: quadrature`), 'exact events' or 'verlet dt … s', else the
+    diffrax solver and its rtol."""
     solver = scene.solver
     if solver.method == QUADRATURE:
-        return QUADRATURE
+        return QUADRATURE if scene.contact.springs == "continuum" else SPRING_QUADRATURE_LABEL
     if scene.contact.springs != "continuum":
         return "exact events" if solver.dt is None else f"verlet dt {solver.dt:g} s"
     return f"{solver.method} rtol {solver.rtol:g}"

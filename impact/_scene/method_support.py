@@ -8,6 +8,10 @@ from .._law.base import AbstractCurveLaw
 from .profiles import PowerLawSpec
 from .sections import QUADRATURE_SHAPES
 
+# Springs a spring array computed from prefix sums holds: each contact costs O(N) vector work and
+# memory per point (a sweep's chunk holds them all at once).
+SPRING_QUADRATURE_MAX_SPRINGS = 16384
+
 if TYPE_CHECKING:
     from .scene import Scene
 
@@ -33,9 +37,9 @@ def quadrature_refusal(scene: "Scene") -> str | None:
     from a jump-in or a tip of finite slope."""
     if scene.kind != "impact":
         return "times the contact phases of an impact (kind: impact)"
+    if scene.contact.springs != "continuum":
+        return spring_quadrature_refusal(scene)
     curve = isinstance(scene.contact_law(), AbstractCurveLaw)
-    if curve and scene.contact.springs != "continuum":
-        return "rides the continuum law's curve only (contact.springs: continuum)"
     why = None if curve else energy_ends_refusal(scene)
     if why is not None:
         return why
@@ -54,5 +58,38 @@ def quadrature_refusal(scene: "Scene") -> str | None:
         return (
             f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
             "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
+        )
+    return None
+
+
+def spring_quadrature_refusal(scene: "Scene") -> str | None:
+    """Why the scene's spring array (contact.springs: N) cannot be computed contact by contact
+    from prefix sums (`_integrate.spring_quadrature`), or None where it can: the array of the
+    zero-range law (JKR, with or without approach hysteresis, or no adhesion), elastic and
+    undamped, up to `SPRING_QUADRATURE_MAX_SPRINGS` springs, every contact run to its end."""
+    adhesion = scene.active_adhesion
+    if adhesion is not None and not adhesion.zero_range:
+        return (
+            f"computes the spring array of the zero-range (JKR) law only, not of adhesion model {adhesion.name!r}: "
+            "leave solver.method out (its springs ride their curve), or use contact.springs: continuum"
+        )
+    effects = scene.effects
+    for name, effect in (
+        ("plasticity", effects.plasticity),
+        ("damping", effects.damping),
+        ("friction", effects.friction),
+        ("viscoelasticity", effects.viscoelasticity),
+    ):
+        if effect is not None:
+            return f"computes the elastic spring array only, not with effects.{name}"
+    if scene.solver.phase_ends is not None:
+        return "ends every contact from its energy balance: leave solver.phase_ends out"
+    if scene.limits.duration is not None:
+        return "does not stop a contact midway: leave limits.duration out"
+    springs = scene.contact.springs
+    if isinstance(springs, int) and springs > SPRING_QUADRATURE_MAX_SPRINGS:
+        return (
+            f"holds at most {SPRING_QUADRATURE_MAX_SPRINGS} springs (its work and memory grow with N at every "
+            f"point), not {springs}: leave solver.method out (the exact event loop takes any N)"
         )
     return None

@@ -275,9 +275,10 @@ class Contact(Section):
 class Solver(Section):
     """Integrator of the continuum law (diffrax) and its tolerances, in scaled units; or
     'quadrature', the continuum law's phases (or a curve law's rides) timed by quadrature without
-    an ODE solve; or 'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N)
-    with step dt; or 'midpoint', the implicit midpoint rule on the spring array of a viscoelastic
-    half-space (effects.viscoelasticity), its springs advanced exactly over each step dt."""
+    an ODE solve (on a JKR spring array, each contact computed whole from prefix sums); or
+    'verlet', a fixed-step velocity Verlet on a spring array (contact.springs: N) with step dt;
+    or 'midpoint', the implicit midpoint rule on the spring array of a viscoelastic half-space
+    (effects.viscoelasticity), its springs advanced exactly over each step dt."""
 
     method: str = Field(
         "tsit5",
@@ -286,7 +287,8 @@ class Solver(Section):
             + ", ".join(METHODS)
             + " ('quadrature': no ODE solve, each contact phase ended by its energy "
             "balance and timed by Gauss quadrature of dt = dd/v; undamped continuum JKR law on a paraboloid, cone or "
-            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; rtol and atol unused); "
+            "power law, or the continuum curve of maugis_dugdale or greenwood_johnson; on a spring array of the "
+            "JKR law, each contact whole from prefix sums over the springs; rtol and atol unused); "
             "default: tsit5, and in a sweep 'quadrature' where every point allows it"
         ),
     )

@@ -153,7 +153,9 @@ def test_curve_bounces_under_gravity_as_the_tight_integration_does():
     [
         (
             {"contact": {"springs": 64}},
-            "'quadrature' rides the continuum law's curve only (contact.springs: continuum)",
+            "'quadrature' computes the spring array of the zero-range (JKR) law only, not of adhesion model "
+            "'maugis_dugdale': leave solver.method out (its springs ride their curve), or use contact.springs: "
+            "continuum",
         ),
         ({"limits": {"duration": 1e-6}}, "'quadrature' does not stop a phase midway: leave limits.duration out"),
     ],

@@ -14,12 +14,14 @@ from pydantic import Field, model_validator
 from ..._integrate.base import AbstractIntegrator
 from ..._integrate.continuum import Continuum
 from ..._integrate.quadrature import Quadrature
+from ..._integrate.spring_quadrature import SpringQuadrature
 from ..._integrate.springs import SpringArray
 from ..._integrate.verlet import Verlet
 from ..._law.base import AbstractContactLaw
 from ...profiles import Profile
 from ..errors import FieldProblem
 from ..sections import QUADRATURE, Section, WorkOfAdhesion
+from ..springs import spring_capacity
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -133,12 +135,16 @@ def adaptive(scene: "Scene") -> dict[str, Any]:
 
 def edge_integrator(scene: "Scene") -> AbstractIntegrator:
     """The integrator of the continuum MDR law (zero range, or no adhesion): a diffrax solver, or
-    quadrature; a spring array, exact or stepped with Verlet."""
+    quadrature; a spring array, event by event, each contact whole from prefix sums
+    ('quadrature'), or stepped with Verlet."""
     solver = scene.solver
-    if scene.contact.springs == "continuum" and solver.method == QUADRATURE:
+    springs = scene.contact.springs
+    if springs == "continuum" and solver.method == QUADRATURE:
         return Quadrature()
-    if scene.contact.springs == "continuum":
+    if springs == "continuum":
         return Continuum(**adaptive(scene), phase_ends=scene.phase_ends)
+    if solver.method == QUADRATURE:
+        return SpringQuadrature(capacity=spring_capacity(springs))
     if solver.method == "verlet":
         assert solver.dt is not None, "validated: method 'verlet' takes dt"
         return Verlet(dt=solver.dt)
