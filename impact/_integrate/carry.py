@@ -203,8 +203,8 @@ def run_phases(
     turn computes all three for every lane: the quadrature's phases, of fixed cost, gain the
     turns saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep one phase
     a turn. The flight closing a turn runs only where the phase bound leaves room for the contact
-    it may land in as well (as in a turn that starts with it, whose contact is not bounded), so
-    that the phases run are those of one phase a turn."""
+    it may land in as well (a turn that starts with the flight runs that contact unbounded), so
+    that the phases run are those of a flight and its contact a turn."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
