@@ -197,11 +197,14 @@ def run_phases(
     """Chain flights and contact phases (`flight(carry)`, `contact(carry)`, each returning the
     next carry) until the run is done or holds no more phases; `memory` as `initial_carry`.
 
-    Each turn of the loop runs a flight or a contact phase; with `landed_contact`, a flight and
-    then at once the contact phase it lands in, so that a bounce takes one turn fewer. Under
-    `jax.vmap` every turn computes both for every lane: the quadrature's phases, of fixed cost,
-    gain the turn saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep
-    one phase a turn."""
+    Each turn of the loop runs a flight or a contact phase; with `landed_contact`, a flight,
+    then at once the contact phase it lands in, then the flight that contact ends in, so that a
+    bounce takes one turn and an impact that separates two, not three. Under `jax.vmap` every
+    turn computes all three for every lane: the quadrature's phases, of fixed cost, gain the
+    turns saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep one phase
+    a turn. The flight closing a turn runs only where the phase bound leaves room for the contact
+    it may land in as well (a turn that starts with the flight runs that contact unbounded), so
+    that the phases run are those of a flight and its contact a turn."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
@@ -211,7 +214,8 @@ def run_phases(
 
     def land_and_advance(c: Carry):
         c = jax.lax.cond(c.mode == FLIGHT, flight, lambda c: c, c)
-        return jax.lax.cond((c.mode != FLIGHT) & (c.mode != DONE), contact, lambda c: c, c)
+        c = jax.lax.cond((c.mode != FLIGHT) & (c.mode != DONE), contact, lambda c: c, c)
+        return jax.lax.cond((c.mode == FLIGHT) & (c.phases + 1 < options.max_phases), flight, lambda c: c, c)
 
     body = land_and_advance if landed_contact else advance
     return finish(jax.lax.while_loop(running, body, initial_carry(problem, options, memory)))

@@ -89,8 +89,8 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
     """An adaptive diffrax solver over the contact phases of a law, each a ride ended by its
     located event (`contact`); a subclass supplies the law's part."""
 
-    # Whether the phase loop runs a flight and the contact it lands in as one turn
-    # (`run_phases`): for contact phases that take no diffrax ride.
+    # Whether the phase loop runs a flight, the contact it lands in and the flight that contact
+    # ends in as one turn (`run_phases`): for contact phases that take no diffrax ride.
     landed_contact: ClassVar[bool] = False
 
     @abc.abstractmethod
