@@ -99,7 +99,7 @@ CLOSE = {
 @pytest.mark.parametrize("law", LAWS)
 def test_a_points_result_does_not_depend_on_its_batch(law):
     config, changes, low, high, points = LAWS[law]
-    scene = with_values(load_scene(CONFIGS / config), changes)
+    scene = named_method(with_values(load_scene(CONFIGS / config), changes))  # a single run's method
     velocities = np.geomspace(low, high, points)
     axes = {"initial.velocity": velocities.tolist()}
     alone = sweep(scene, axes, order="given", chunk=1)
