@@ -209,16 +209,14 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     whole_in = (counts < first) & spans
     duration_in = jnp.where(whole_in, _durations(loaded, spacing, gravity, (lower, speed_low), (upper, speed_up)), 0.0)
     # The turnaround's own arc, as the event loop takes it.
-    turn_arc, turn_depth, _, _ = _arc(
-        _attached(top, table.prefix[top]), spacing, gravity, lower[top], speed_low[top], upper[top], True
-    )
+    last_in = _attached(top, table.prefix[top])
+    turn_arc, turn_depth, _, _ = _arc(last_in, spacing, gravity, lower[top], speed_low[top], upper[top], True)
     deepest = jnp.where(overflow, upper[top], turn_depth)
     speed_in = jnp.where(overflow, speed_up[top], 0.0)
     turn_time = c.t + _total(duration_in) + jnp.where(overflow, 0.0, turn_arc)
     loading = counts <= top
     end_in = jnp.where(counts == top, deepest, upper)
     spans_in = loading & (end_in > lower)
-    last_in = _attached(top, table.prefix[top])
     work_load = prefix_in[top] + array.work(last_in, lower[top], jnp.maximum(deepest, lower[top]))
 
     # Unloading from (deepest, 0) with the k* springs: spring j is attached while d > m_j; the
@@ -242,8 +240,9 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     duration_out = jnp.where(
         whole_out, _durations(unloaded, spacing, gravity, (upper_out, speed_up_out), (lower_out, speed_low_out)), 0.0
     )
+    last_out = _attached(last, table.prefix[last])
     capture_arc, capture_depth, _, _ = _arc(
-        _attached(last, table.prefix[last]),
+        last_out,
         spacing,
         gravity,
         upper_out[last - 1],
@@ -255,7 +254,6 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
     unloading = ~overflow & (counts[1:] >= last)
     end_out = jnp.where((counts[1:] == last) & captured, capture_depth, lower_out)
     spans_back = unloading & (end_out < upper_out)
-    last_out = _attached(last, table.prefix[last])
     work_unload = jnp.where(
         overflow,
         0.0,
@@ -297,9 +295,7 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
         states = jnp.concatenate(
             [
                 jnp.stack([load_start, lower, speed_low, array.force(loaded, lower), radius], axis=1),
-                jnp.stack(
-                    [turn_time, deepest, speed_in, array.force(_attached(top, table.prefix[top]), deepest), radius[top]]
-                )[None],
+                jnp.stack([turn_time, deepest, speed_in, array.force(last_in, deepest), radius[top]])[None],
                 jnp.stack(
                     [
                         out_start,
@@ -315,7 +311,7 @@ def _contact(problem: Problem, options: Options, array: ComputedSpringArray, tab
                         end,
                         end_depth,
                         end_speed,
-                        jnp.where(captured, array.force(_attached(last, table.prefix[last]), end_depth), 0.0),
+                        jnp.where(captured, array.force(last_out, end_depth), 0.0),
                         jnp.where(captured, radius[last], 0.0),
                     ]
                 )[None],
