@@ -7,6 +7,11 @@ from them at collection. `tests/conftest.py` holds the fixtures."""
 import math
 from pathlib import Path
 
+import pytest
+import yaml
+
+import impact
+
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"
 HARD = CONFIGS / "hard"
@@ -90,3 +95,12 @@ def two_spheres(**counterpart) -> dict:
         "initial": {"velocity": V_BODY},
         "effects": {"adhesion": {"work_of_adhesion": 0.1}},
     }
+
+
+def quadrature_refusal(config: Path, change: dict) -> str:
+    """The message `solver.method: quadrature` is refused with in the scene of `config` (a YAML
+    file) with the top-level sections of `change` replaced."""
+    data = {**yaml.safe_load(config.read_text()), **change, "solver": {"method": "quadrature"}}
+    with pytest.raises(impact.SceneError) as error:
+        impact.load_scene(data)
+    return dict(error.value.problems)["solver.method"]

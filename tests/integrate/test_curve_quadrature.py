@@ -3,8 +3,6 @@ hysteresis, Greenwood–Johnson): each ride along a rising segment of the equili
 by its energy balance and timed by quadrature, against the same impacts integrated by dopri8 at
 rtol 1e-13 and against the quadrature itself at twice its resolution."""
 
-from pathlib import Path
-
 import jax
 import numpy as np
 import pytest
@@ -22,8 +20,8 @@ from impact._scene.scene import load_scene
 from impact.cli import app
 from tests.run.bitwise import assert_chunks_agree
 from tests.run.passive import assert_passive
+from tests.scenes import CONFIGS, quadrature_refusal
 
-CONFIGS = Path(__file__).parents[2] / "configs"
 QUADRATURE = {"solver.method": "quadrature"}
 TIGHT = {"solver.method": "dopri8", "solver.rtol": 1e-13, "solver.atol": 1e-15}
 # From captures (the lowest two or three) to 33 times each scene's own velocity.
@@ -161,12 +159,7 @@ def test_curve_bounces_under_gravity_as_the_tight_integration_does():
     ],
 )
 def test_curve_quadrature_is_refused_where_it_does_not_apply(change, why):
-    data = yaml.safe_load((CONFIGS / "maugis_dugdale.yaml").read_text())
-    data.update(change)
-    data["solver"] = {"method": "quadrature"}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.method"] == why
+    assert quadrature_refusal(CONFIGS / "maugis_dugdale.yaml", change) == why
 
 
 def test_validate_shows_the_curve_quadrature():

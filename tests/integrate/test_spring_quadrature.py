@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 import yaml
 
-import impact
 from impact import simulate
 from impact._integrate.codes import RESULT_CODE
 from impact._integrate.spring_quadrature import SpringQuadrature, angle
@@ -18,7 +17,7 @@ from impact._run.sweep import sweep
 from impact._scene.method_support import SPRING_QUADRATURE_MAX_SPRINGS
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
-from tests.scenes import CONFIGS
+from tests.scenes import CONFIGS, quadrature_refusal
 
 QUADRATURE = {"solver.method": "quadrature"}
 SPRINGS = CONFIGS / "spring_array.yaml"  # the micro-sphere on 2000 springs, v_s ≈ 0.303 m/s
@@ -151,12 +150,7 @@ def test_the_trajectory_holds_the_states_after_the_events():
     ],
 )
 def test_prefix_sums_are_refused_where_they_do_not_apply(change, why):
-    data = yaml.safe_load(SPRINGS.read_text())
-    data.update(change)
-    data["solver"] = {"method": "quadrature"}
-    with pytest.raises(impact.SceneError) as error:
-        impact.load_scene(data)
-    assert dict(error.value.problems)["solver.method"] == why
+    assert quadrature_refusal(SPRINGS, change) == why
 
 
 def test_the_vectorised_angle_is_atan2_to_a_few_ulps():
