@@ -177,7 +177,7 @@ def _event(problem: ObliqueProblem, s: _State, rows: int) -> _State:
     level = jnp.where(inward & beyond, array.beyond_level, array.next_level(attached.count, inward))
     duration, end_d, _, _ = _arc(attached, array.spacing, springs.problem.motion.gravity, c.d, c.v, level, inward)
     s = _arc_steps(problem, s, duration, end_d, rows)
-    after = _spring_event(springs.problem, array, ArrayCarry(carry=c, attached=attached))
+    after = _spring_event(springs.problem, array, ArrayCarry(carry=c, attached=attached, level=level))
     mask = jnp.arange(problem.motion.heights.shape[0]) < after.attached.count
     tangential = problem.motion.detach(s.tangential, mask)
     new = after.carry
