@@ -120,7 +120,8 @@ def test_the_event_loop_separates_from_a_cone_where_multiply_adds_are_fused():
     fused = json.loads(shown.stdout)
     if fused is None:
         pytest.skip("this CPU's XLA fuses no multiply–adds")
-    fast = sweep(with_values(load_scene(data), QUADRATURE), {"initial.velocity": CONE_VELOCITIES}, order="given").results
+    axes = {"initial.velocity": CONE_VELOCITIES}
+    fast = sweep(with_values(load_scene(data), QUADRATURE), axes, order="given").results
     assert [status for status, _, _ in fused] == ["captured", "separated", "separated"]
     assert np.array_equal([RESULT_CODE[status] for status, _, _ in fused], fast["status"])
     for index, (_, restitution, contact_time) in enumerate(fused):
