@@ -100,11 +100,13 @@ class ObliqueSpringArray(AbstractSpringArrayIntegrator):
 
 
 class _State(eqx.Module):
-    """State of the event loop: the normal springs' carry, the tangential state, the first
-    contact's tangential results and the trajectory rows."""
+    """State of the event loop: the normal springs' carry (with the threshold of the spring
+    that changes next, as `springs.ArrayCarry`), the tangential state, the first contact's
+    tangential results and the trajectory rows."""
 
     carry: Carry
     attached: Attached
+    level: jax.Array
     tangential: TangentialState
     first: TangentialOutcome
     trajectory: jax.Array  # [T, COLUMNS]
@@ -174,10 +176,10 @@ def _event(problem: ObliqueProblem, s: _State, rows: int) -> _State:
     c, attached = s.carry, s.attached
     inward = c.mode == ADVANCE
     beyond = attached.count >= array.count
-    level = jnp.where(inward & beyond, array.beyond_level, array.next_level(attached.count, inward))
+    level = jnp.where(inward & beyond, array.beyond_level, s.level)
     duration, end_d, _, _ = _arc(attached, array.spacing, springs.problem.motion.gravity, c.d, c.v, level, inward)
     s = _arc_steps(problem, s, duration, end_d, rows)
-    after = _spring_event(springs.problem, array, ArrayCarry(carry=c, attached=attached))
+    after = _spring_event(springs.problem, array, ArrayCarry(carry=c, attached=attached, level=s.level))
     mask = jnp.arange(problem.motion.heights.shape[0]) < after.attached.count
     tangential = problem.motion.detach(s.tangential, mask)
     new = after.carry
@@ -187,7 +189,7 @@ def _event(problem: ObliqueProblem, s: _State, rows: int) -> _State:
         TangentialOutcome(tangential.velocity, tangential.surface_speed, tangential.work),
         s.first,
     )
-    return replace(s, carry=new, attached=after.attached, tangential=tangential, first=first)
+    return replace(s, carry=new, attached=after.attached, level=after.level, tangential=tangential, first=first)
 
 
 def _land(problem: ObliqueProblem, options: Options, s: _State, rows: int) -> _State:
@@ -198,7 +200,7 @@ def _land(problem: ObliqueProblem, options: Options, s: _State, rows: int) -> _S
     radius = landed.attached.count * problem.springs.array.spacing
     # No spring has slipped yet: the stick zone is the whole contact (of the jump-in).
     tangential = replace(s.tangential, work=jnp.where(c.mode == DONE, s.tangential.work, 0.0), stick_radius=radius)
-    s = replace(s, carry=c, attached=landed.attached, tangential=tangential)
+    s = replace(s, carry=c, attached=landed.attached, level=landed.level, tangential=tangential)
     force = problem.springs.array.force(landed.attached, c.d)
     return _store(s, _row(c.t, c.d, c.v, force, radius, tangential), rows)
 
@@ -222,6 +224,7 @@ def _run(problem: ObliqueProblem, options: Options) -> Outcome:
     start = _State(
         carry=replace(initial_carry(problem.springs.problem, options), trajectory=jnp.zeros((0, 5))),
         attached=Attached.none(),
+        level=nan,  # the first flight's touch computes the first threshold
         tangential=problem.motion.start(*problem.start),
         first=TangentialOutcome(nan, nan, nan),
         trajectory=jnp.full((rows, COLUMNS), jnp.nan),

@@ -83,20 +83,23 @@ def build_array(problem: Problem, count, length) -> ComputedSpringArray:
 
 
 class ArrayCarry(eqx.Module):
-    """State of a spring array's loop: the phase loop's carry and the springs attached."""
+    """State of a spring array's loop: the phase loop's carry, the springs attached and the
+    threshold of the spring that changes next in the direction of motion (`next_level`),
+    carried from where it was computed so that the event loop computes each threshold once."""
 
     carry: Carry
     attached: Attached
+    level: jax.Array
 
 
 def touch_down(problem: Problem, options: Options, array: ComputedSpringArray, c: Carry) -> ArrayCarry:
     """Analytic flight to the next touch, whose jump-in attaches every spring with its threshold
     at or below d = 0; ends the run at a bound, or when the body flies off. Returns the carry and
     the springs attached (none unless it lands). The integrators store their own trajectory rows."""
-    jump_in = array.cascade(Attached.none(), 0.0, True)
+    jump_in, level = array.cascade_from(Attached.none(), array.next_level(0, True), 0.0, True)
     touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
     c = land(problem, options, c, 0.0, touch, array.force(jump_in, 0.0), samples=False)
-    return ArrayCarry(carry=c, attached=where(c.mode == ADVANCE, jump_in, Attached.none()))
+    return ArrayCarry(carry=c, attached=where(c.mode == ADVANCE, jump_in, Attached.none()), level=level)
 
 
 def _arc(attached: Attached, spacing, gravity, d, v, level, inward):
@@ -147,13 +150,16 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, state: ArrayCarr
     k = attached.count
     inward = c.mode == ADVANCE
     beyond = k >= array.count
-    level = jnp.where(inward & beyond, array.beyond_level, array.next_level(k, inward))
+    level = jnp.where(inward & beyond, array.beyond_level, state.level)
     duration, d, v, turned = _arc(attached, array.spacing, problem.motion.gravity, c.d, c.v, level, inward)
     t = c.t + duration
     out_of_time = t > problem.motion.time_limit
-    # What the event does to the contact: unless it turned, d sits on the threshold of the
-    # event's own spring, so that spring leads its cascade.
-    now = where(turned, attached, array.cascade(attached, d, inward))
+    # What the event does to the contact: unless it turned, d is `level` itself (or already
+    # past it), so the event's own spring, tested against that same number, leads its cascade;
+    # at a turn the frontier of the new direction gets its threshold.
+    cascaded, following = array.cascade_from(attached, level, d, inward)
+    now = where(turned, attached, cascaded)
+    following = jnp.where(turned, array.next_level(attached.count, ~inward), following)
     overflow = inward & ~turned & beyond  # the contact outgrew the array
     separated = ~inward & ~turned & (now.count == 0)
     captured = ~inward & turned
@@ -179,7 +185,9 @@ def _spring_event(problem: Problem, array: ComputedSpringArray, state: ArrayCarr
     summary = ContactSummary(work=work, lowest_force=jnp.min(forces), highest_force=jnp.max(forces), deepest=d)
     c = record_contact(c, (t, d, v), summary, separated, captured)
     return ArrayCarry(
-        carry=replace(c, mode=mode, status=status, steps=c.steps + 1, accepted=c.accepted + 1), attached=now
+        carry=replace(c, mode=mode, status=status, steps=c.steps + 1, accepted=c.accepted + 1),
+        attached=now,
+        level=following,
     )
 
 
@@ -215,5 +223,6 @@ def _run_events(problem: Problem, options: Options, array: ComputedSpringArray) 
         # A flight stores the touch it lands with; every spring event is stored.
         return store(state, ~flying | (state.carry.mode == ADVANCE))
 
-    start = ArrayCarry(carry=initial_carry(problem, options), attached=Attached.none())
+    # The first flight's touch computes the first threshold.
+    start = ArrayCarry(carry=initial_carry(problem, options), attached=Attached.none(), level=jnp.asarray(jnp.nan))
     return finish(jax.lax.while_loop(running, advance, start).carry)

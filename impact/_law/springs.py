@@ -121,11 +121,23 @@ class ComputedSpringArray(eqx.Module):
     def cascade(self, attached: Attached, indentation, inward) -> Attached:
         """Moving in, attach the next springs while their attach thresholds lie at or below d;
         moving out, detach the edge springs while their detach thresholds lie at or above d."""
+        return self.cascade_from(attached, self.next_level(attached.count, inward), indentation, inward)[0]
 
-        def more(a: Attached):
-            level = self.next_level(a.count, inward)
+    def cascade_from(self, attached: Attached, level, indentation, inward) -> tuple[Attached, jax.Array]:
+        """The cascade of `cascade` from a frontier spring whose threshold `level` is already
+        known. Returns the springs then attached and the threshold of the spring it stopped at
+        (`next_level`), each threshold computed once: a threshold computed again elsewhere in
+        the same program may round otherwise (fused multiply–adds), and a spring whose event
+        was located at `level` must then be tested against that very number."""
+
+        def more(state):
+            a, level = state
             return jnp.where(
                 inward, (a.count < self.count) & (level <= indentation), (a.count > 0) & (level >= indentation)
             )
 
-        return jax.lax.while_loop(more, lambda a: self.change(a, inward), attached)
+        def change(state):
+            a = self.change(state[0], inward)
+            return a, self.next_level(a.count, inward)
+
+        return jax.lax.while_loop(more, change, (attached, jnp.asarray(level)))

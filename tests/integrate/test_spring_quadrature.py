@@ -3,12 +3,18 @@ whole from prefix sums over the springs (`_integrate.spring_quadrature`), agains
 loop (`_integrate.springs`, the default on a spring array), which advances the same arcs one
 spring event after another."""
 
+import json
+import math
+import os
+import subprocess
+import sys
+
 import jax
 import numpy as np
 import pytest
 import yaml
 
-from impact import simulate
+from impact import simulate, theory
 from impact._integrate.codes import RESULT_CODE
 from impact._integrate.spring_quadrature import SpringQuadrature, angle
 from impact._integrate.springs import SpringArray
@@ -17,10 +23,17 @@ from impact._run.sweep import sweep
 from impact._scene.method_support import SPRING_QUADRATURE_MAX_SPRINGS
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
-from tests.scenes import CONFIGS, quadrature_refusal
+from tests.scenes import CONFIGS, E_STAR, MASS, ROOT, WORK, quadrature_refusal
 
 QUADRATURE = {"solver.method": "quadrature"}
 SPRINGS = CONFIGS / "spring_array.yaml"  # the micro-sphere on 2000 springs, v_s ≈ 0.303 m/s
+# A cone of θ = 0.3 on 256 springs under the reversible JKR law, at 1, 2 and 3 times its sticking
+# velocity (3.82): captured at v_s (the array of 256 springs loses a little more than the
+# continuum), separated above it.
+CONE_THETA = 0.3
+CONE = {"contact": {"springs": 256}, "body": {"profile": {"shape": "cone", "theta": CONE_THETA}, "mass": MASS}}
+CONE_STICKING = float(theory.power_law_sticking_velocity(MASS, 1.0, math.tan(CONE_THETA), E_STAR, WORK))
+CONE_VELOCITIES = [factor * CONE_STICKING for factor in (1.0, 2.0, 3.0)]
 # (changes to the scene file's sections, velocities in m/s): captured and separated points of
 # each; the event loop measured against these ≤ 6e-14 apart (restitution, force extremes,
 # depth, contact time).
@@ -39,6 +52,7 @@ CASES = {
         [0.2, 0.5, 2.0],
     ),
     "no_adhesion": ({"contact": {"springs": 100}, "effects": {}}, [0.1, 1.0]),
+    "reversible_jkr_cone": (CONE, CONE_VELOCITIES),
 }
 MEASURED = ("restitution", "max_indentation", "max_force", "min_force", "contact_time")
 
@@ -72,6 +86,47 @@ def test_the_cases_capture_and_separate():
     fast, _ = _both(*CASES["jkr"])
     assert fast["status"][0] == RESULT_CODE["captured"] and fast["restitution"][0] == 0.0
     assert fast["status"][-1] == RESULT_CODE["separated"] and fast["restitution"][-1] > 0.5
+
+
+# The event loop of the cone run by `impact.simulate` in a process that never called
+# `impact.configure()`, where XLA:CPU fuses multiply–adds: prints [status, restitution, contact
+# time] of each velocity, or null where this CPU fuses none.
+_FUSED_EVENT_LOOP = """
+import json, sys
+from impact._core.runtime import contracts_multiply_adds
+if not contracts_multiply_adds():
+    print("null")
+    raise SystemExit
+from impact import simulate
+from impact._scene.paths import with_values
+from impact._scene.scene import load_scene
+scene = load_scene(json.loads(sys.argv[1]))
+runs = [simulate(with_values(scene, {"initial.velocity": v}), trajectory=False) for v in json.loads(sys.argv[2])]
+print(json.dumps([[run.status, run.restitution, run.contact_time] for run in runs]))
+"""
+
+
+def test_the_event_loop_separates_from_a_cone_where_multiply_adds_are_fused():
+    """The cone's detach thresholds rounded otherwise where the arc reached them than where the
+    cascade tested them again (fused multiply–adds): its deepest spring stayed attached at its
+    own threshold and every event found it again at the same time, to the event limit (status
+    phase_limit). Each threshold is now computed once: the event loop there gives the prefix
+    sums' status, restitution and contact time to 1e-12 relative (the prefix sums run in this
+    process, without fused multiply–adds)."""
+    data = {**yaml.safe_load(SPRINGS.read_text()), **CONE}
+    environment = {key: value for key, value in os.environ.items() if key != "XLA_FLAGS"}
+    command = [sys.executable, "-c", _FUSED_EVENT_LOOP, json.dumps(data), json.dumps(CONE_VELOCITIES)]
+    shown = subprocess.run(command, capture_output=True, text=True, env=environment, cwd=ROOT, check=True)
+    fused = json.loads(shown.stdout)
+    if fused is None:
+        pytest.skip("this CPU's XLA fuses no multiply–adds")
+    axes = {"initial.velocity": CONE_VELOCITIES}
+    fast = sweep(with_values(load_scene(data), QUADRATURE), axes, order="given").results
+    assert [status for status, _, _ in fused] == ["captured", "separated", "separated"]
+    assert np.array_equal([RESULT_CODE[status] for status, _, _ in fused], fast["status"])
+    for index, (_, restitution, contact_time) in enumerate(fused):
+        assert restitution == pytest.approx(float(fast["restitution"][index]), rel=1e-12, abs=0.0)
+        assert contact_time == pytest.approx(float(fast["contact_time"][index]), rel=1e-12, abs=0.0)
 
 
 def test_bounces_under_gravity_are_the_event_loop():
