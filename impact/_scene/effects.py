@@ -10,6 +10,7 @@ from pydantic import Field, model_validator
 from .._integrate.adhesive_plastic import AdhesivePlastic
 from .._integrate.base import AbstractIntegrator
 from .._integrate.plastic import Plastic
+from .._integrate.plastic_quadrature import PlasticQuadrature
 from .._law.jkr import JKR
 from .._law.thornton import Thornton, ThorntonNing
 from . import domains as d
@@ -19,7 +20,7 @@ from .domains import within
 from .errors import FieldProblem
 from .friction import FrictionSection
 from .profiles import Number
-from .sections import Section
+from .sections import QUADRATURE, Section
 from .viscoelasticity import Viscoelasticity
 
 if TYPE_CHECKING:
@@ -55,8 +56,13 @@ class Plasticity(Section):
         )
 
     def integrator(self, scene: "Scene") -> AbstractIntegrator:
-        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's."""
-        return AdhesivePlastic(**adaptive(scene)) if scene.adhesive else Plastic(**adaptive(scene))
+        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's (its
+        phases timed by quadrature with `solver.method: quadrature`)."""
+        if scene.adhesive:
+            return AdhesivePlastic(**adaptive(scene))
+        if scene.solver.method == QUADRATURE:
+            return PlasticQuadrature()
+        return Plastic(**adaptive(scene))
 
 
 class Damping(Section):
