@@ -82,7 +82,9 @@ class PlasticQuadrature(Plastic):
         nxt = after_plastic_phase(advancing, turned, flowing=0)
         memory = where(advancing, law.after_turn(d_end, state), state)
         steps = (jnp.zeros((), int),) * 3  # no solver: every end is found
-        booked = close_phase(c, active, jnp.asarray(True), steps, (t_end, d_end, v_end), nxt, jnp.asarray(False), summary)
+        booked = close_phase(
+            c, active, jnp.asarray(True), steps, (t_end, d_end, v_end), nxt, jnp.asarray(False), summary
+        )
         booked = replace(booked, memory=where(active, memory, c.memory))
         # A speed that is not real at a node inside the leg, or a turnaround whose search did not settle.
         return replace_where(booked, active & (~real | ~settled), status=Status.solver_failure, mode=DONE)
@@ -109,4 +111,3 @@ def _rows(law: PlasticLaw, state: PlasticState, leg: Leg, end, options: Options,
     x, t, v = leg.samples(x_end, turned, jnp.linspace(0.0, 1.0, options.samples_per_phase), duration)
     d = state.residual + x**2
     return jnp.stack([c.t + t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
-

@@ -32,9 +32,9 @@ def energy_ends_refusal(scene: "Scene") -> str | None:
 
 def quadrature_refusal(scene: "Scene") -> str | None:
     """Why the scene's contact phases cannot be timed by quadrature, or None where they can: a
-    curve law's rides along its continuum curve, Thornton's plastic law's phases; else the phases must end from their energy
-    balance, the work along a branch must have its closed form (ĝ = Â·xⁿ) and loading must start
-    from a jump-in or a tip of finite slope."""
+    curve law's rides along its continuum curve, the phases of Thornton's plastic law; else the
+    phases must end from their energy balance, the work along a branch must have its closed form
+    (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
     if scene.kind != "impact":
         return "times the contact phases of an impact (kind: impact)"
     if scene.contact.springs != "continuum":
