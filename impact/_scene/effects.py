@@ -8,6 +8,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from .._integrate.adhesive_plastic import AdhesivePlastic
+from .._integrate.adhesive_plastic_quadrature import AdhesivePlasticQuadrature
 from .._integrate.base import AbstractIntegrator
 from .._integrate.plastic import Plastic
 from .._integrate.plastic_quadrature import PlasticQuadrature
@@ -56,13 +57,11 @@ class Plasticity(Section):
         )
 
     def integrator(self, scene: "Scene") -> AbstractIntegrator:
-        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's (its
-        phases timed by quadrature with `solver.method: quadrature`)."""
-        if scene.adhesive:
-            return AdhesivePlastic(**adaptive(scene))
+        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's;
+        each with its phases timed by quadrature where the scene names `solver.method: quadrature`."""
         if scene.solver.method == QUADRATURE:
-            return PlasticQuadrature()
-        return Plastic(**adaptive(scene))
+            return AdhesivePlasticQuadrature() if scene.adhesive else PlasticQuadrature()
+        return AdhesivePlastic(**adaptive(scene)) if scene.adhesive else Plastic(**adaptive(scene))
 
 
 class Damping(Section):

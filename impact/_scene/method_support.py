@@ -32,7 +32,7 @@ def energy_ends_refusal(scene: "Scene") -> str | None:
 
 def quadrature_refusal(scene: "Scene") -> str | None:
     """Why the scene's contact phases cannot be timed by quadrature, or None where they can: a
-    curve law's rides along its continuum curve, the phases of Thornton's plastic law; else the
+    curve law's rides along its continuum curve, the phases of Thornton's plastic laws; else the
     phases must end from their energy balance, the work along a branch must have its closed form
     (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
     if scene.kind != "impact":
@@ -41,7 +41,7 @@ def quadrature_refusal(scene: "Scene") -> str | None:
         return spring_quadrature_refusal(scene)
     curve = isinstance(scene.contact_law(), AbstractCurveLaw)
     plastic = scene.effects.plasticity is not None
-    why = plastic_quadrature_refusal(scene) if plastic else None if curve else energy_ends_refusal(scene)
+    why = None if curve or plastic else energy_ends_refusal(scene)
     if why is not None:
         return why
     if scene.solver.phase_ends == "integrated":
@@ -59,17 +59,6 @@ def quadrature_refusal(scene: "Scene") -> str | None:
         return (
             f"needs a power law with n >= 1 (not {profile.n:g}) and, with adhesion, approach_work_of_adhesion "
             "equal to work_of_adhesion or 0: otherwise loading may start from a tip of infinite slope"
-        )
-    return None
-
-
-def plastic_quadrature_refusal(scene: "Scene") -> str | None:
-    """Why the scene's plastic law cannot be timed by quadrature, or None where it can: Thornton's
-    law without adhesion (`_integrate.plastic_quadrature`)."""
-    if scene.adhesive:
-        return (
-            "not with effects.plasticity and adhesion (Thornton & Ning's law): its phases end where the solver "
-            "locates them; leave solver.method out"
         )
     return None
 
