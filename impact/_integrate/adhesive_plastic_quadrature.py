@@ -19,14 +19,14 @@ import jax
 import jax.numpy as jnp
 
 from .._core import derivatives
-from .._core.pytree import replace, replace_where, where
+from .._core.pytree import replace, where
 from .._law.adhesive_plastic import DentState
 from .adhesive_plastic import FLOWING, AdhesivePlastic, AdhesivePlasticProblem, force_range
-from .carry import Carry, Outcome, close_phase, store_samples
-from .codes import ADVANCE, DONE, Status
+from .carry import Carry, Outcome
+from .codes import ADVANCE
+from .plastic_quadrature import book_leg
 from .problem import Options
 from .quadrature import Leg, Quadrature
-from .ride import in_contact
 from .transitions import after_plastic_phase
 from .work import ContactSummary, squared_speed
 
@@ -53,7 +53,6 @@ class AdhesivePlasticQuadrature(AdhesivePlastic):
         """One contact phase: its end from the energy balance, its duration by quadrature; then the
         phase and dent that follow, as the ODE leaf books them."""
         law, state, gravity = problem.law, c.memory, problem.motion.gravity
-        active = in_contact(c)
         advancing = c.mode == ADVANCE
         flowing = advancing & (c.segment == FLOWING)
         start = (c.d, c.v)
@@ -76,12 +75,13 @@ class AdhesivePlasticQuadrature(AdhesivePlastic):
         v_end = jnp.where(turned, 0.0, direction * derivatives.sqrt(jnp.maximum(squared(a_end), 0.0)))
         t_end = c.t + duration
 
+        rows = None
         if options.samples_per_phase:
             theta = jnp.linspace(0.0, 1.0, options.samples_per_phase)
             a, t, v = leg.samples(a_end, turned, theta, duration)
             rows = jnp.stack([c.t + t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
             end_row = jnp.stack([t_end, d_end, v_end, law.force(a_end, state, flowing), a_end])
-            c = where(active, store_samples(c, options, rows.at[-1].set(end_row)), c)
+            rows = rows.at[-1].set(end_row)
         lowest, highest = force_range(law, state, flowing, c.radius, a_end)
         summary = ContactSummary(
             work=law.work(c.radius, a_end, state, flowing),
@@ -91,9 +91,4 @@ class AdhesivePlasticQuadrature(AdhesivePlastic):
         )
         nxt = replace(after_plastic_phase(advancing, turned, flowing=FLOWING), radius=a_end)
         memory = where(advancing & turned, law.after_turn(a_end, state), state)
-        steps = (jnp.zeros((), int),) * 3  # no solver: every end is found
-        end = (t_end, d_end, v_end)
-        booked = close_phase(c, active, jnp.asarray(True), steps, end, nxt, jnp.asarray(False), summary)
-        booked = replace(booked, memory=where(active, memory, c.memory))
-        # A speed that is not real at a node inside the leg, or a turnaround not found.
-        return replace_where(booked, active & (~real | ~settled), status=Status.solver_failure, mode=DONE)
+        return book_leg(c, options, rows, (t_end, d_end, v_end), summary, nxt, memory, real & settled)

@@ -27,7 +27,7 @@ from .plastic import Plastic, PlasticProblem
 from .problem import Options
 from .quadrature import Leg
 from .ride import in_contact
-from .transitions import after_plastic_phase
+from .transitions import Next, after_plastic_phase
 from .work import ContactSummary, squared_speed
 
 
@@ -41,7 +41,6 @@ class PlasticQuadrature(Plastic):
         """One contact phase: its end from the energy balance, its duration by quadrature; then the
         phase and plastic state that follow, as the ODE leaf books them."""
         law, state, gravity = problem.law, c.memory, problem.motion.gravity
-        active = in_contact(c)
         advancing = c.mode == ADVANCE
         onset = jnp.maximum(law.yield_depth, state.deepest)
         flowing = advancing & (c.d >= onset)  # loading resumed on the virgin curve at the onset
@@ -66,12 +65,11 @@ class PlasticQuadrature(Plastic):
         v_end = jnp.where(turned, 0.0, leg.direction * derivatives.sqrt(jnp.maximum(squared(x_end), 0.0)))
         t_end = c.t + duration
 
+        rows = None
         if options.samples_per_phase:
             rows = _rows(law, state, leg, (x_end, turned, duration), options, c)
-            rows = rows.at[-1].set(
-                jnp.stack([t_end, d_end, v_end, law.force(d_end, state), law.contact_radius(d_end, state)])
-            )
-            c = where(active, store_samples(c, options, rows), c)
+            end_row = jnp.stack([t_end, d_end, v_end, law.force(d_end, state), law.contact_radius(d_end, state)])
+            rows = rows.at[-1].set(end_row)
         forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
         summary = ContactSummary(
             work=law.work(d_end, state) - law.work(c.d, state),
@@ -81,13 +79,21 @@ class PlasticQuadrature(Plastic):
         )
         nxt = after_plastic_phase(advancing, turned, flowing=0)
         memory = where(advancing, law.after_turn(d_end, state), state)
-        steps = (jnp.zeros((), int),) * 3  # no solver: every end is found
-        booked = close_phase(
-            c, active, jnp.asarray(True), steps, (t_end, d_end, v_end), nxt, jnp.asarray(False), summary
-        )
-        booked = replace(booked, memory=where(active, memory, c.memory))
-        # A speed that is not real at a node inside the leg, or a turnaround whose search did not settle.
-        return replace_where(booked, active & (~real | ~settled), status=Status.solver_failure, mode=DONE)
+        return book_leg(c, options, rows, (t_end, d_end, v_end), summary, nxt, memory, real & settled)
+
+
+def book_leg(c: Carry, options: Options, rows, end, summary: ContactSummary, nxt: Next, memory, followed) -> Carry:
+    """Book a contact phase timed by quadrature (kept only in contact): its trajectory `rows`
+    ([samples, 5], None without samples), `end` = (t, d, v), what it did, the phase and the law's
+    memory after it. A phase not `followed` (a speed not real at a node inside its leg, a
+    turnaround whose search did not settle) ends the run with `solver_failure`."""
+    active = in_contact(c)
+    if rows is not None:
+        c = where(active, store_samples(c, options, rows), c)
+    steps = (jnp.zeros((), int),) * 3  # no solver: every end is found
+    booked = close_phase(c, active, jnp.asarray(True), steps, end, nxt, jnp.asarray(False), summary)
+    booked = replace(booked, memory=where(active, memory, c.memory))
+    return replace_where(booked, active & ~followed, status=Status.solver_failure, mode=DONE)
 
 
 def _root(excess):
