@@ -5,13 +5,16 @@ Hertz's contact time below the yield velocity, and the same impacts integrated b
 
 import math
 
+import jax
 import numpy as np
 import pytest
 import yaml
 
 import impact
 from impact import simulate, theory
+from impact._integrate import adhesive_plastic_quadrature
 from impact._integrate.codes import RESULT_CODE
+from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep import sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
@@ -219,3 +222,14 @@ def test_an_adhesive_plastic_sweep_point_does_not_depend_on_its_batch():
     """Bitwise the same results alone, in calls of 5 and in one call of 24."""
     axes = {"initial.velocity": list(np.geomspace(0.3, 100.0, 24))}
     assert_chunks_agree(wall_particle(QUADRATURE), axes, (1, 5))
+
+
+@pytest.mark.slow
+def test_plastic_loading_past_every_rung_is_a_failure_not_a_number(monkeypatch):
+    """Plastic loading whose turnaround lies beyond the ladder's last rung (here one rung, √2 times
+    the onset of flow, at 20 m/s) is not followed: the run ends with solver_failure."""
+    monkeypatch.setattr(adhesive_plastic_quadrature, "_LADDER_RUNGS", 1)
+    scene = wall_particle(QUADRATURE)
+    integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
+    _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
+    assert int(outcome.status) == RESULT_CODE["solver_failure"]
