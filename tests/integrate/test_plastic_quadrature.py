@@ -18,6 +18,8 @@ from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep import sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
+from impact._scene.sweep import make_spec
+from impact._scene.sweep_method import CHOSEN, FASTER, NAMED
 from tests.run.bitwise import COMPARED, assert_bitwise, assert_chunks_agree
 from tests.run.passive import assert_passive
 from tests.scenes import CONFIGS
@@ -233,3 +235,15 @@ def test_plastic_loading_past_every_rung_is_a_failure_not_a_number(monkeypatch):
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
     _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
     assert int(outcome.status) == RESULT_CODE["solver_failure"]
+
+
+def test_a_sweep_of_a_plastic_scene_that_names_no_method_runs_the_quadrature():
+    """Without `solver.method` a sweep of either plastic law runs the quadrature; a scene that names
+    its method keeps it (the examples do)."""
+    for config in ("wall_particle.yaml", "plastic_steel.yaml"):
+        data = yaml.safe_load((CONFIGS / config).read_text())
+        named = make_spec(load_scene(data), {"initial.velocity": [0.5, 1.0]})
+        assert (named.method, named.method_choice) == (data["solver"]["method"], NAMED + FASTER)
+        del data["solver"]
+        spec = make_spec(load_scene(data), {"initial.velocity": [0.5, 1.0]})
+        assert (spec.method, spec.method_choice) == ("quadrature", CHOSEN)
