@@ -27,6 +27,9 @@ BEAD = dict(R=1.0e-3, density=2500.0, E_star=1.0e10, work_of_adhesion=0.1, gap=1
 POWER3_C = RADIUS**-2 / 2.0  # f = c·r³ through the paraboloid's f at r = R
 BEAD_VELOCITIES = (1e-4, 2e-3)  # m/s at the start, 0.15 µm up: touch speeds 1.7–2.6 mm/s
 ENERGY_RTOL = 1e-6  # rtol of the Thornton–Ning workload of a restitution table
+# p_y (Pa) of the plastic workloads: 2.3× the pressure at the centre of the benchmark paraboloid's
+# contact right after its jump-in (22 MPa), which Thornton & Ning's law needs p_y above.
+YIELD_PRESSURE = 5.0e7
 
 
 @dataclass(frozen=True)
@@ -84,7 +87,8 @@ def workloads(quick: bool = False) -> list[Workload]:
     heavy = [spring_array(2048), _dugdale(v_s), attach, _bead(), _double_hertz(v_s)]
     loose = [_energy_ends(workload) for workload in (tn, power15, power3, cone)]
     timed = [_quadrature(workload) for workload in (tn, power15, power3, cone, *heavy[1:])]
-    return [*light, *heavy, *loose, *timed, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
+    plastic = [_plastic(adhesive=False), _plastic(adhesive=True)]
+    return [*light, *heavy, *loose, *timed, *plastic, *(spring_array(n) for n in SCAN_COUNTS if n not in (256, 2048))]
 
 
 def _dugdale(v_s: float) -> Workload:
@@ -121,6 +125,23 @@ def _quadrature(workload: Workload) -> Workload:
     return Workload(
         f"{workload.key}_quadrature", f"{workload.name}, quadrature", scene, workload.velocities, workload.reference
     )
+
+
+def _plastic(adhesive: bool) -> Workload:
+    """The benchmark paraboloid yielding at p_y = YIELD_PRESSURE (Thornton's law, or with adhesion
+    Thornton & Ning's) by quadrature, its fastest method, from 1.001 to 30 times its yield velocity
+    (with adhesion its sticking velocity)."""
+    if adhesive:
+        key, name = "tn_plastic_quadrature", "Thornton–Ning plastic, quadrature"
+        scene = case_scene(key, dict(shape="paraboloid", R=RADIUS), 1.0)
+        low = theory.adhesive_plastic_sticking_velocity(MASS, RADIUS, E_STAR, WORK_OF_ADHESION, YIELD_PRESSURE)
+    else:
+        key, name = "plastic_quadrature", "Thornton plastic, quadrature"
+        scene = {**case_scene(key, dict(shape="paraboloid", R=RADIUS), 1.0), "effects": {}}
+        low = theory.thornton_yield_velocity(MASS, RADIUS, E_STAR, YIELD_PRESSURE)
+    scene["effects"]["plasticity"] = dict(yield_pressure=YIELD_PRESSURE)
+    scene["solver"] = dict(method="quadrature")
+    return Workload(key, name, scene, _range(float(low)), CLOSED_FORM)
 
 
 def _bead() -> Workload:

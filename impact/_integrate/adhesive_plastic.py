@@ -34,7 +34,7 @@ from .transitions import after_plastic_phase, next_phase
 from .work import ContactSummary
 
 # Plastic loading rides segment 1 of ADVANCE; the dent's elastic branch segment 0.
-_ELASTIC, _FLOWING = 0, 1
+_ELASTIC, FLOWING = 0, 1
 
 
 class AdhesivePlasticProblem(AbstractClosedFormProblem):
@@ -97,7 +97,7 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
     def phase(self, problem: AdhesivePlasticProblem, options: Options, c: Carry) -> "_Args":
         law, state = problem.law, c.memory
         advancing = c.mode == ADVANCE
-        flowing = advancing & (c.segment == _FLOWING)
+        flowing = advancing & (c.segment == FLOWING)
         return _Args(
             law=law,
             state=state,
@@ -130,14 +130,14 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
             a, v, t = dense_states(ride.solution, options.samples_per_phase).T
             a = jnp.maximum(a, 0.0)
             rows = jnp.stack([t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
-        lowest, highest = _force_range(law, state, flowing, c.radius, a_end)
+        lowest, highest = force_range(law, state, flowing, c.radius, a_end)
         summary = ContactSummary(
             work=law.work(c.radius, a_end, state, flowing),
             lowest_force=lowest,
             highest_force=highest,
             deepest=jnp.maximum(d_start, d_end),
         )
-        nxt = replace(after_plastic_phase(advancing, ride.turned, flowing=_FLOWING), radius=a_end)
+        nxt = replace(after_plastic_phase(advancing, ride.turned, flowing=FLOWING), radius=a_end)
         memory = where(advancing & ride.turned, law.after_turn(a_end, state), state)
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
@@ -159,7 +159,7 @@ def _vector_field(s, y, args: _Args):
     return branch_rates(v, force, slope, args.motion.gravity)
 
 
-def _force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):
+def force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):
     """(least, largest) force while the radius moves between `start` and `end` (F̂ has one minimum)."""
     low, high = jnp.minimum(start, end), jnp.maximum(start, end)
     weakest = jnp.clip(law.weakest(state, flowing), low, high)

@@ -82,7 +82,7 @@ class Quadrature(AbstractIntegrator):
 
 
 @dataclass(frozen=True)
-class _Leg:
+class Leg:
     """A phase as a monotone stretch in x (the radius a, or the depth d): where it starts and
     where it would end, v²(x), the rate |dd/dx| and the sign of the speed along it."""
 
@@ -177,7 +177,7 @@ def _contact(problem: Problem, options: Options, c: Carry) -> Carry:
     # Riding: from the radius to the segment's end; held: outwards, from the depth to the detach
     # depth. A hold starts at a turnaround (v = 0): only at a body's wall, which no profile of the
     # form g = A·xⁿ has, could it start inwards (left to the ODE solvers: `solver_failure` here).
-    leg = _Leg(
+    leg = Leg(
         jnp.where(riding, c.radius, c.d),
         jnp.where(riding, node, jnp.minimum(problem.detach.level(law, c.radius), c.d)),
         squared,

@@ -8,8 +8,10 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from .._integrate.adhesive_plastic import AdhesivePlastic
+from .._integrate.adhesive_plastic_quadrature import AdhesivePlasticQuadrature
 from .._integrate.base import AbstractIntegrator
 from .._integrate.plastic import Plastic
+from .._integrate.plastic_quadrature import PlasticQuadrature
 from .._law.jkr import JKR
 from .._law.thornton import Thornton, ThorntonNing
 from . import domains as d
@@ -19,7 +21,7 @@ from .domains import within
 from .errors import FieldProblem
 from .friction import FrictionSection
 from .profiles import Number
-from .sections import Section
+from .sections import QUADRATURE, Section
 from .viscoelasticity import Viscoelasticity
 
 if TYPE_CHECKING:
@@ -55,7 +57,10 @@ class Plasticity(Section):
         )
 
     def integrator(self, scene: "Scene") -> AbstractIntegrator:
-        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's."""
+        """Thornton & Ning's adhesive law where adhesion is simulated (Δγ > 0), else Thornton's;
+        each with its phases timed by quadrature where the scene names `solver.method: quadrature`."""
+        if scene.solver.method == QUADRATURE:
+            return AdhesivePlasticQuadrature() if scene.adhesive else PlasticQuadrature()
         return AdhesivePlastic(**adaptive(scene)) if scene.adhesive else Plastic(**adaptive(scene))
 
 

@@ -32,22 +32,23 @@ def energy_ends_refusal(scene: "Scene") -> str | None:
 
 def quadrature_refusal(scene: "Scene") -> str | None:
     """Why the scene's contact phases cannot be timed by quadrature, or None where they can: a
-    curve law's rides along its continuum curve; else the phases must end from their energy
-    balance, the work along a branch must have its closed form (ĝ = Â·xⁿ) and loading must start
-    from a jump-in or a tip of finite slope."""
+    curve law's rides along its continuum curve, the phases of Thornton's plastic laws; else the
+    phases must end from their energy balance, the work along a branch must have its closed form
+    (ĝ = Â·xⁿ) and loading must start from a jump-in or a tip of finite slope."""
     if scene.kind != "impact":
         return "times the contact phases of an impact (kind: impact)"
     if scene.contact.springs != "continuum":
         return spring_quadrature_refusal(scene)
     curve = isinstance(scene.contact_law(), AbstractCurveLaw)
-    why = None if curve else energy_ends_refusal(scene)
+    plastic = scene.effects.plasticity is not None
+    why = None if curve or plastic else energy_ends_refusal(scene)
     if why is not None:
         return why
     if scene.solver.phase_ends == "integrated":
         return "ends every phase from its energy balance: leave solver.phase_ends out (or set it to 'energy')"
     if scene.limits.duration is not None:
         return "does not stop a phase midway: leave limits.duration out"
-    if curve:
+    if curve or plastic:
         return None
     profile = scene.contact_profile
     if profile.shape not in QUADRATURE_SHAPES:

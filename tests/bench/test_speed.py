@@ -179,15 +179,16 @@ def test_an_interrupted_run_leaves_no_folder(tmp_path, monkeypatch):
 
 def test_plans():
     """The full plan has every workload of issue #14, the rate-independent ones once more timed by
-    quadrature, and the scan over N = 64…4096; the quick one leaves out the heavy ones; --points
-    replaces every count."""
+    quadrature, the plastic ones by quadrature, and the scan over N = 64…4096; the quick one leaves
+    out the heavy ones; --points replaces every count."""
     full = speed_plan()
     keys = [workload.key for workload, _ in full.runs()]
-    assert keys[:22] == [
+    assert keys[:24] == [
         "tn", "power1.5", "power3", "cone", "springs256", "springs2048", "md", "attach", "gravity", "gj",
         "tn_energy", "power1.5_energy", "power3_energy", "cone_energy",
         "tn_quadrature", "power1.5_quadrature", "power3_quadrature", "cone_quadrature",
         "md_quadrature", "attach_quadrature", "gravity_quadrature", "gj_quadrature",
+        "plastic_quadrature", "tn_plastic_quadrature",
     ]  # fmt: skip
     assert sorted(w.springs for w, _ in full.runs() if w.springs) == [64, 128, 256, 512, 1024, 2048, 4096]
     assert all(100 in counts for _, counts in full.runs())

@@ -103,13 +103,13 @@ def test_a_speed_that_is_not_real_inside_a_phase_is_a_failure_not_a_number(monke
     """A leg that ran past its turnaround (here: its end pushed 1e-3 beyond the root) meets v² < 0
     at its nodes: the run ends with solver_failure."""
     scene = with_values(thornton_ning_scene, QUADRATURE)
-    ended = quadrature._Leg.end
+    ended = quadrature.Leg.end
 
     def overshoots(self):
         end, turned, settled = ended(self)
         return end + 1e-3 * (end - self.start) * turned, turned, settled
 
-    monkeypatch.setattr(quadrature._Leg, "end", overshoots)
+    monkeypatch.setattr(quadrature.Leg, "end", overshoots)
     integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
     _, outcome = jax.jit(lambda physics: integrator.solve(physics, options))(physics_for(scene))
     assert int(outcome.status) == RESULT_CODE["solver_failure"]
