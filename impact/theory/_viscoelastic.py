@@ -13,6 +13,7 @@ H(X) = √X − D(√X), D Dawson's integral (`lee_radok_kernel`).
 The moduli and times are arrays along their last axis (the terms); the other arguments broadcast.
 """
 
+import jax
 import jax.numpy as jnp
 from jax.scipy.special import dawsn
 
@@ -81,11 +82,14 @@ def ting_contact_time(time: Scalars, E_relaxed: Scalars, moduli, times, ramp_tim
     def condition(t1):  # decreasing in t₁
         return relaxed(t1, ramp_time) - relaxed(unloading, jnp.maximum(time, unloading))
 
-    low, high = jnp.zeros(shape), ramp_time
-    for _ in range(_BISECTION_STEPS):
+    def halve(_, bracket):
+        low, high = bracket
         middle = 0.5 * (low + high)
         above = condition(middle) > 0.0
-        low, high = jnp.where(above, middle, low), jnp.where(above, high, middle)
+        return jnp.where(above, middle, low), jnp.where(above, high, middle)
+
+    # A loop, not unrolled: 80 copies of the condition made every program of the curve slow to compile.
+    low, _ = jax.lax.fori_loop(0, _BISECTION_STEPS, halve, (jnp.zeros(shape), ramp_time))
     root = derivatives.implicit_root(condition, low)
     lost = condition(jnp.zeros(shape)) <= 0.0
     return jnp.where(time <= unloading, ramp_time, jnp.where(lost, 0.0, root))

@@ -28,9 +28,13 @@ TRUTH = {
 
 
 @pytest.fixture(scope="module")
-def fitted():
-    spec = load_fit(FITS / "viscoelastic_indentation.yaml")
-    return spec, fit_spec(spec, spec.model)
+def spec():
+    return load_fit(FITS / "viscoelastic_indentation.yaml")
+
+
+@pytest.fixture(scope="module")
+def fitted(spec):
+    return fit_spec(spec, spec.model)
 
 
 def test_the_data_file_is_what_its_script_makes():
@@ -43,7 +47,7 @@ def test_the_data_file_is_what_its_script_makes():
 def test_three_rates_give_back_the_prony_term(fitted):
     """E∞*, E1, τ within 3 standard errors (each below 0.1 % of its value), χ² within 5σ of its
     degrees of freedom, in at most 15 steps."""
-    _, result = fitted
+    result = fitted
     assert result.converged and result.iterations <= 15
     for path, true in TRUTH.items():
         assert abs(result.values[path] - true) < 3 * result.standard_errors[path], path
@@ -52,10 +56,9 @@ def test_three_rates_give_back_the_prony_term(fitted):
     assert abs(result.chi2 - result.dof) < 5 * math.sqrt(2 * result.dof)
 
 
-def test_the_model_meets_the_spring_array(fitted):
+def test_the_model_meets_the_spring_array(spec):
     """At the true values the closed form (Lee & Radok, Ting) is the force of 2000 springs
     (to 1e-5 where the force exceeds 5 % of its peak)."""
-    spec, _ = fitted
     model = viscoelastic_curve_model(spec)
     scene = FIT_FILE["scene"]
     true = copy.deepcopy(scene)
