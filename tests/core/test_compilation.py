@@ -326,13 +326,20 @@ def test_stored_program_gives_the_traced_results_bit_for_bit(thornton_ning_scene
             assert np.array_equal(value, getattr(reference, name), equal_nan=True), name
 
 
-def test_validating_a_sweep_compiles_per_structure_not_per_point():
+def test_validating_a_sweep_compiles_per_structure_not_per_point(tmp_path):
     """Every point of a sweep is checked for what the scaled problem can represent; its numbers are
-    traced, so 1200 points (and then a second sweep of the same structure) compile no new program."""
-    load_sweep(SWEEPS / "thornton_ning.yaml")  # compiles the checks once
+    traced in batches of one shape, so a second sweep of the same structure (10⁴ other points)
+    compiles no new program."""
+    load_sweep(SWEEPS / "thornton_ning_fast.yaml")  # compiles the checks of its structure once
+    other = tmp_path / "other_numbers.yaml"
+    other.write_text(
+        f"scene: {THORNTON_NING}\n"
+        "set:\n  solver.method: quadrature\n  effects.adhesion.work_of_adhesion: 0.07\n"
+        "axes:\n  initial.velocity: {geomspace: [0.3, 30.0, 10001]}\n"
+    )
     with Compiles() as compiles:
-        spec = load_sweep(SWEEPS / "thornton_ning_fast.yaml")
-    assert spec.size >= 10_000
+        spec = load_sweep(other)
+    assert spec.size == 10_001
     assert compiles.count == 0
 
 
