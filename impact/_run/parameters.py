@@ -6,6 +6,7 @@ from typing import Any
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.concrete import on_device
 from .._effects.damping import Damping
 from .._effects.friction import Friction
 from .._effects.gravity import Gravity
@@ -52,7 +53,10 @@ def _loads_in_time(scene: Scene, profile: Profile) -> bool:
 def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> Physics:
     """The traced SI parameters of a scene: its fields may hold arrays of a sweep's points (with
     `xp` numpy) or traced values (`xp` jax.numpy); `profile`: the body's, built (default: the
-    scene's contact profile)."""
+    scene's contact profile). With `xp` jax.numpy the numbers are computed in NumPy and then
+    moved to the device: each jax.numpy operation on concrete values would compile a program."""
+    if xp is jnp:
+        return on_device(physics_for(scene, np, profile))
     springs = scene.contact.springs
     gravity, duration = scene.effects.gravity, scene.limits.duration
     damping, friction = scene.effects.damping, scene.effects.friction

@@ -18,6 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .. import theory
+from .._core.concrete import evaluate
 from .._core.pytree import fields
 from .._core.runtime import float64
 from .._core.search import log_sign_change
@@ -298,14 +299,14 @@ def _check_plastic_depth(scene, speed: float, fall: float) -> None:
     indentation of Thornton's law (closed form) against R, the most energy its loading takes."""
     R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
     yield_pressure = scene.effects.plasticity.yield_pressure
-    depth = float(theory.thornton_max_indentation(speed, scene.reduced_mass, R, E_star, yield_pressure))
+    depth = float(evaluate(theory.thornton_max_indentation, speed, scene.reduced_mass, R, E_star, yield_pressure))
     if depth <= R:
         return
     why = (
         f"yielding at p_y = {yield_pressure:g} Pa, the body would be pressed in about {depth:.3g} m, deeper than "
         f"its radius {R:g} m"
     )
-    _refuse_deeper(scene, float(theory.thornton_loading_work(R, R, E_star, yield_pressure)), fall, why)
+    _refuse_deeper(scene, float(evaluate(theory.thornton_loading_work, R, R, E_star, yield_pressure)), fall, why)
 
 
 def _refuse_deeper(scene, most_energy: float, fall: float, why: str) -> None:
