@@ -145,13 +145,15 @@ def profile_unit_columns(
 def _batched_units(structure, columns: list[np.ndarray], count: int, adhesive: bool):
     """`unit_columns` from the inputs' leaves as columns (`count` rows each), computed in batches
     of `_BATCH` (one compiled program serves every sweep: numbers are traced, the batch shape
-    fixed; kept across processes, `call_stored`)."""
+    fixed; kept across processes, `call_stored`); one scene's compiles quickly, as a program that
+    runs once."""
     size = _BATCH if count > 1 else 1
     values: dict[str, list[np.ndarray]] = {name: [] for name in _UNIT_NAMES}
     depths = []
     for first in range(0, count, _BATCH):
         rows = np.minimum(np.arange(first, first + size), count - 1)  # the last one repeated
-        run_fields, energetic = call_stored(_units, jax.tree.unflatten(structure, [c[rows] for c in columns]), adhesive)
+        inputs = jax.tree.unflatten(structure, [c[rows] for c in columns])
+        run_fields, energetic = call_stored(_units, inputs, adhesive, once=size == 1)
         run = jax.tree.map(np.asarray, Scales(**run_fields))  # its velocity and energy in NumPy: no dispatch
         kept = min(_BATCH, count - first)
         for name in _UNIT_NAMES:
