@@ -152,19 +152,23 @@ def indentation_loading(scene: Scene) -> Loading:
     JAX arrays: `on_device`)."""
     directions, targets, count = legs(scene)
     springs = scene.contact.springs
-    loading = Loading(
-        profile=scene.body.profile.build(),
-        E_star=np.asarray(scene.material.effective_modulus, np.float64),
-        law=scene.contact_law(np),
-        force_control=np.asarray(scene.control == "force"),
-        directions=np.asarray(directions),
-        targets=np.asarray(targets, np.float64),
-        legs=jax.device_put(count),  # a Python int: weak-typed, as jnp.asarray makes it
-        peak=np.asarray(scene.loading.peak, np.float64),
-        spring_length=np.asarray(np.nan if scene.contact.length is None else scene.contact.length, np.float64),
-        spring_count=jax.device_put(0 if springs == "continuum" else springs),
+    numbers = on_device(
+        {
+            "law": scene.contact_law(np),
+            "E_star": np.asarray(scene.material.effective_modulus, np.float64),
+            "force_control": np.asarray(scene.control == "force"),
+            "directions": np.asarray(directions),
+            "targets": np.asarray(targets, np.float64),
+            "peak": np.asarray(scene.loading.peak, np.float64),
+            "spring_length": np.asarray(np.nan if scene.contact.length is None else scene.contact.length, np.float64),
+        }
     )
-    return on_device(loading)
+    return Loading(
+        profile=scene.body.profile.build(),
+        legs=jax.device_put(count),  # a Python int: weak-typed, as jnp.asarray makes it
+        spring_count=jax.device_put(0 if springs == "continuum" else springs),
+        **numbers,
+    )
 
 
 def simulate_indentation(scene: Scene) -> IndentationResult:
