@@ -53,10 +53,7 @@ def _loads_in_time(scene: Scene, profile: Profile) -> bool:
 def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> Physics:
     """The traced SI parameters of a scene: its fields may hold arrays of a sweep's points (with
     `xp` numpy) or traced values (`xp` jax.numpy); `profile`: the body's, built (default: the
-    scene's contact profile). With `xp` jax.numpy the numbers are computed in NumPy and then
-    moved to the device: each jax.numpy operation on concrete values would compile a program."""
-    if xp is jnp:
-        return on_device(physics_for(scene, np, profile))
+    scene's contact profile)."""
     springs = scene.contact.springs
     gravity, duration = scene.effects.gravity, scene.limits.duration
     damping, friction = scene.effects.damping, scene.effects.friction
@@ -81,3 +78,9 @@ def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> 
         spring_length=value(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=value(np.nan if isinstance(springs, str) else springs),
     )
+
+
+def concrete_physics(scene: Scene) -> Physics:
+    """`physics_for` a scene of concrete values as JAX arrays, computed in NumPy and copied
+    (`on_device`): jax.numpy on concrete values compiles a program per operation."""
+    return on_device(physics_for(scene, np))

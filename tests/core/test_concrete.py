@@ -13,10 +13,11 @@ import pytest
 import impact
 from impact import theory
 from impact._core.concrete import evaluate, on_device
+from impact._core.runtime import contracts_multiply_adds
 from impact._effects.friction import Friction
 from impact._plots.profile_curve import profile_along_radius
 from impact._run.indentation import indentation_loading
-from impact._run.parameters import physics_for
+from impact._run.parameters import concrete_physics, physics_for
 from impact.profiles import Paraboloid
 from impact.profiles._base import as_float
 from tests.scenes import CONFIGS
@@ -38,7 +39,9 @@ class _Names(logging.Handler):
 @contextlib.contextmanager
 def compiled() -> Iterator[list[str]]:
     """The programs compiled in the block (`jit(name)`, whether XLA compiled them or loaded them
-    from the persistent cache), with JAX's in-memory caches cleared first."""
+    from the persistent cache), with JAX's in-memory caches cleared first (and the probe of
+    fused multiply–adds that a compilation's options read run before)."""
+    contracts_multiply_adds()
     jax.clear_caches()
     handler, logger = _Names(), logging.getLogger(_LOGGER)
     level = logger.level
@@ -56,7 +59,7 @@ def compiled() -> Iterator[list[str]]:
 def test_the_physics_of_a_run_compiles_nothing(config):
     scene = impact.load_scene(CONFIGS / f"{config}.yaml")
     with compiled() as names:
-        physics = physics_for(scene)
+        physics = concrete_physics(scene)
     assert names == []
     leaves = jax.tree.leaves(physics)
     assert leaves and all(isinstance(leaf, jax.Array) and leaf.dtype in (np.float64, np.int64, bool) for leaf in leaves)
