@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import ParamSpec, TypeVar
 
 import jax
-import jax.numpy as jnp
+import numpy as np
 
 from .cache import cache_directory, use_cache
 from .package import __version__
@@ -58,7 +58,7 @@ def contracts_multiply_adds() -> bool:
     and b = 1 − 2⁻³⁰, a·b = 1 − 2⁻⁶⁰ rounds to 1, so a·b − 1 is 0 unfused and −2⁻⁶⁰ fused.
     Probed on the CPU, also where the default device is a GPU."""
     with jax.enable_x64(True):
-        values = (jnp.float64(1 + 2**-30), jnp.float64(1 - 2**-30), jnp.float64(-1.0))
+        values = (np.float64(1 + 2**-30), np.float64(1 - 2**-30), np.float64(-1.0))  # copied: no program
         a, b, c = jax.device_put(values, jax.local_devices(backend="cpu")[0])
         return float(jax.jit(lambda a, b, c: a * b + c)(a, b, c)) != 0.0
 

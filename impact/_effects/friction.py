@@ -2,7 +2,9 @@
 traced SI parameters (a sweep varies them without recompiling)."""
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
+import numpy as np
 
 from .._core.types import Parameter
 from .._law.scales import Scales
@@ -24,8 +26,8 @@ class Friction(eqx.Module):
     @staticmethod
     def none() -> "Friction":
         """No friction (the effect switched off): every value 0, the step the default."""
-        zero = jnp.zeros(())
-        return Friction(zero, zero, zero, zero, zero, zero, zero, jnp.asarray(jnp.nan))
+        zero = jax.device_put(np.zeros(()))  # copied from NumPy: jnp.zeros would compile a program
+        return Friction(zero, zero, zero, zero, zero, zero, zero, jax.device_put(np.nan))
 
     def stiffness_ratio(self, E_star):
         """G*/E*: a tangential spring's stiffness over its normal spring's."""

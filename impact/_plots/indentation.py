@@ -17,6 +17,7 @@ import numpy as np
 
 from .._run.indentation import IndentationResult
 from .figures import frame_force_indentation, si_prefix, write_figures
+from .profile_curve import profile_along_radius
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -56,9 +57,9 @@ def equilibrium(result: IndentationResult, points: int = 800):
     modulus = scene.material.effective_modulus
     adhesion = scene.active_adhesion
     work = adhesion.work_of_adhesion if adhesion is not None else 0.0
-    radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
-    d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work / modulus)
-    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius)))
+    radius, g, G = profile_along_radius(profile, 1.02 * result.max_contact_radius, points)
+    d = g - np.sqrt(2 * np.pi * radius * work / modulus)
+    force = 2 * modulus * (radius * d - G)
     finite = np.isfinite(d) & np.isfinite(force)
     return radius[finite], d[finite], force[finite]
 
@@ -73,9 +74,8 @@ def dmt_limit(result: IndentationResult, points: int = 800):
     if pull_off is None:
         return None
     modulus = scene.material.effective_modulus
-    radius = np.linspace(0.0, min(1.02 * result.max_contact_radius, float(profile.extent())), points)
-    d = np.asarray(profile.g(radius))
-    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius))) - pull_off
+    radius, d, G = profile_along_radius(profile, 1.02 * result.max_contact_radius, points)
+    force = 2 * modulus * (radius * d - G) - pull_off
     shown = np.isfinite(d) & np.isfinite(force) & (d <= 1.02 * result.max_indentation)
     return radius[shown], d[shown], force[shown]
 

@@ -14,6 +14,7 @@ import numpy as np
 from .._run.impacts import Result
 from .._scene.scene import Scene
 from .figures import frame_force_indentation, si_prefix, write_figures
+from .profile_curve import profile_along_radius
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -92,11 +93,10 @@ def force_indentation_figure(result: Result) -> "Figure":
 def equilibrium_curve(scene: Scene, work_of_adhesion: float, largest_radius: float, points: int = 400):
     """(d, F) in SI along contact radii 0 ≤ a ≤ largest_radius (m) of the scene's profile:
     d = g(a) − √(2πaΔγ/E*), F = 2E*(a·d − G(a)); Δγ = 0 is the non-adhesive curve."""
-    profile = scene.contact_profile.build()
     modulus = scene.material.effective_modulus
-    radius = np.linspace(0.0, min(largest_radius, float(profile.extent())), points)
-    d = np.asarray(profile.g(radius)) - np.sqrt(2 * np.pi * radius * work_of_adhesion / modulus)
-    force = 2 * modulus * (radius * d - np.asarray(profile.G(radius)))
+    radius, g, G = profile_along_radius(scene.contact_profile.build(), largest_radius, points)
+    d = g - np.sqrt(2 * np.pi * radius * work_of_adhesion / modulus)
+    force = 2 * modulus * (radius * d - G)
     finite = np.isfinite(d) & np.isfinite(force)
     return d[finite], force[finite]
 

@@ -15,7 +15,7 @@ from .._integrate.viscoelastic import ViscoelasticSprings
 from .._scene.friction import lever_arm
 from .._scene.scene import Scene
 from .losses import adhesion_hysteresis, plastic_work, unrecovered_elastic_energy
-from .parameters import integrator_for, options_for, physics_for
+from .parameters import concrete_physics, integrator_for, options_for
 from .programs import solve_by_field
 from .tangential import tangential_results
 from .viscoelastic import Relaxation, relaxation_of, solve_relaxing
@@ -205,7 +205,7 @@ def solve_scene(scene: Scene, integrator: AbstractIntegrator, options: Options) 
     """The scene's impact run by `integrator` with `options` (the scene's own in
     `simulate_impact`; a caller's where it shares one program between scenes, e.g. traced
     tolerances or a spring capacity)."""
-    physics = physics_for(scene)
+    physics = concrete_physics(scene)
     if isinstance(integrator, ViscoelasticSprings):
         scales, outcome, medium = solve_relaxing(integrator, physics, options)
         result = to_result(scene, scales, outcome, integrator, physics)

@@ -10,9 +10,10 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import TYPE_CHECKING
 
-import jax.numpy as jnp
+import jax
 import numpy as np
 
+from .._core.concrete import on_device
 from .._core.pytree import fields
 from .._core.stored import call_stored
 from .._integrate.codes import RESULT_CODES
@@ -147,20 +148,26 @@ def indentation_numerics(scene: Scene) -> QuasiStaticNumerics:
 
 
 def indentation_loading(scene: Scene) -> Loading:
-    """The traced SI parameters of an indentation scene."""
+    """The traced SI parameters of an indentation scene (computed in NumPy, then copied into
+    JAX arrays: `on_device`)."""
     directions, targets, count = legs(scene)
     springs = scene.contact.springs
+    numbers = on_device(
+        {
+            "law": scene.contact_law(np),
+            "E_star": np.asarray(scene.material.effective_modulus, np.float64),
+            "force_control": np.asarray(scene.control == "force"),
+            "directions": np.asarray(directions),
+            "targets": np.asarray(targets, np.float64),
+            "peak": np.asarray(scene.loading.peak, np.float64),
+            "spring_length": np.asarray(np.nan if scene.contact.length is None else scene.contact.length, np.float64),
+        }
+    )
     return Loading(
         profile=scene.body.profile.build(),
-        E_star=jnp.asarray(scene.material.effective_modulus, jnp.float64),
-        law=scene.contact_law(jnp),
-        force_control=jnp.asarray(scene.control == "force"),
-        directions=jnp.asarray(directions),
-        targets=jnp.asarray(targets, jnp.float64),
-        legs=jnp.asarray(count),
-        peak=jnp.asarray(scene.loading.peak, jnp.float64),
-        spring_length=jnp.asarray(np.nan if scene.contact.length is None else scene.contact.length, jnp.float64),
-        spring_count=jnp.asarray(0 if springs == "continuum" else springs),
+        legs=jax.device_put(count),  # a Python int: weak-typed, as jnp.asarray makes it
+        spring_count=jax.device_put(0 if springs == "continuum" else springs),
+        **numbers,
     )
 
 

@@ -6,6 +6,7 @@ from typing import Any
 import jax.numpy as jnp
 import numpy as np
 
+from .._core.concrete import on_device
 from .._effects.damping import Damping
 from .._effects.friction import Friction
 from .._effects.gravity import Gravity
@@ -77,3 +78,9 @@ def physics_for(scene: Scene, xp: Any = jnp, profile: Profile | None = None) -> 
         spring_length=value(np.nan if scene.contact.length is None else scene.contact.length),
         spring_count=value(np.nan if isinstance(springs, str) else springs),
     )
+
+
+def concrete_physics(scene: Scene) -> Physics:
+    """`physics_for` a scene of concrete values as JAX arrays, computed in NumPy and copied
+    (`on_device`): jax.numpy on concrete values compiles a program per operation."""
+    return on_device(physics_for(scene, np))

@@ -18,6 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .. import theory
+from .._core.concrete import evaluate
 from .._core.pytree import fields
 from .._core.runtime import float64
 from .._core.search import log_sign_change
@@ -144,13 +145,15 @@ def profile_unit_columns(
 def _batched_units(structure, columns: list[np.ndarray], count: int, adhesive: bool):
     """`unit_columns` from the inputs' leaves as columns (`count` rows each), computed in batches
     of `_BATCH` (one compiled program serves every sweep: numbers are traced, the batch shape
-    fixed; kept across processes, `call_stored`)."""
+    fixed; kept across processes, `call_stored`); one scene's compiles quickly, as a program that
+    runs once."""
     size = _BATCH if count > 1 else 1
     values: dict[str, list[np.ndarray]] = {name: [] for name in _UNIT_NAMES}
     depths = []
     for first in range(0, count, _BATCH):
         rows = np.minimum(np.arange(first, first + size), count - 1)  # the last one repeated
-        run_fields, energetic = call_stored(_units, jax.tree.unflatten(structure, [c[rows] for c in columns]), adhesive)
+        inputs = jax.tree.unflatten(structure, [c[rows] for c in columns])
+        run_fields, energetic = call_stored(_units, inputs, adhesive, once=size == 1)
         run = jax.tree.map(np.asarray, Scales(**run_fields))  # its velocity and energy in NumPy: no dispatch
         kept = min(_BATCH, count - first)
         for name in _UNIT_NAMES:
@@ -298,14 +301,14 @@ def _check_plastic_depth(scene, speed: float, fall: float) -> None:
     indentation of Thornton's law (closed form) against R, the most energy its loading takes."""
     R, E_star = float(scene.contact_profile.build().radius_scale()), scene.material.effective_modulus
     yield_pressure = scene.effects.plasticity.yield_pressure
-    depth = float(theory.thornton_max_indentation(speed, scene.reduced_mass, R, E_star, yield_pressure))
+    depth = float(evaluate(theory.thornton_max_indentation, speed, scene.reduced_mass, R, E_star, yield_pressure))
     if depth <= R:
         return
     why = (
         f"yielding at p_y = {yield_pressure:g} Pa, the body would be pressed in about {depth:.3g} m, deeper than "
         f"its radius {R:g} m"
     )
-    _refuse_deeper(scene, float(theory.thornton_loading_work(R, R, E_star, yield_pressure)), fall, why)
+    _refuse_deeper(scene, float(evaluate(theory.thornton_loading_work, R, R, E_star, yield_pressure)), fall, why)
 
 
 def _refuse_deeper(scene, most_energy: float, fall: float, why: str) -> None:

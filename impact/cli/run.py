@@ -118,8 +118,6 @@ def write_outputs(
     """Create the folder (`created`: made already, by `fresh_folder`) and write config.yaml,
     run.h5 and the plots, each atomically; a folder created for them is removed again if a write
     fails or is interrupted."""
-    from .._run.shear import ShearResult  # a shear test's result, where a run is written
-
     with removed_on_failure(folder, created):
         if not created:
             make_folder(folder, exist_ok=overwrite)
@@ -133,15 +131,18 @@ def write_outputs(
                 from .._plots.oblique import save_run_tangential_figure
 
                 save_run_tangential_figure(result, folder)
-        elif isinstance(result, ShearResult):
-            from .._io.shear import write_shear
-            from .._plots.shear import save_shear_figures
-
-            write_shear(result, folder / "run.h5", wall_time=wall_time)
-            save_shear_figures(result, folder)
         else:
-            from .._io.indentation import write_indentation
-            from .._plots.indentation import save_indentation_figures
+            from .._run.shear import ShearResult  # a shear test's or an indentation's: not loaded for an impact's
 
-            write_indentation(result, folder / RUN_FILE, wall_time=wall_time)
-            save_indentation_figures(result, folder)
+            if isinstance(result, ShearResult):
+                from .._io.shear import write_shear
+                from .._plots.shear import save_shear_figures
+
+                write_shear(result, folder / "run.h5", wall_time=wall_time)
+                save_shear_figures(result, folder)
+            else:
+                from .._io.indentation import write_indentation
+                from .._plots.indentation import save_indentation_figures
+
+                write_indentation(result, folder / RUN_FILE, wall_time=wall_time)
+                save_indentation_figures(result, folder)

@@ -47,10 +47,10 @@ def key_value_table(title: str, rows: list[tuple[str, str]]) -> Table:
 
 def result_table(result: "Result | IndentationResult | ShearResult", wall_time: float | None) -> Table:
     """The key results of an impact, an indentation test or a shear test (wall time in s, if known)."""
-    from .._run.shear import ShearResult  # a shear test's module, where one is shown
-
     if isinstance(result, Result):
         return impact_table(result, wall_time)
+    from .._run.shear import ShearResult  # a shear test's module, where one is shown (not for an impact)
+
     if isinstance(result, ShearResult):
         return shear_table(result, wall_time)
     return indentation_table(result, wall_time)

@@ -13,7 +13,10 @@ from .._core.quadrature import gauss_legendre
 
 
 def as_float(v: ArrayLike) -> Array:
-    """`v` as a float array (float64 when JAX's x64 flag is on)."""
+    """`v` as a float array (float64 when JAX's x64 flag is on). A number goes through a NumPy
+    array: converting a Python or NumPy scalar directly would compile a program of its own."""
+    if isinstance(v, int | float | np.generic):
+        v = np.asarray(v, dtype=np.float64)
     return jnp.asarray(v, dtype=float)
 
 
