@@ -206,9 +206,9 @@ def run_phases(
     it may land in as well (a turn that starts with the flight runs that contact unbounded), so
     that the phases run are those of a flight and its contact a turn.
 
-    Without gravity (and with `landed_contact`) a body that leaves never comes back (it leaves
-    at d ≤ 0 moving away): the run is the approach, a loop over the contact's phases alone and
-    the flight away, the same phases as the loop of turns runs."""
+    Without gravity (and with `landed_contact`) a body that leaves a contact moves away and
+    never comes back: the run is the approach, a loop over the contact's phases alone and the
+    flight away, the same phases as the loop of turns runs."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
