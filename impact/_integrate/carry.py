@@ -204,18 +204,35 @@ def run_phases(
     turns saved; a diffrax ride's gain nothing measurable, so the ODE integrators keep one phase
     a turn. The flight closing a turn runs only where the phase bound leaves room for the contact
     it may land in as well (a turn that starts with the flight runs that contact unbounded), so
-    that the phases run are those of a flight and its contact a turn."""
+    that the phases run are those of a flight and its contact a turn.
+
+    Without gravity (and with `landed_contact`) a body that leaves a contact moves away and
+    never comes back: the run is the approach, a loop over the contact's phases alone and the
+    flight away, the same phases as the loop of turns runs."""
 
     def running(c: Carry):
         return (c.mode != DONE) & (c.phases < options.max_phases)
+
+    def unchanged(c: Carry):
+        return c
+
+    def contact_runs(c: Carry):  # the contact the approach lands in runs whatever the bound, as in a turn
+        bounded = (c.phases < options.max_phases) | (c.phases == 1)
+        return (c.mode != DONE) & (c.mode != FLIGHT) & bounded
+
+    if landed_contact and not options.gravity:
+        c = initial_carry(problem, options, memory)
+        c = jax.lax.cond(c.mode == FLIGHT, flight, unchanged, c)
+        c = jax.lax.while_loop(contact_runs, contact, c)
+        return finish(jax.lax.cond(running(c) & (c.mode == FLIGHT), flight, unchanged, c))
 
     def advance(c: Carry):
         return jax.lax.cond(c.mode == FLIGHT, flight, contact, c)
 
     def land_and_advance(c: Carry):
-        c = jax.lax.cond(c.mode == FLIGHT, flight, lambda c: c, c)
-        c = jax.lax.cond((c.mode != FLIGHT) & (c.mode != DONE), contact, lambda c: c, c)
-        return jax.lax.cond((c.mode == FLIGHT) & (c.phases + 1 < options.max_phases), flight, lambda c: c, c)
+        c = jax.lax.cond(c.mode == FLIGHT, flight, unchanged, c)
+        c = jax.lax.cond((c.mode != FLIGHT) & (c.mode != DONE), contact, unchanged, c)
+        return jax.lax.cond((c.mode == FLIGHT) & (c.phases + 1 < options.max_phases), flight, unchanged, c)
 
     body = land_and_advance if landed_contact else advance
     return finish(jax.lax.while_loop(running, body, initial_carry(problem, options, memory)))

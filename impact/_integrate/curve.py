@@ -197,18 +197,21 @@ def after_ride(problem: CurveProblem, curve: AbstractCurve, advancing, turned, s
     """The phase after a ride along `curve` ended (`Next.radius` holds s), and the memory of a
     curve that `remembers`: re-anchored where loading turns back, cleared where the body leaves."""
     law = problem.law
+    # The cascade from the end of the segment the ride went to: loading its top, unloading its
+    # foot (each value below is read only on its own side of `advancing`).
+    top, foot = curve.nodes[segment + 1], curve.nodes[segment]
+    cascade_s, cascade_segment, none_left = curve.cascade(law, advancing, jnp.where(advancing, top, foot), d_end)
     # Loading reaches its segment's top: on to the next rising state at this level.
     # A rising segment that goes on from this one's end (the junction) is no jump: the state
     # stays at the node, whatever an ulp of d finds on the flat start of the next one.
-    out_s, out_segment, blocked = curve.cascade_out(law, curve.nodes[segment + 1], d_end)
-    out_s = jnp.where(curve.nodes[out_segment] == curve.nodes[segment + 1], curve.nodes[segment + 1], out_s)
-    jumped_out = out_s > curve.nodes[segment + 1] + _SAME_STATE * (1.0 + out_s)
+    out_segment, blocked = cascade_segment, none_left
+    out_s = jnp.where(curve.nodes[out_segment] == top, top, cascade_s)
+    jumped_out = out_s > top + _SAME_STATE * (1.0 + out_s)
     out_event = jnp.where(jumped_out, EVENT_CODE["snap_in"], EVENT_CODE["contact_start"])
     # Unloading reaches its segment's foot: back to the last rising state at this level (riding
     # on across a hysteretic path's switch: from the frozen zone onto the detach curve).
-    foot = curve.nodes[segment]
-    in_s, in_segment, released = curve.cascade_in(law, foot, d_end)
-    in_s = jnp.where(curve.nodes[in_segment + 1] == foot, foot, in_s)
+    in_segment, released = cascade_segment, none_left
+    in_s = jnp.where(curve.nodes[in_segment + 1] == foot, foot, cascade_s)
     jumped_in = in_s < foot - _SAME_STATE * (1.0 + in_s)
     goes_on = jnp.where(
         curve.switches(foot),

@@ -29,16 +29,19 @@ from .curve import CurveIntegrator, CurveProblem, after_ride
 from .problem import Options
 from .quadrature import PANEL_BREAKS, SAMPLE_NODES
 from .ride import in_contact
-from .work import ContactSummary, extremes, squared_speed
+from .work import ContactSummary, squared_speed
 
 # Cells scanned along the segment for the first root of v², each summed by a Gauss–Legendre rule
 # of _CELL_NODES; the cell where v² reaches 0 scanned in _SUB_CELLS, then Newton steps on v²
-# inside the sub-cell, each sub-cell's and step's work by a rule of _STEP_NODES.
+# inside the sub-cell, the work within the cell from the polynomial through its rule's nodes;
+# then _POLISH_STEPS Newton steps with the work by the cell's rule.
 _SCAN_CELLS = 8
 _CELL_NODES = 16
 _SUB_CELLS = 8
-_NEWTON_STEPS = 8
-_STEP_NODES = 8
+_NEWTON_STEPS = 4
+_POLISH_STEPS = 2
+# Newton steps on dF/ds = 0 from the rule's node of least (of greatest) force.
+_EXTREME_NEWTON_STEPS = 3
 # As `quadrature._SETTLED`: |v²| at a turnaround found, relative to the leg's energies, above
 # which its search did not settle (the run ends with solver_failure).
 _SETTLED = 1e-9
@@ -97,22 +100,22 @@ class CurveQuadrature(CurveIntegrator):
         def riding(s):  # (d, F, dd/ds), continued smoothly past the segment's ends
             return curve.riding(law, s, c.segment)
 
-        def work_between(a, b, nodes: int):  # ∫F dd from s = a to b (arrays of one shape)
-            x, w = gauss_legendre(nodes)
-            _, force, slope = riding(a[..., None] + (b - a)[..., None] * x)
-            return (b - a) * ordered_sum(force * slope * w)
-
         def squared(depth, work):  # v² at the depth d after the work ∫F dd from the start
             return squared_speed((c.d, c.v), work, gravity, depth)
 
-        # The work at the cells' ends, cumulative from the start; v² there.
+        # The work density F·d'(s) at each cell's Gauss nodes; the work at the cells' ends,
+        # cumulative from the start; v² there.
         cells = start + (far - start) * jnp.arange(_SCAN_CELLS + 1) / _SCAN_CELLS
-        cell_work = _prefix_sums(work_between(cells[:-1], cells[1:], _CELL_NODES))
+        nodes, weights = gauss_legendre(_CELL_NODES)
+        widths = cells[1:] - cells[:-1]
+        _, cell_forces, cell_slopes = riding(cells[:-1, None] + widths[:, None] * nodes)
+        densities = cell_forces * cell_slopes
+        cell_work = _prefix_sums(widths * ordered_sum(densities * weights))
         values = squared(curve.depth(law, cells), cell_work)
         turned = values[-1] <= 0.0
         first = jnp.argmax(values[1:] <= 0.0)  # the cell where v² first reaches 0
         cell = (cells[first], cells[first + 1])
-        s_end, work, settled = _turnaround(riding, work_between, squared, cell, cell_work[first], gravity)
+        s_end, work, settled = _turnaround(riding, squared, cell, cell_work[first], densities[first], gravity)
         energies = jnp.abs(values[0]) + jnp.abs(values[-1]) + 1.0
         settled = ~turned | (settled <= _SETTLED * energies)
         s_end = jnp.where(turned, s_end, far)
@@ -141,7 +144,9 @@ class CurveQuadrature(CurveIntegrator):
 
         if options.samples_per_phase:
             c = where(active, store_samples(c, options, _rows(problem, options, c, curve, (s_end, t_end, v_end))), c)
-        low_force, high_force = extremes(lambda s: curve.force(law, s), start, s_end)
+        low_force, high_force = _force_extremes(
+            lambda s: curve.force(law, s), start, s_end, start + span * _FRACTION, force
+        )
         summary = ContactSummary(
             work=work, lowest_force=low_force, highest_force=high_force, deepest=jnp.maximum(c.d, d_end)
         )
@@ -165,24 +170,68 @@ def _prefix_sums(values):
     return jnp.stack(sums)
 
 
-def _turnaround(riding, work_between, squared, cell, cell_work, gravity):
-    """(s, the work ∫F dd from the ride's start to s, |v²| there) at the first root of v² in
-    `cell` (v² > 0 at its start, ≤ 0 at its end; the work `cell_work` at its start): the cell
-    scanned in `_SUB_CELLS`, then Newton steps on v² (d(v²)/ds = 2(g − F)·d'(s)) inside the
-    bracket found, bisecting where a step would leave it; each step's work by Gauss–Legendre.
-    The point tried of least |v²| is kept."""
-    low, high = cell
-    subs = low + (high - low) * jnp.arange(_SUB_CELLS + 1) / _SUB_CELLS
-    sub_work = cell_work + _prefix_sums(work_between(subs[:-1], subs[1:], _STEP_NODES))
-    sub_values = squared(riding(subs)[0], sub_work)
-    first = jnp.argmax(sub_values[1:] <= 0.0)
-    lower, upper = subs[first], subs[first + 1]
-    above, below = sub_values[first], sub_values[first + 1]
-    s = jnp.clip(lower + (upper - lower) * above / jnp.where(above > below, above - below, 1.0), lower, upper)
-    work = sub_work[first] + work_between(lower, s, _STEP_NODES)
+def _integral_within(fraction, values):
+    """∫ from 0 to `fraction` (any shape) of the polynomial through `values` (a vector) at the
+    nodes of the Gauss–Legendre rule of as many nodes on [0, 1]. In t = 2x − 1 that polynomial is
+    Σₖ (2k + 1)·gₖ·Pₖ(t), gₖ = Σₘ wₘ·Pₖ(tₘ)·valuesₘ (the rule is exact for every Pₖ·Pⱼ of
+    k, j below its nodes), and ∫ from −1 to t of Pₖ is (Pₖ₊₁ − Pₖ₋₁)/(2k + 1) (P₀: t + 1), so
+    the integral is ½·(g₀·(t + 1) + Σₖ≥₁ gₖ·(Pₖ₊₁(t) − Pₖ₋₁(t)))."""
+    count = values.shape[-1]
+    nodes, weights = np.polynomial.legendre.leggauss(count)
+    moments = ordered_sum(0.5 * weights * np.polynomial.legendre.legvander(nodes, count - 1).T * values)
+    t = 2.0 * fraction - 1.0
+    legendre = [jnp.ones_like(t), t]  # P₀ … P_count at t (Bonnet's recursion)
+    for k in range(1, count):
+        legendre.append(((2 * k + 1) * t * legendre[k] - k * legendre[k - 1]) / (k + 1))
+    terms = [moments[0] * (t + 1.0)] + [moments[k] * (legendre[k + 1] - legendre[k - 1]) for k in range(1, count)]
+    return 0.5 * ordered_sum(jnp.stack(terms, axis=-1))
 
-    def newton(state, _):
-        s, work, lower, upper, best = state
+
+def _force_extremes(force_at, start, end, points, forces):
+    """(min, max) of F(s) on the ride from `start` to `end`, from its `forces` at the rule's
+    `points` (in the ride's order): Newton steps on dF/ds = 0 from the node of least and the
+    node of greatest force, each kept between that node's neighbours, then the least and the
+    greatest of F there, at the nodes and at the ride's ends."""
+    points, forces = points.ravel(), forces.ravel()
+    neighbours = jnp.concatenate([start[None], points, end[None]])
+    best = jnp.stack([jnp.argmin(forces), jnp.argmax(forces)])
+    before, after = neighbours[best], neighbours[best + 2]
+    low, high = jnp.minimum(before, after), jnp.maximum(before, after)
+
+    def force_slope(s):
+        return jax.jvp(force_at, (s,), (jnp.ones_like(s),))[1]
+
+    s = points[best]
+    for _ in range(_EXTREME_NEWTON_STEPS):
+        slope, curvature = jax.jvp(force_slope, (s,), (jnp.ones_like(s),))
+        usable = curvature != 0.0
+        s = jnp.clip(s - jnp.where(usable, slope / jnp.where(usable, curvature, 1.0), 0.0), low, high)
+    candidates = jnp.concatenate([force_at(jnp.concatenate([jnp.stack([start, end]), s])), forces[best]])
+    return jnp.min(candidates), jnp.max(candidates)
+
+
+def _turnaround(riding, squared, cell, cell_work, densities, gravity):
+    """(s, the work ∫F dd from the ride's start to s, |v²| there) at the first root of v² in
+    `cell` (v² > 0 at its start, ≤ 0 at its end; the work `cell_work` at its start and the work
+    density F·d'(s) `densities` at its Gauss nodes). Newton steps on v² (d(v²)/ds =
+    2(g − F)·d'(s)), bisecting where a step would leave the bracket: first with the work from
+    the polynomial through the cell's densities (`_integral_within`), in the sub-cell of
+    `_SUB_CELLS` where v² so found turns; then `_POLISH_STEPS` from the best point so found, with
+    the work by the cell's Gauss–Legendre rule from its start. The point polished of least |v²|
+    is kept."""
+    low, high = cell
+    width = high - low
+    safe_width = jnp.where(width != 0.0, width, 1.0)
+
+    def interpolated_work(s):
+        return cell_work + width * _integral_within((s - low) / safe_width, densities)
+
+    def work_to(s):
+        nodes, weights = gauss_legendre(_CELL_NODES)
+        _, force, slope = riding(low + (s - low) * nodes)
+        return cell_work + (s - low) * ordered_sum(force * slope * weights)
+
+    def newton(s, work, lower, upper, best):  # a step from s, the bracket and the best point
         depth, force, slope = riding(s)
         value = squared(depth, work)
         best = jax.tree.map(lambda x, y: jnp.where(jnp.abs(value) < best[2], x, y), (s, work, jnp.abs(value)), best)
@@ -190,11 +239,25 @@ def _turnaround(riding, work_between, squared, cell, cell_work, gravity):
         derivative = 2.0 * (gravity - force) * slope
         target = s - value / jnp.where(derivative != 0.0, derivative, 1.0)
         inside = (derivative != 0.0) & ((target - lower) * (target - upper) <= 0.0)  # either order
-        moved = jnp.where(inside, target, 0.5 * (lower + upper))
-        return (moved, work + work_between(s, moved, _STEP_NODES), lower, upper, best), None
+        return jnp.where(inside, target, 0.5 * (lower + upper)), lower, upper, best
 
-    start = (s, work, lower, upper, (s, work, jnp.asarray(jnp.inf)))
-    (s, work, _, _, best), _ = jax.lax.scan(newton, start, None, length=_NEWTON_STEPS)
+    subs = low + width * jnp.arange(_SUB_CELLS + 1) / _SUB_CELLS
+    sub_values = squared(riding(subs)[0], interpolated_work(subs))
+    first = jnp.argmax(sub_values[1:] <= 0.0)
+    lower, upper = subs[first], subs[first + 1]
+    above, below = sub_values[first], sub_values[first + 1]
+    s = jnp.clip(lower + (upper - lower) * above / jnp.where(above > below, above - below, 1.0), lower, upper)
+
+    def located(state, _):
+        s, lower, upper, best = state
+        return newton(s, interpolated_work(s), lower, upper, best), None
+
+    unknown = (low, cell_work, jnp.asarray(jnp.inf))
+    (_, _, _, (s, _, _)), _ = jax.lax.scan(located, (s, lower, upper, unknown), None, length=_NEWTON_STEPS)
+    lower, upper, best = low, high, unknown
+    for _ in range(_POLISH_STEPS):
+        s, lower, upper, best = newton(s, work_to(s), lower, upper, best)
+    work = work_to(s)
     last = jnp.abs(squared(riding(s)[0], work))
     return jax.tree.map(lambda x, y: jnp.where(last <= best[2], x, y), (s, work, last), best)
 

@@ -299,8 +299,13 @@ def sign_changes(slope, grid, rising, max_turns: int, steps: int = _BISECTION_ST
     reach round-off), and differentiated implicitly: (points [max_turns], valid [max_turns],
     count)."""
     change = (rising[1:] != rising[:-1]) & (grid[1:] > grid[:-1])
-    count = jnp.sum(change)
-    (index,) = jnp.nonzero(change, size=max_turns, fill_value=grid.shape[0] - 2)
+    changes_up_to = jnp.cumsum(change)
+    count = changes_up_to[-1]
+    # The cell of the k-th change: the first where the running count exceeds k (the last cell
+    # for the k beyond the count).
+    turn = jnp.arange(max_turns)
+    first = jnp.argmax(changes_up_to[None, :] > turn[:, None], axis=1)
+    index = jnp.where(turn < count, first, grid.shape[0] - 2)
 
     rising_below = rising[index]  # the lower end keeps its sign: bisect towards the other one
     lo, hi = bisect(lambda x: (slope(x) > 0.0) == rising_below, grid[index], grid[index + 1], steps)

@@ -189,13 +189,20 @@ class AbstractCurve(eqx.Module):
 
     def cascade_out(self, law, start, depth):
         """First rising state beyond `start` at level d: (s, segment, blocked)."""
-        segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
-        landing = jnp.maximum(self.invert(law, depth, segment), start)
-        return jnp.where(blocked, self.nodes[-1], landing), segment, blocked
+        return self.cascade(law, True, start, depth)
 
     def cascade_in(self, law, start, depth):
         """Last rising state below `start` at level d: (s, segment, released); released means
         no state holds: the body leaves the range of the adhesive stress."""
-        segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
-        landing = jnp.minimum(self.invert(law, depth, segment), start)
-        return jnp.where(released, 0.0, landing), segment, released
+        return self.cascade(law, False, start, depth)
+
+    def cascade(self, law, outward, start, depth):
+        """`cascade_out` where `outward` holds, else `cascade_in`, with one inversion of d(s)
+        for either."""
+        out_segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
+        in_segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
+        segment = jnp.where(outward, out_segment, in_segment)
+        landing = self.invert(law, depth, segment)
+        out_s = jnp.where(blocked, self.nodes[-1], jnp.maximum(landing, start))
+        in_s = jnp.where(released, 0.0, jnp.minimum(landing, start))
+        return jnp.where(outward, out_s, in_s), segment, jnp.where(outward, blocked, released)

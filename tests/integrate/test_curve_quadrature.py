@@ -68,7 +68,7 @@ def test_curve_quadrature_is_converged(config, monkeypatch):
     (measured ≤ 3e-13 and ≤ 8e-10, hard/17 at 0.05 m/s)."""
     scene = load_scene(CONFIGS / config)
     results = _points_results(scene, CONVERGED_VELOCITIES)
-    for name, value in (("_SCAN_CELLS", 16), ("_CELL_NODES", 32), ("_STEP_NODES", 16), ("_NEWTON_STEPS", 16)):
+    for name, value in (("_SCAN_CELLS", 16), ("_CELL_NODES", 32), ("_SUB_CELLS", 16), ("_NEWTON_STEPS", 16)):
         monkeypatch.setattr(curve_quadrature, name, value)
     monkeypatch.setattr(curve_quadrature, "_PANEL_NODES", 24)
     rule = curve_quadrature._rule()
