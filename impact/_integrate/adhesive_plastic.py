@@ -130,15 +130,8 @@ class AdhesivePlastic(AbstractRidingIntegrator[AdhesivePlasticProblem, "_Args"])
             a, v, t = dense_states(ride.solution, options.samples_per_phase).T
             a = jnp.maximum(a, 0.0)
             rows = jnp.stack([t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
-        lowest, highest = force_range(law, state, flowing, c.radius, a_end)
-        summary = ContactSummary(
-            work=law.work(c.radius, a_end, state, flowing),
-            lowest_force=lowest,
-            highest_force=highest,
-            deepest=jnp.maximum(d_start, d_end),
-        )
-        nxt = replace(after_plastic_phase(advancing, ride.turned, flowing=FLOWING), radius=a_end)
-        memory = where(advancing & ride.turned, law.after_turn(a_end, state), state)
+        radii, depths = (c.radius, a_end), (d_start, d_end)
+        summary, nxt, memory = dent_phase_outcome(law, state, flowing, advancing, ride.turned, radii, depths)
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
 
 
@@ -159,7 +152,24 @@ def _vector_field(s, y, args: _Args):
     return branch_rates(v, force, slope, args.motion.gravity)
 
 
-def force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):
+def dent_phase_outcome(law: AdhesivePlasticLaw, state: DentState, flowing, advancing, turned, radii, depths):
+    """(what a contact phase of Thornton & Ning's law over the contact `radii` (start, end), at the
+    `depths` (start, end), did, the phase after it, the dent after it): the ODE leaf's and the
+    quadrature's booking of a phase."""
+    (a_start, a_end), (d_start, d_end) = radii, depths
+    lowest, highest = _force_range(law, state, flowing, a_start, a_end)
+    summary = ContactSummary(
+        work=law.work(a_start, a_end, state, flowing),
+        lowest_force=lowest,
+        highest_force=highest,
+        deepest=jnp.maximum(d_start, d_end),
+    )
+    nxt = replace(after_plastic_phase(advancing, turned, flowing=FLOWING), radius=a_end)
+    memory = where(advancing & turned, law.after_turn(a_end, state), state)
+    return summary, nxt, memory
+
+
+def _force_range(law: AdhesivePlasticLaw, state: DentState, flowing, start, end):
     """(least, largest) force while the radius moves between `start` and `end` (F̂ has one minimum)."""
     low, high = jnp.minimum(start, end), jnp.maximum(start, end)
     weakest = jnp.clip(law.weakest(state, flowing), low, high)

@@ -19,16 +19,14 @@ import jax
 import jax.numpy as jnp
 
 from .._core import derivatives
-from .._core.pytree import replace, where
 from .._law.adhesive_plastic import DentState
-from .adhesive_plastic import FLOWING, AdhesivePlastic, AdhesivePlasticProblem, force_range
+from .adhesive_plastic import FLOWING, AdhesivePlastic, AdhesivePlasticProblem, dent_phase_outcome
 from .carry import Carry, Outcome
 from .codes import ADVANCE
 from .plastic_quadrature import book_leg
 from .problem import Options
 from .quadrature import Leg, Quadrature
-from .transitions import after_plastic_phase
-from .work import ContactSummary, squared_speed
+from .work import squared_speed
 
 # Radii tried for the turnaround of plastic loading: its start times _LADDER_STEP^k, k = 1 …
 # _LADDER_RUNGS (up to 2^24 times the start); the first where v² ≤ 0 ends its leg.
@@ -82,13 +80,6 @@ class AdhesivePlasticQuadrature(AdhesivePlastic):
             rows = jnp.stack([c.t + t, law.depth(a, state, flowing), v, law.force(a, state, flowing), a], axis=1)
             end_row = jnp.stack([t_end, d_end, v_end, law.force(a_end, state, flowing), a_end])
             rows = rows.at[-1].set(end_row)
-        lowest, highest = force_range(law, state, flowing, c.radius, a_end)
-        summary = ContactSummary(
-            work=law.work(c.radius, a_end, state, flowing),
-            lowest_force=lowest,
-            highest_force=highest,
-            deepest=jnp.maximum(c.d, d_end),
-        )
-        nxt = replace(after_plastic_phase(advancing, turned, flowing=FLOWING), radius=a_end)
-        memory = where(advancing & turned, law.after_turn(a_end, state), state)
+        radii, depths = (c.radius, a_end), (c.d, d_end)
+        summary, nxt, memory = dent_phase_outcome(law, state, flowing, advancing, turned, radii, depths)
         return book_leg(c, options, rows, (t_end, d_end, v_end), summary, nxt, memory, real & settled)

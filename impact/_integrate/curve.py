@@ -104,7 +104,7 @@ class AbstractCurveIntegrator(AbstractRidingIntegrator[CurveProblem, "_Args"]):
         # (the same for every bounce: found once, outside the loop over phases). A curve too
         # coarse for the law ends the run there.
         reach = problem.law.onset
-        landing, segment, blocked = problem.curve.cascade_out(problem.law, jnp.zeros(()), reach)
+        landing, segment, blocked = problem.curve.cascade(problem.law, True, jnp.zeros(()), reach)
         stops = blocked | ~problem.curve.resolves(problem.law)
         stop = Status.where(blocked, Status.radius_overflow, Status.unresolved_zone)
         touch = next_phase(ADVANCE, segment, landing, EVENT_CODE["touch"], stops=stops, stop=stop)

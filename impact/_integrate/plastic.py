@@ -109,16 +109,22 @@ class Plastic(AbstractRidingIntegrator[PlasticProblem, "_Args"]):
             x, v, t = dense_states(ride.solution, options.samples_per_phase).T
             d = _depth(jnp.maximum(x, 0.0), state)
             rows = jnp.stack([t, d, v, law.force(d, state), law.contact_radius(d, state)], axis=1)
-        forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
-        summary = ContactSummary(
-            work=law.work(d_end, state) - law.work(c.d, state),
-            lowest_force=jnp.min(forces),
-            highest_force=jnp.max(forces),
-            deepest=jnp.maximum(c.d, d_end),
-        )
-        memory = where(advancing, law.after_turn(d_end, state), state)
-        nxt = after_plastic_phase(advancing, ride.turned, flowing=0)
+        summary, nxt, memory = plastic_phase_outcome(law, state, advancing, ride.turned, c.d, d_end)
         return PhaseEnd(t=t_end, d=d_end, v=v_end, rows=rows, summary=summary, nxt=nxt, memory=memory)
+
+
+def plastic_phase_outcome(law: PlasticLaw, state: PlasticState, advancing, turned, d_start, d_end):
+    """(what a contact phase of Thornton's law from `d_start` to `d_end` did, the phase after it,
+    the plastic state after it): the ODE leaf's and the quadrature's booking of a phase."""
+    forces = jnp.stack([law.force(d_start, state), law.force(d_end, state)])
+    summary = ContactSummary(
+        work=law.work(d_end, state) - law.work(d_start, state),
+        lowest_force=jnp.min(forces),
+        highest_force=jnp.max(forces),
+        deepest=jnp.maximum(d_start, d_end),
+    )
+    memory = where(advancing, law.after_turn(d_end, state), state)
+    return summary, after_plastic_phase(advancing, turned, flowing=0), memory
 
 
 class _Args(AbstractPhaseArgs):

@@ -23,11 +23,11 @@ from .._core.pytree import replace, replace_where, where
 from .._law.plastic import PlasticLaw, PlasticState
 from .carry import Carry, close_phase, store_samples
 from .codes import ADVANCE, DONE, Status
-from .plastic import Plastic, PlasticProblem
+from .plastic import Plastic, PlasticProblem, plastic_phase_outcome
 from .problem import Options
 from .quadrature import Leg
 from .ride import in_contact
-from .transitions import Next, after_plastic_phase
+from .transitions import Next
 from .work import ContactSummary, squared_speed
 
 
@@ -70,15 +70,7 @@ class PlasticQuadrature(Plastic):
             rows = _rows(law, state, leg, (x_end, turned, duration), options, c)
             end_row = jnp.stack([t_end, d_end, v_end, law.force(d_end, state), law.contact_radius(d_end, state)])
             rows = rows.at[-1].set(end_row)
-        forces = jnp.stack([law.force(c.d, state), law.force(d_end, state)])
-        summary = ContactSummary(
-            work=law.work(d_end, state) - law.work(c.d, state),
-            lowest_force=jnp.min(forces),
-            highest_force=jnp.max(forces),
-            deepest=jnp.maximum(c.d, d_end),
-        )
-        nxt = after_plastic_phase(advancing, turned, flowing=0)
-        memory = where(advancing, law.after_turn(d_end, state), state)
+        summary, nxt, memory = plastic_phase_outcome(law, state, advancing, turned, c.d, d_end)
         return book_leg(c, options, rows, (t_end, d_end, v_end), summary, nxt, memory, real & settled)
 
 

@@ -187,17 +187,10 @@ class AbstractCurve(eqx.Module):
         root = jax.lax.fori_loop(0, _INVERSION_NEWTON_STEPS, newton, 0.5 * (lo + hi))
         return implicit_root(lambda s: self.depth(law, s) - depth, root)
 
-    def cascade_out(self, law, start, depth):
-        """First rising state beyond `start` at level d: (s, segment, blocked)."""
-        return self.cascade(law, True, start, depth)
-
-    def cascade_in(self, law, start, depth):
-        """Last rising state below `start` at level d: (s, segment, released); released means
-        no state holds: the body leaves the range of the adhesive stress."""
-        return self.cascade(law, False, start, depth)
-
     def cascade(self, law, outward, start, depth):
-        """`cascade_out` where `outward` holds, else `cascade_in`, with one inversion of d(s)
+        """The cascade at level d from `start`: outward, the first rising state beyond it (s,
+        segment, blocked); inward, the last rising state below it (s, segment, released:
+        no state holds, the body leaves the range of the adhesive stress). One inversion of d(s)
         for either."""
         out_segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
         in_segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
