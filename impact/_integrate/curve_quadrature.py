@@ -21,6 +21,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._core import derivatives
+from .._core.lanes import computed_once, only_where
 from .._core.pytree import replace, replace_where, where
 from .._core.quadrature import gauss_legendre, ordered_sum
 from .carry import Carry, close_phase, store_samples
@@ -115,7 +116,11 @@ class CurveQuadrature(CurveIntegrator):
         turned = values[-1] <= 0.0
         first = jnp.argmax(values[1:] <= 0.0)  # the cell where v² first reaches 0
         cell = (cells[first], cells[first + 1])
-        s_end, work, settled = _turnaround(riding, squared, cell, cell_work[first], densities[first], gravity)
+        s_end, work, settled = only_where(
+            turned,
+            lambda: _turnaround(riding, squared, cell, cell_work[first], densities[first], gravity),
+            (far, cell_work[-1], jnp.zeros_like(far)),
+        )
         energies = jnp.abs(values[0]) + jnp.abs(values[-1]) + 1.0
         settled = ~turned | (settled <= _SETTLED * energies)
         s_end = jnp.where(turned, s_end, far)
@@ -127,7 +132,7 @@ class CurveQuadrature(CurveIntegrator):
         # from the start on the first half, from the end on the second (v² is small near an end
         # that is a turnaround: each half's v² is the work over the stretch to its own end).
         span = s_end - start
-        depth, force, slope = riding(start + span * _FRACTION)
+        depth, force, slope = computed_once(riding, start + span * _FRACTION)
         work_density = force * slope
         panels = ordered_sum(_TIME_WEIGHTS * work_density)  # each panel's work / span
         from_start = span * (_prefix_sums(panels)[:-1, None] + ordered_sum(_WORK_MATRIX * work_density[:, None, :]))

@@ -35,6 +35,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.derivatives import implicit_root
+from .._core.lanes import computed_once
 from .._core.quadrature import gauss_legendre, ordered_sum
 from ..profiles import Cone, Paraboloid, PowerLaw, Profile
 from .branches import sign_changes
@@ -282,13 +283,25 @@ def reach_radius(law: DugdaleLaw, reach: Reach):
     return curve.state(law, reach(grid, depths, forces, radii))[2]
 
 
+def _grid_states(law: DugdaleLaw, curve: DugdaleCurve, grid):
+    """(d, F, dd/ds, a) at the points of `grid` (a multiple of 16 of them), each computed once
+    (`computed_once`: the reach's cumulative sums and the search for turning points read them
+    all)."""
+
+    def at(s):
+        depth, force, slope = curve.riding(law, s)
+        return depth, force, slope, curve.state(law, s)[2]
+
+    return jax.tree.map(lambda values: values.reshape(grid.shape), computed_once(at, grid.reshape(-1, 16)))
+
+
 def build_curve(law: DugdaleLaw, max_turns: int, reach: Reach) -> DugdaleCurve:
     """Bound the curve (`reach`: `top_of_reach` for an impact, `top_of_peak` for a quasi-static
     program) and split it there at the turning points of d(s)."""
     partial = _unsplit(law)
     junction, grid = partial.junction, partial.grid(law)
-    depths, forces, slopes = partial.riding(law, grid)
-    top = reach(grid, depths, forces, partial.state(law, grid)[2])
+    depths, forces, slopes, radii = _grid_states(law, partial, grid)
+    top = reach(grid, depths, forces, radii)
 
     nodes, overflow = _turning_points(law, partial, jnp.minimum(grid, top), slopes > 0.0, junction, top, max_turns)
     return partial.split_at(law, nodes, overflow)
