@@ -21,6 +21,17 @@ def _odd_series(t: Array, coeffs: np.ndarray, first: int) -> Array:
     return acc * t**first
 
 
+def _odd_series_rows(t: Array, table: np.ndarray, firsts: tuple[int, ...]) -> list[Array]:
+    """`_odd_series(t, table[i], firsts[i])` for every row i of `table` ([rows, terms]; a row
+    padded with zeros at its high-order end, which Horner's rule passes through exactly), in one
+    Horner's rule over a last axis of the rows: the same operations on each row, traced once."""
+    t2 = (t * t)[..., None]
+    acc = jnp.zeros((*t.shape, table.shape[0]), t.dtype)
+    for c in table.T[::-1]:
+        acc = acc * t2 + c
+    return [acc[..., row] * t**first for row, first in enumerate(firsts)]
+
+
 _SMALL = 0.1  # below this angle the closed forms lose more than 2 digits: use the series
 _K = range(10)  # 10 series terms: truncation error < _SMALL**20 relative
 # φ - sin φ cos φ = Σ_{k≥1} (-1)^(k+1) 4^k φ^(2k+1) / (2k+1)!
@@ -92,28 +103,39 @@ def _struve_asym_coef(nu: int, n: int) -> np.ndarray:
     )
 
 
-_HANKEL = [_hankel_coef(nu, 24) for nu in (0, 1)]
-_STRUVE_ASYM = [_struve_asym_coef(nu, 15) for nu in (0, 1)]
+def _asymptotic_series(nu: int) -> np.ndarray:
+    """The coefficients of the three series of `struve_h`'s asymptotic branch of order ν, one row
+    each, zero-padded to one length: Hankel's P and Q of Y_ν (every other a_k(ν), signs
+    alternating in pairs) and the Struve part H_ν − Y_ν."""
+    hankel = _hankel_coef(nu, 24) * (-1.0) ** (np.arange(24) // 2)
+    rows = [hankel[0::2], hankel[1::2], _struve_asym_coef(nu, 15)]
+    terms = max(len(row) for row in rows)
+    return np.array([np.concatenate([row, np.zeros(terms - len(row))]) for row in rows])
+
+
+_ASYMPTOTIC = [_asymptotic_series(nu) for nu in (0, 1)]
+_ASYMPTOTIC_FIRSTS = [(0, 1, 1), (0, 1, 0)]  # the lowest power of 1/z in each row (P, Q, H − Y), by ν
+
+
+def struve_h(z: ArrayLike, nu: int) -> Array:
+    """The Struve function H_ν(z) of order ν = 0 or 1 for z >= 0, relative accuracy ~1e-14."""
+    z = as_float(z)
+    sz = jnp.sin(z[..., None] * np.sin(_SL_TH))
+    if nu == 0:
+        h_q = (2 / np.pi) * (sz @ _SL_W)
+    else:
+        h_q = (2 / np.pi) * z * (sz @ (_SL_W * np.cos(_SL_TH) ** 2))
+    zl = jnp.where(z > _Z_ASYM, z, _Z_ASYM)
+    w = 1 / zl
+    p, q, rest = _odd_series_rows(w, _ASYMPTOTIC[nu], _ASYMPTOTIC_FIRSTS[nu])
+    chi = zl - (2 * nu + 1) * np.pi / 4
+    y = jnp.sqrt(2 / (np.pi * zl)) * (p * jnp.sin(chi) + q * jnp.cos(chi))
+    return jnp.where(z > _Z_ASYM, y + rest, h_q)
 
 
 def struve_h0_h1(z: ArrayLike) -> tuple[Array, Array]:
-    """Struve functions (H0(z), H1(z)) for z >= 0, relative accuracy ~1e-14."""
-    z = as_float(z)
-    sz = jnp.sin(z[..., None] * np.sin(_SL_TH))
-    h0_q = (2 / np.pi) * (sz @ _SL_W)
-    h1_q = (2 / np.pi) * z * (sz @ (_SL_W * np.cos(_SL_TH) ** 2))
-    zl = jnp.where(z > _Z_ASYM, z, _Z_ASYM)
-    w = 1 / zl
-    out = []
-    for nu, h_q in ((0, h0_q), (1, h1_q)):
-        a = _HANKEL[nu] * (-1.0) ** (np.arange(24) // 2)
-        p = _odd_series(w, a[0::2], 0)
-        q = _odd_series(w, a[1::2], 1)
-        chi = zl - (2 * nu + 1) * np.pi / 4
-        y = jnp.sqrt(2 / (np.pi * zl)) * (p * jnp.sin(chi) + q * jnp.cos(chi))
-        h_a = y + _odd_series(w, _STRUVE_ASYM[nu], 1 - nu)
-        out.append(jnp.where(z > _Z_ASYM, h_a, h_q))
-    return out[0], out[1]
+    """Struve functions (H0(z), H1(z)) for z >= 0 (`struve_h`)."""
+    return struve_h(z, 0), struve_h(z, 1)
 
 
 _AGM_STEPS = 12  # the arithmetic-geometric mean converges quadratically: ~1e-16 at k' ~ 1e-16

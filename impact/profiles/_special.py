@@ -7,7 +7,7 @@ import numpy as np
 from jaxtyping import Array, ArrayLike
 
 from ._base import FloatParameter, Profile, as_float, float_field
-from ._functions import angle_minus_sin_cos, beyond_radius, ellipe, struve_h0_h1
+from ._functions import angle_minus_sin_cos, beyond_radius, ellipe, struve_h
 
 
 class WavyParaboloid(Profile):
@@ -27,12 +27,12 @@ class WavyParaboloid(Profile):
 
     def g(self, x):
         x = as_float(x)
-        h0, _ = struve_h0_h1(2 * np.pi * x / self.wavelength)
+        h0 = struve_h(2 * np.pi * x / self.wavelength, 0)
         return x**2 / self.R + np.pi**2 * self.amplitude * x / self.wavelength * h0
 
     def G(self, x):
         x = as_float(x)
-        _, h1 = struve_h0_h1(2 * np.pi * x / self.wavelength)
+        h1 = struve_h(2 * np.pi * x / self.wavelength, 1)
         return x**3 / (3 * self.R) + np.pi / 2 * self.amplitude * x * h1
 
     def radius_scale(self):

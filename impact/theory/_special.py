@@ -6,7 +6,7 @@ import jax.numpy as jnp
 from .._core.runtime import float64
 from ..profiles import Scalars, ellipe
 from ..profiles._base import as_float
-from ..profiles._functions import struve_h0_h1
+from ..profiles._functions import struve_h, struve_h0_h1
 from ._jkr import detach_length
 
 
@@ -16,7 +16,7 @@ def wavy_paraboloid_indentation(
 ):
     """JKR indentation [m] of the wavy paraboloid f = r²/(2R) + h(1 − cos(2πr/λ)) (3.134):
     `d = a²/R + (π²ha/λ) H0(2πa/λ) − √(2πaΔγ/E*)`, H0 the Struve function."""
-    h0, _ = struve_h0_h1(2 * jnp.pi * a / wavelength)
+    h0 = struve_h(2 * jnp.pi * a / wavelength, 0)
     return a**2 / R + jnp.pi**2 * amplitude * a / wavelength * h0 - detach_length(a, E_star, work_of_adhesion)
 
 
