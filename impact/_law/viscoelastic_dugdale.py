@@ -183,14 +183,23 @@ class DugdaleZoneArray(eqx.Module):
         before = self._segment(springs, zone, zone, indentation, rate, born_at)  # no zone: loads 0
         depth = indentation + rate * born_at
         born = ~on & (born_at < duration)
-        birth = self._birth(before.springs, depth)
+        rest = duration - born_at
+        birth = jax.lax.cond(
+            born,
+            lambda: self._birth(before.springs, depth, rate, rest),
+            lambda: _Snap(before.springs, zone, jnp.zeros(())),
+        )
         springs = jax.tree.map(lambda b, k: jnp.where(born, b, k), birth.springs, before.springs)
         zone = jnp.where(born, birth.zone, zone)
-        rest = duration - born_at
-        end, found, outward = self._zone_end(springs, zone, depth, rate, rest)
+        end, found, outward = jax.lax.cond(
+            on & (rest > 0.0),
+            lambda: self._zone_end(springs, zone, depth, rate, rest),
+            lambda: (zone, jnp.asarray(True), jnp.asarray(False)),
+        )
         # No root outward: the zone reaches past the array (`overflows`); inward: the fold.
         end = jnp.where(found | (rest <= 0.0), jnp.where(rest > 0.0, end, zone), jnp.where(outward, self.length, end))
-        collapses = (zone > 0.0) & ~found & ~outward & (rest > 0.0)
+        end = jnp.where(born, zone, end)  # born: the loads held over the rest of the step
+        collapses = on & ~found & ~outward & (rest > 0.0)
         collapse = self._collapse(ZoneSprings(springs, zone), depth)
         springs = jax.tree.map(lambda c, k: jnp.where(collapses, c, k), collapse.springs, springs)
         zone, end = jnp.where(collapses, 0.0, zone), jnp.where(collapses | (zone <= 0.0), 0.0, end)
@@ -284,10 +293,13 @@ class DugdaleZoneArray(eqx.Module):
         """The springs after an instantaneous jump of their displacement (dashpots at rest)."""
         return SpringStates(springs.attached, springs.displacement + jump, springs.stretches + jump[:, None])
 
-    def _birth(self, springs: SpringStates, indentation) -> "_Snap":
-        """The zone born at `indentation`: its loads jump on at the first root c from below of
-        the range condition, the free springs responding at E₀* (those it pulls onto the body
-        attach)."""
+    def _birth(self, springs: SpringStates, indentation, rate, duration) -> "_Snap":
+        """The zone born at `indentation`, `duration` before the step's end: its loads jump on,
+        the free springs responding at E₀* (those it pulls onto the body attach), and are held
+        while the springs creep to the step's end, where c is the first root from below of the
+        range condition. With the loads held, the interface energy U changes by their work, so
+        the snap's −(Δ stored + ΔU) closes the balance whatever the creep; τ → 0 and τ → ∞ end
+        on the elastic zone of E∞* and of E₀*."""
         e0 = self.element.instantaneous
         gaps = self.gaps(springs, indentation)
 
@@ -300,7 +312,8 @@ class DugdaleZoneArray(eqx.Module):
             return SpringStates(springs.attached | lands, snapped.displacement, snapped.stretches)
 
         def excess(zone):
-            return self.range_excess(jumped(zone), indentation, zone)
+            after = self._segment(jumped(zone), zone, zone, indentation, rate, duration)
+            return self.range_excess(after.springs, indentation + rate * duration, zone)
 
         start = 0.5 * self.spacing
         zone, _ = _root_from(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
