@@ -45,6 +45,8 @@ _FIRST_STEP = 1.0 / 64.0
 _EXPANSIONS = 48
 _SETTLED = 1e-14
 _REFINEMENTS = 100
+# Halvings of the step that locate the fold (the step / 2⁴⁰: below round-off of the time).
+_FOLD_HALVINGS = 40
 
 
 class ZoneSprings(eqx.Module):
@@ -196,23 +198,46 @@ class DugdaleZoneArray(eqx.Module):
             lambda: self._zone_end(springs, zone, depth, rate, rest),
             lambda: (zone, jnp.asarray(True), jnp.asarray(False)),
         )
-        # No root outward: the zone reaches past the array (`overflows`); inward: the fold.
-        end = jnp.where(found | (rest <= 0.0), jnp.where(rest > 0.0, end, zone), jnp.where(outward, self.length, end))
-        end = jnp.where(born, zone, end)  # born: the loads held over the rest of the step
-        collapses = on & ~found & ~outward & (rest > 0.0)
-        collapse = self._collapse(ZoneSprings(springs, zone), depth)
-        springs = jax.tree.map(lambda c, k: jnp.where(collapses, c, k), collapse.springs, springs)
-        zone, end = jnp.where(collapses, 0.0, zone), jnp.where(collapses | (zone <= 0.0), 0.0, end)
-        after = self._segment(springs, zone, end, depth, rate, rest)
-        snaps = jnp.where(born, birth.dissipation, 0.0) + jnp.where(collapses, collapse.dissipation, 0.0)
-        last_release = jnp.where(collapses, born_at, jnp.maximum(before.last_release, born_at + after.last_release))
-        return ZoneSprings(after.springs, end), StepTotals(
-            impulse=before.impulse + after.impulse,
-            dissipation=before.dissipation + after.dissipation,
-            released=snaps + before.released + after.released,
-            gained=before.gained + after.gained,
-            last_release=last_release,
+        # No root outward: the zone reaches past the array (`overflows`); inward: the fold, where
+        # the zone collapses, located inside the step by bisection on the time.
+        folds = on & ~found & ~outward & (rest > 0.0)
+        end = jnp.where(found | ~on | (rest <= 0.0), end, jnp.where(outward, self.length, end))
+        fold_at, fold_end = jax.lax.cond(
+            folds, lambda: self._fold(springs, zone, depth, rate, rest), lambda: (rest, end)
         )
+        end = jnp.where(born, zone, jnp.where(folds, fold_end, end))  # born: the loads held over the step
+        middle = self._segment(springs, zone, end, depth, rate, fold_at)
+        folded = depth + rate * fold_at
+        collapse = self._collapse(ZoneSprings(middle.springs, end), folded)
+        springs = jax.tree.map(lambda c, k: jnp.where(folds, c, k), collapse.springs, middle.springs)
+        none = jnp.zeros_like(zone)
+        after = self._segment(springs, none, none, folded, rate, rest - fold_at)  # no zone
+        snaps = jnp.where(born, birth.dissipation, 0.0) + jnp.where(folds, collapse.dissipation, 0.0)
+        segments = (before, middle, after)
+        last_release = jnp.maximum(
+            jnp.maximum(before.last_release, born_at + middle.last_release), born_at + fold_at + after.last_release
+        )
+        ended = jax.tree.map(lambda f, k: jnp.where(folds, f, k), after.springs, middle.springs)
+        return ZoneSprings(ended, jnp.where(folds, 0.0, end)), StepTotals(
+            impulse=sum(part.impulse for part in segments),
+            dissipation=sum(part.dissipation for part in segments),
+            released=snaps + sum(part.released for part in segments),
+            gained=sum(part.gained for part in segments),
+            last_release=jnp.where(folds, jnp.maximum(last_release, born_at + fold_at), last_release),
+        )
+
+    def _fold(self, springs: SpringStates, zone, indentation, rate, duration):
+        """(t, c): how long into a step of `duration` the range condition keeps a root near `zone`
+        (bisection, `_FOLD_HALVINGS` times), and the root there."""
+
+        def halve(_, bracket):
+            low, high, root = bracket
+            middle = 0.5 * (low + high)
+            end, found, _ = self._zone_end(springs, zone, indentation, rate, middle)
+            return jnp.where(found, middle, low), jnp.where(found, high, middle), jnp.where(found, end, root)
+
+        low, _, root = jax.lax.fori_loop(0, _FOLD_HALVINGS, halve, (jnp.zeros_like(duration), duration, zone))
+        return low, root
 
     def _segment(self, springs: SpringStates, zone, end, indentation, rate, duration) -> "_Segment":
         """The springs over `duration` with the zone loads linear in time from f(`zone`) to
