@@ -24,7 +24,7 @@ contact's work closes at rest (up to ½m·v'², v' of that step second order in 
 state is the turnaround's.
 """
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import equinox as eqx
 import jax
@@ -38,7 +38,7 @@ from .._law.law import ContactLaw
 from .._law.reach import radius_bound
 from .._law.scales import Scales, energy_scales
 from .._law.viscoelastic import Viscoelastic
-from .._law.viscoelastic_dugdale import DugdaleZoneArray, ZoneSprings, zone_array
+from .._law.viscoelastic_dugdale import DugdaleZoneArray, zone_array
 from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
@@ -116,6 +116,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         detach, attach = law.hess_lengths(scales, E_star, options.adhesive)
         count = physics.spring_count.astype(int)
         element = law.element(scales, E_star)
+        array: ViscoelasticArray | DugdaleZoneArray
         if self.dugdale:
             # Beyond the JKR bound on the contact, room for the Dugdale zone (its JKR-limit width
             # (π/4)·E∞*·Δγ/σ0², `theory.dugdale_zone_width`, `_ZONE_WIDTHS` times).
@@ -283,7 +284,7 @@ class _Walk(eqx.Module):
     """State of the stepping loop."""
 
     carry: Carry
-    springs: SpringStates | ZoneSprings
+    springs: Any  # the array's state: SpringStates, or ZoneSprings of a zone array
     force: jax.Array  # F at the current state
     contact_steps: jax.Array
     released: jax.Array  # snaps of the contact under way

@@ -111,7 +111,8 @@ class DugdaleZoneArray(eqx.Module):
 
         def constant(lo, hi):  # ∫ √(c² − x²) dx
             def primitive(x):
-                return 0.5 * (x * jnp.sqrt(jnp.maximum(safe**2 - x**2, 0.0)) + safe**2 * jnp.arcsin(jnp.clip(x / safe, 0.0, 1.0)))
+                angle = jnp.arcsin(jnp.clip(x / safe, 0.0, 1.0))
+                return 0.5 * (x * jnp.sqrt(jnp.maximum(safe**2 - x**2, 0.0)) + safe**2 * angle)
 
             return primitive(hi) - primitive(lo)
 
@@ -213,16 +214,15 @@ class DugdaleZoneArray(eqx.Module):
         none = jnp.zeros_like(zone)
         after = self._segment(springs, none, none, folded, rate, rest - fold_at)  # no zone
         snaps = jnp.where(born, birth.dissipation, 0.0) + jnp.where(folds, collapse.dissipation, 0.0)
-        segments = (before, middle, after)
         last_release = jnp.maximum(
             jnp.maximum(before.last_release, born_at + middle.last_release), born_at + fold_at + after.last_release
         )
         ended = jax.tree.map(lambda f, k: jnp.where(folds, f, k), after.springs, middle.springs)
         return ZoneSprings(ended, jnp.where(folds, 0.0, end)), StepTotals(
-            impulse=sum(part.impulse for part in segments),
-            dissipation=sum(part.dissipation for part in segments),
-            released=snaps + sum(part.released for part in segments),
-            gained=sum(part.gained for part in segments),
+            impulse=before.impulse + middle.impulse + after.impulse,
+            dissipation=before.dissipation + middle.dissipation + after.dissipation,
+            released=snaps + before.released + middle.released + after.released,
+            gained=before.gained + middle.gained + after.gained,
             last_release=jnp.where(folds, jnp.maximum(last_release, born_at + fold_at), last_release),
         )
 

@@ -1,0 +1,114 @@
+"""Maugis–Dugdale adhesion on a viscoelastic half-space (`_law.viscoelastic_dugdale`): the step of
+a spring under a force linear in time, the elastic limits τ → 0 and τ → ∞ against the elastic
+Maugis–Dugdale spring array, the energy balance with the zone's interface energy, the order of
+the time step.
+
+One compiled program serves every impact here: the step dt is traced (given as an array)."""
+
+import equinox as eqx
+import jax.numpy as jnp
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import impact
+from impact import theory
+from impact._law.prony import PronyElement
+from impact._run.impacts import solve_scene
+from impact._run.parameters import integrator_for, options_for
+from tests.scenes import MASS, WORK, R
+
+SPEED = 0.6  # m/s
+RELAXED, ARM = 1e9, 1e9  # E∞*, E₁ (Pa): E₀* = 2e9 Pa
+STRESS = float(theory.maugis_adhesive_stress(1.0, R, WORK, RELAXED))  # Tabor parameter 1 at E∞*
+SPRINGS, LENGTH = 200, 2.5e-7  # 1.9 times the largest contact radius
+STEPS = 2000  # steps per contact time where the limits are checked
+
+
+def contact_time(modulus: float) -> float:
+    return float(theory.hertz_contact_time(SPEED, MASS, R, modulus))
+
+
+def adhesion() -> dict:
+    return {"model": "maugis_dugdale", "work_of_adhesion": WORK, "stress": STRESS}
+
+
+def scene(time: float) -> dict:
+    return {
+        "name": "viscoelastic_dugdale",
+        "body": {"profile": {"shape": "paraboloid", "R": R}, "mass": MASS},
+        "material": {"E_star": RELAXED},
+        "initial": {"velocity": SPEED},
+        "contact": {"springs": SPRINGS, "length": LENGTH},
+        "solver": {"method": "midpoint", "dt": 1e-11},
+        "effects": {"viscoelasticity": {"prony": [{"modulus": ARM, "time": time}]}, "adhesion": adhesion()},
+    }
+
+
+def run(data: dict, dt: float) -> impact.Result:
+    """The scene stepped at dt (s), traced: one program for every dt."""
+    loaded = impact.load_scene(data)
+    integrator = eqx.tree_at(lambda solver: solver.dt, integrator_for(loaded), jnp.asarray(dt))
+    return solve_scene(loaded, integrator, options_for(loaded, trajectory=False))
+
+
+def test_spring_under_a_force_linear_in_time():
+    """`PronyElement.forced` (two terms) against DOP853 (rtol 1e-13): stretches, displacement and
+    the dashpots' dissipation to 1e-12; `forced_surface` meets its displacement."""
+    moduli, times = np.array([3.0, 0.5]), np.array([0.7, 4.0])
+    element = PronyElement(jnp.asarray(moduli), jnp.asarray(times))
+    start, force, rate, duration = np.array([0.3, -0.2]), -0.4, 0.9, 1.3
+
+    def slope(time, state):  # f = u + Σe·q, q̇ = u̇ − q/τ with u̇ = ḟ − Σe·q̇
+        stretches = state[:2]
+        arms = np.linalg.solve(np.eye(2) + np.outer(np.ones(2), moduli), rate - stretches / times)
+        return np.concatenate([arms, [np.sum(moduli / times * stretches**2)]])
+
+    exact = solve_ivp(slope, (0.0, duration), np.concatenate([start, [0.0]]), method="DOP853", rtol=1e-13, atol=1e-15)
+    stretches, dissipation = exact.y[:2, -1], exact.y[2, -1]
+    arguments = (jnp.asarray(start), jnp.asarray(force), jnp.asarray(rate), jnp.asarray(duration))
+    step = element.forced(*arguments)
+    assert np.allclose(step.stretches, stretches, rtol=0, atol=1e-12)
+    assert float(step.dissipation) == pytest.approx(dissipation, abs=1e-12)
+    displacement = force + rate * duration - moduli @ stretches
+    assert float(step.displacement) == pytest.approx(displacement, abs=1e-12)
+    surface, _ = element.forced_surface(*arguments)
+    assert float(surface) == pytest.approx(float(step.displacement), abs=1e-14)
+
+
+@pytest.mark.parametrize(("time", "modulus"), [(1e-20, RELAXED), (1e6, RELAXED + ARM)])
+def test_elastic_limits_are_the_elastic_maugis_dugdale_array(time, modulus):
+    """τ → 0: the elastic Maugis–Dugdale array of E∞*; τ → ∞: of E₀* (same springs, Δγ, σ0),
+    dt = t_c/2000. They differ by the zone's discretisation (this array interpolates the zone's
+    gaps between its springs, the elastic array takes the zone exactly)."""
+    result = run(scene(time), contact_time(modulus) / STEPS)
+    elastic = impact.simulate(
+        {**scene(time), "material": {"E_star": modulus}, "effects": {"adhesion": adhesion()}, "solver": {}},
+        trajectory=False,
+    )
+    assert result.status == elastic.status == "separated"
+    assert result.restitution == pytest.approx(elastic.restitution, abs=LIMIT_RESTITUTION)
+    assert result.max_force == pytest.approx(elastic.max_force, rel=LIMIT_FORCE, abs=0.0)
+    assert result.contact_time == pytest.approx(elastic.contact_time, rel=LIMIT_TIME, abs=0.0)
+
+
+LIMIT_RESTITUTION, LIMIT_FORCE, LIMIT_TIME = 1e-3, 1e-3, 1e-3
+
+
+def test_energy_balance_of_the_first_contact():
+    """De ≈ 1: the kinetic energy lost is the work on the springs, ∮F dd (to 1e-10), and that is
+    the dashpots' dissipation + the energy the medium still stores + the snaps (the zone's birth
+    and collapse, the edge's) (the zone's interface energy is 0 once it collapsed)."""
+    tau = contact_time(RELAXED + 0.5 * ARM)
+    result = run(scene(tau), tau / 1000)
+    relaxation = result.relaxation
+    assert result.status == "separated" and relaxation is not None
+    work = result.dissipated_energy
+    lost = 0.5 * MASS * (result.touch_velocity**2 - result.separation_velocity**2)
+    assert lost == pytest.approx(work, rel=1e-10, abs=0)
+    snaps = relaxation.released_energy - relaxation.gained_energy
+    assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=BALANCE, abs=0)
+    assert result.viscous_work > 0.5 * work  # the dashpots take most of it at De ≈ 1
+
+
+BALANCE = 1e-4
