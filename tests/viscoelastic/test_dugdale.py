@@ -23,6 +23,14 @@ RELAXED, ARM = 1e9, 1e9  # E∞*, E₁ (Pa): E₀* = 2e9 Pa
 STRESS = float(theory.maugis_adhesive_stress(1.0, R, WORK, RELAXED))  # Tabor parameter 1 at E∞*
 SPRINGS, LENGTH = 200, 2.5e-7  # 1.9 times the largest contact radius
 STEPS = 2000  # steps per contact time where the limits are checked
+# The elastic limits against the elastic array (measured: restitution 3.3e-5 and 5.3e-5, largest
+# force 3.5e-4 and 3.6e-4, contact time 9e-6 and 6e-5 for τ → 0 and τ → ∞; against the continuum
+# law the restitution is 1.8e-5 off, the elastic array's 1.5e-5 on the other side).
+LIMIT_RESTITUTION, LIMIT_FORCE, LIMIT_TIME = 1e-4, 5e-4, 1e-4
+# The energy balance at De ≈ 1 and dt = t_c/1000 (measured 2.1e-5: the zone's path near the fold
+# of the pull-off, where c(t) runs as a square root of the time left, followed by loads linear in
+# time; 2.9e-4, 6.4e-5, 2.1e-5, 6.7e-6 at t_c/250 … t_c/2000).
+BALANCE = 5e-5
 
 
 def contact_time(modulus: float) -> float:
@@ -76,6 +84,7 @@ def test_spring_under_a_force_linear_in_time():
     assert float(surface) == pytest.approx(float(step.displacement), abs=1e-14)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("time", "modulus"), [(1e-20, RELAXED), (1e6, RELAXED + ARM)])
 def test_elastic_limits_are_the_elastic_maugis_dugdale_array(time, modulus):
     """τ → 0: the elastic Maugis–Dugdale array of E∞*; τ → ∞: of E₀* (same springs, Δγ, σ0),
@@ -92,9 +101,6 @@ def test_elastic_limits_are_the_elastic_maugis_dugdale_array(time, modulus):
     assert result.contact_time == pytest.approx(elastic.contact_time, rel=LIMIT_TIME, abs=0.0)
 
 
-LIMIT_RESTITUTION, LIMIT_FORCE, LIMIT_TIME = 1e-3, 1e-3, 1e-3
-
-
 def test_energy_balance_of_the_first_contact():
     """De ≈ 1: the kinetic energy lost is the work on the springs, ∮F dd (to 1e-10), and that is
     the dashpots' dissipation + the energy the medium still stores + the snaps (the zone's birth
@@ -109,6 +115,3 @@ def test_energy_balance_of_the_first_contact():
     snaps = relaxation.released_energy - relaxation.gained_energy
     assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=BALANCE, abs=0)
     assert result.viscous_work > 0.5 * work  # the dashpots take most of it at De ≈ 1
-
-
-BALANCE = 1e-4
