@@ -45,6 +45,11 @@ _FIRST_STEP = 1.0 / 64.0
 _EXPANSIONS = 48
 _SETTLED = 1e-14
 _REFINEMENTS = 100
+# Sub-steps of the zone's path: c moves at most this many spacings in one (near the fold, where
+# c(t) runs as a square root of the time left, and after the zone's birth), down to the step over
+# 2^_SUBSTEP_HALVINGS.
+_SUBSTEP_MOVE = 0.25
+_SUBSTEP_HALVINGS = 12
 # Halvings of the step that locate the fold (the step / 2⁴⁰: below round-off of the time).
 _FOLD_HALVINGS = 40
 
@@ -194,37 +199,108 @@ class DugdaleZoneArray(eqx.Module):
         )
         springs = jax.tree.map(lambda b, k: jnp.where(born, b, k), birth.springs, before.springs)
         zone = jnp.where(born, birth.zone, zone)
-        end, found, outward = jax.lax.cond(
+        walk = jax.lax.cond(
             on & (rest > 0.0),
-            lambda: self._zone_end(springs, zone, depth, rate, rest),
-            lambda: (zone, jnp.asarray(True), jnp.asarray(False)),
+            lambda: self._zone_walk(springs, zone, depth, rate, rest),
+            lambda: _Walked.held(self._segment(springs, zone, zone, depth, rate, rest), zone, rest),
         )
-        # No root outward: the zone reaches past the array (`overflows`); inward: the fold, where
-        # the zone collapses, located inside the step by bisection on the time.
-        folds = on & ~found & ~outward & (rest > 0.0)
-        end = jnp.where(found | ~on | (rest <= 0.0), end, jnp.where(outward, self.length, end))
-        fold_at, fold_end = jax.lax.cond(
-            folds, lambda: self._fold(springs, zone, depth, rate, rest), lambda: (rest, end)
-        )
-        end = jnp.where(born, zone, jnp.where(folds, fold_end, end))  # born: the loads held over the step
-        middle = self._segment(springs, zone, end, depth, rate, fold_at)
-        folded = depth + rate * fold_at
-        collapse = self._collapse(ZoneSprings(middle.springs, end), folded)
-        springs = jax.tree.map(lambda c, k: jnp.where(folds, c, k), collapse.springs, middle.springs)
+        folds = walk.folds
+        folded = depth + rate * walk.elapsed
+        collapse = self._collapse(ZoneSprings(walk.springs, walk.zone), folded)
+        springs = jax.tree.map(lambda c, k: jnp.where(folds, c, k), collapse.springs, walk.springs)
         none = jnp.zeros_like(zone)
-        after = self._segment(springs, none, none, folded, rate, rest - fold_at)  # no zone
+        after = self._segment(springs, none, none, folded, rate, rest - walk.elapsed)  # no zone
         snaps = jnp.where(born, birth.dissipation, 0.0) + jnp.where(folds, collapse.dissipation, 0.0)
         last_release = jnp.maximum(
-            jnp.maximum(before.last_release, born_at + middle.last_release), born_at + fold_at + after.last_release
+            jnp.maximum(before.last_release, born_at + walk.last_release),
+            born_at + walk.elapsed + jnp.where(folds, jnp.maximum(after.last_release, 0.0), after.last_release),
         )
-        ended = jax.tree.map(lambda f, k: jnp.where(folds, f, k), after.springs, middle.springs)
-        return ZoneSprings(ended, jnp.where(folds, 0.0, end)), StepTotals(
-            impulse=before.impulse + middle.impulse + after.impulse,
-            dissipation=before.dissipation + middle.dissipation + after.dissipation,
-            released=snaps + before.released + middle.released + after.released,
-            gained=before.gained + middle.gained + after.gained,
-            last_release=jnp.where(folds, jnp.maximum(last_release, born_at + fold_at), last_release),
+        ended = jax.tree.map(lambda f, k: jnp.where(folds, f, k), after.springs, walk.springs)
+        zone = jnp.where(folds, 0.0, jnp.where(walk.overflow, self.length, walk.zone))
+        return ZoneSprings(ended, zone), StepTotals(
+            impulse=before.impulse + walk.impulse + after.impulse,
+            dissipation=before.dissipation + walk.dissipation + after.dissipation,
+            released=snaps + before.released + walk.released + after.released,
+            gained=before.gained + walk.gained + after.gained,
+            last_release=last_release,
         )
+
+    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration) -> "_Walked":
+        """The zone's part of a step: sub-steps, each with the loads linear in time to the root of
+        the range condition at its end, halved (down to the step / 2^`_SUBSTEP_HALVINGS`) where c
+        would move more than `_SUBSTEP_MOVE`·Δx or the root is lost, doubled again after each one
+        taken. A root lost at the shortest sub-step is the fold: located by `_fold`, the walk goes
+        on to it (c runs there as a square root of the time left: the sub-steps shrink towards
+        it) and stops. No root outward: the zone outgrows the array (`overflow`), the walk stops."""
+        shortest = duration * 2.0**-_SUBSTEP_HALVINGS
+        zero = jnp.zeros_like(duration)
+
+        def walking(walk: _Walked):
+            return ~walk.folds & ~walk.overflow & ~walk.finished
+
+        def substep(walk: _Walked) -> _Walked:
+            left = walk.until - walk.elapsed
+            length = jnp.minimum(walk.length, left)
+            depth = indentation + rate * walk.elapsed
+            end, found, outward = self._zone_end(walk.springs, walk.zone, depth, rate, length)
+            inward_lost = ~found & ~outward
+            can_halve = length > shortest
+            halve = can_halve & (inward_lost | (found & (jnp.abs(end - walk.zone) > _SUBSTEP_MOVE * self.spacing)))
+            stuck = inward_lost & ~can_halve  # the fold within this sub-step
+            located = stuck & ~walk.pending
+            fold_at = jax.lax.cond(
+                located, lambda: self._fold(walk.springs, walk.zone, depth, rate, length)[0], lambda: length
+            )
+            take = found & ~halve
+            taken = jnp.where(take, length, 0.0)
+            part = self._segment(walk.springs, walk.zone, end, depth, rate, taken)
+            # c still jumping at the shortest sub-step: a snap of the zone between two roots (the
+            # discrete zone's fold at a spring), which dissipates what the energies say.
+            jumps = take & ~can_halve & (jnp.abs(end - walk.zone) > _SUBSTEP_MOVE * self.spacing)
+            energy = self.stored(ZoneSprings(walk.springs, walk.zone)) + self.interface(
+                ZoneSprings(walk.springs, walk.zone), depth
+            )
+            after = ZoneSprings(part.springs, end)
+            change = self.stored(after) + self.interface(after, depth + rate * taken) - energy
+            snap = rate * part.impulse - part.dissipation - part.released + part.gained - change
+            reached = take & (length >= left)
+            pending = walk.pending | stuck
+            released = jnp.where(take, part.last_release, -jnp.inf)
+            return _Walked(
+                springs=jax.tree.map(lambda p, k: jnp.where(take, p, k), part.springs, walk.springs),
+                zone=jnp.where(take, end, walk.zone),
+                elapsed=walk.elapsed + taken,
+                impulse=walk.impulse + jnp.where(take, part.impulse, 0.0),
+                dissipation=walk.dissipation + jnp.where(take, part.dissipation, 0.0),
+                released=walk.released + jnp.where(take, part.released + jnp.where(jumps, snap, 0.0), 0.0),
+                gained=walk.gained + jnp.where(take, part.gained, 0.0),
+                last_release=jnp.maximum(walk.last_release, walk.elapsed + released),
+                folds=(pending & reached) | (stuck & walk.pending),
+                overflow=~found & outward,
+                length=jnp.where(halve, 0.5 * length, jnp.where(take, 2.0 * length, fold_at)),
+                finished=reached & ~pending,
+                until=jnp.where(located, walk.elapsed + fold_at, walk.until),
+                pending=pending,
+            )
+
+        false = jnp.asarray(False)
+        start = _Walked(
+            springs=springs,
+            zone=zone,
+            elapsed=zero,
+            impulse=zero,
+            dissipation=zero,
+            released=zero,
+            gained=zero,
+            last_release=zero - jnp.inf,
+            folds=false,
+            overflow=false,
+            length=duration,
+            finished=false,
+            until=duration,
+            pending=false,
+        )
+        return jax.lax.while_loop(walking, substep, start)
 
     def _fold(self, springs: SpringStates, zone, indentation, rate, duration):
         """(t, c): how long into a step of `duration` the range condition keeps a root near `zone`
@@ -435,6 +511,46 @@ class _Segment(eqx.Module):
     released: jax.Array  # the edge's snaps letting go: (f_load − f)²/(2e₀) each
     gained: jax.Array  # the edge's snaps attaching: ½e₀·Δu² each
     last_release: jax.Array
+
+
+class _Walked(eqx.Module):
+    """The zone's part of a step (`DugdaleZoneArray._zone_walk`)."""
+
+    springs: SpringStates
+    zone: jax.Array  # c where the walk stopped
+    elapsed: jax.Array  # time walked (the fold's time where it folds)
+    impulse: jax.Array
+    dissipation: jax.Array
+    released: jax.Array
+    gained: jax.Array
+    last_release: jax.Array
+    folds: jax.Array
+    overflow: jax.Array
+    length: jax.Array  # the next sub-step's length
+    finished: jax.Array  # the last sub-step reached the step's end
+    until: jax.Array  # where the walk ends: the step's end, or the fold once located
+    pending: jax.Array  # the fold is located: the walk goes on to it
+
+    @staticmethod
+    def held(part: "_Segment", zone, duration) -> "_Walked":
+        """A segment at fixed loads (the step the zone is born in, or none) as a finished walk."""
+        false = jnp.asarray(False)
+        return _Walked(
+            part.springs,
+            zone,
+            duration,
+            part.impulse,
+            part.dissipation,
+            part.released,
+            part.gained,
+            part.last_release,
+            false,
+            false,
+            duration,
+            jnp.asarray(True),
+            duration,
+            false,
+        )
 
 
 class _Evolved(eqx.Module):
