@@ -5,17 +5,19 @@ Mechanics, Springer 2019, §3.8).
 
 - Springs in contact (x < a) follow the body, u = d − g(x), as in `viscoelastic_springs`.
 - Free springs are under force control: the Dugdale stress σ0 over a < r < c is, in the MDR, the
-  line load −2σ0·√(c² − x²) on the springs of the zone (3.148). Spring j carries its cell's mean,
-  f_j(c) = −(2σ̂/Δx)·∫ √(c² − x²) dx over its cell ∩ [0, c] (0 beyond c), and creeps under it
+  line load −2σ0·√(c² − x²) on the springs of the zone (3.148). Spring j carries it on its hat
+  function φ_j (1 at x_j, 0 at its neighbours, flat on [0, x_1]),
+  f_j(c) = −(2σ̂/Δx)·∫ φ_j(x)·√(c² − x²) dx over [0, c] (0 beyond c), and creeps under it
   (`PronyElement.forced`; over a step the load is linear in time from f_j(c₀) to f_j(c₁)).
 - The zone radius c is where the gap reaches the range h (3.152). The 3-D gap at r = c is the
-  Abel transform of the springs' 1-D gaps s_j = u_j − (d − g(x_j)) (0 in contact), each
-  constant over its cell and integrated exactly against the kernel:
-  gap(c) = (2/π)·Σ_j s_j·K_j(c), K_j(c) = ∫ dx/√(c² − x²) over the cell ∩ [0, c].
-  With the cells' mean loads this is the stationarity in c of the interface energy
+  Abel transform of the springs' 1-D gaps s_j = u_j − (d − g(x_j)) (0 in contact), interpolated
+  linearly between the springs and integrated exactly against the kernel:
+  gap(c) = (2/π)·Σ_j s_j·K_j(c), K_j(c) = ∫ φ_j(x)/√(c² − x²) dx over [0, c].
+  With the same hat functions for the loads this is the stationarity in c of the interface energy
   U = −Δγ·πc² + 2Δx·Σ_j (−f_j(c))·s_j (the adhesive stress's work on the gaps, σ0·∫gap dA, in
   the MDR; d(Δx·f_j)/dc = −2σ̂·c·K_j): U is the Dugdale zone's energy, so the body's work
-  is the dashpots' dissipation, the stored elastic energy, U and the snaps.
+  is the dashpots' dissipation, the stored elastic energy, U and the snaps. (Gaps constant over
+  each spring's cell would give the kernel a √(c − x) onset at every cell, and c(d) a staircase.)
 - The edge is continuous: a spring in contact lets go where its force falls to its zone load
   f_j(c), a free one attaches where its gap s_j closes; neither snaps. The contact stays one disc
   (`change_times`).
@@ -27,7 +29,7 @@ Mechanics, Springer 2019, §3.8).
 
 In the elastic limits the zone springs hold u_j = f_j/E* (τ → 0: E∞*, τ → ∞: E₀*) and the array
 is the Maugis–Dugdale spring array of that modulus (`dugdale_springs`, which takes the zone's
-transform exactly; here the cells' piecewise-constant gaps converge to it in Δx).
+transform exactly; here the interpolated gaps converge to it in Δx).
 Units of `Scales` (E∞ = 1); σ̂ = σ0·ℓx/(E∞*·ℓz), ĥ = h/ℓz.
 """
 
@@ -35,16 +37,10 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .outward_root import root_outward
 from .prony import PronyElement
 from .viscoelastic_springs import SpringStates, StepTotals, change_times
 
-# The zone radius's search: from c₀ outward in steps doubling from this fraction of Δx to a sign
-# change of the range condition, then Illinois's regula falsi until the bracket is below this
-# fraction of max(c, Δx), or this many steps.
-_FIRST_STEP = 1.0 / 64.0
-_EXPANSIONS = 48
-_SETTLED = 1e-14
-_REFINEMENTS = 100
 # Sub-steps of the zone's path: c moves at most this many spacings in one (near the fold, where
 # c(t) runs as a square root of the time left, and after the zone's birth), down to the step over
 # 2^_SUBSTEP_HALVINGS.
@@ -417,7 +413,7 @@ class DugdaleZoneArray(eqx.Module):
             return self.range_excess(after.springs, indentation + rate * duration, zone)
 
         start = 0.5 * self.spacing
-        zone, _ = _root_from(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
+        zone, _ = root_outward(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
         born = ZoneSprings(jumped(zone), zone)
         dissipation = self.stored(ZoneSprings(springs, zone)) - self.stored(born) - self.interface(born, indentation)
         return _Snap(born.springs, zone, dissipation)
@@ -449,59 +445,8 @@ class DugdaleZoneArray(eqx.Module):
 
         here = excess(safe)
         outward = here < 0.0
-        root, found = _root_from(excess, safe, here, jnp.where(outward, 1.0, -1.0), self.spacing, self.length)
+        root, found = root_outward(excess, safe, here, jnp.where(outward, 1.0, -1.0), self.spacing, self.length)
         return root, found, outward
-
-
-def _root_from(function, start, value, direction, spacing, length):
-    """(root, found): the first sign change of the scalar `function` from `start` (where it is
-    `value`) in `direction`, within (0, `length`]: steps doubling from `_FIRST_STEP`·Δx to a
-    bracket, then Illinois's regula falsi."""
-    lowest = 1e-9 * spacing
-
-    def expanding(search):
-        _, _, _, _, bracketed, ended, steps = search
-        return ~bracketed & ~ended & (steps < _EXPANSIONS)
-
-    def expand(search):
-        near, near_value, _, _, _, _, steps = search
-        far = jnp.clip(start + direction * _FIRST_STEP * spacing * 2.0**steps, lowest, length)
-        far_value = function(far)
-        bracketed = jnp.sign(far_value) != jnp.sign(value)
-        ended = (far <= lowest) | (far >= length)
-        moved = ~bracketed
-        near, near_value = jnp.where(moved, far, near), jnp.where(moved, far_value, near_value)
-        return near, near_value, far, far_value, bracketed, ended, steps + 1
-
-    first = (start, value, start, value, jnp.asarray(value == 0.0), jnp.asarray(False), jnp.zeros((), int))
-    near, near_value, far, far_value, bracketed, _, _ = jax.lax.while_loop(expanding, expand, first)
-
-    def refining(search):
-        low, _, high, _, _, steps = search
-        return (jnp.abs(high - low) > _SETTLED * jnp.maximum(jnp.abs(high), spacing)) & (steps < _REFINEMENTS)
-
-    def refine(search):
-        low, low_value, high, high_value, side, steps = search
-        guess = (low * high_value - high * low_value) / (high_value - low_value)
-        inside = jnp.isfinite(guess) & ((guess - low) * (guess - high) < 0.0)
-        guess = jnp.where(inside, guess, 0.5 * (low + high))
-        guess_value = function(guess)
-        same_as_low = jnp.sign(guess_value) == jnp.sign(low_value)
-        # Illinois: halve the value kept twice on the same side.
-        high_value = jnp.where(same_as_low & (side == -1), 0.5 * high_value, high_value)
-        low_value = jnp.where(~same_as_low & (side == 1), 0.5 * low_value, low_value)
-        low, low_value = jnp.where(same_as_low, guess, low), jnp.where(same_as_low, guess_value, low_value)
-        high, high_value = jnp.where(same_as_low, high, guess), jnp.where(same_as_low, high_value, guess_value)
-        side = jnp.where(same_as_low, -1, 1)
-        stop = guess_value == 0.0
-        low, high = jnp.where(stop, guess, low), jnp.where(stop, guess, high)
-        return low, low_value, high, high_value, side, steps + 1
-
-    search = (near, near_value, far, far_value, jnp.zeros((), int), jnp.zeros((), int))
-    search = jax.lax.cond(bracketed, lambda s: jax.lax.while_loop(refining, refine, s), lambda s: s, search)
-    low, low_value, high, high_value, _, _ = search
-    root = jnp.where(jnp.abs(low_value) <= jnp.abs(high_value), low, high)
-    return jnp.where(bracketed, root, start), bracketed
 
 
 class _Segment(eqx.Module):

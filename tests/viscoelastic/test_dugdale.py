@@ -23,14 +23,14 @@ RELAXED, ARM = 1e9, 1e9  # E∞*, E₁ (Pa): E₀* = 2e9 Pa
 STRESS = float(theory.maugis_adhesive_stress(1.0, R, WORK, RELAXED))  # Tabor parameter 1 at E∞*
 SPRINGS, LENGTH = 200, 2.5e-7  # 1.9 times the largest contact radius
 STEPS = 2000  # steps per contact time where the limits are checked
-# The elastic limits against the elastic array (measured: restitution 3.3e-5 and 5.3e-5, largest
-# force 3.5e-4 and 3.6e-4, contact time 9e-6 and 6e-5 for τ → 0 and τ → ∞; against the continuum
-# law the restitution is 1.8e-5 off, the elastic array's 1.5e-5 on the other side).
-LIMIT_RESTITUTION, LIMIT_FORCE, LIMIT_TIME = 1e-4, 5e-4, 1e-4
-# The energy balance at De ≈ 1 and dt = t_c/1000 (measured 2.1e-5: the zone's path near the fold
-# of the pull-off, where c(t) runs as a square root of the time left, followed by loads linear in
-# time; 2.9e-4, 6.4e-5, 2.1e-5, 6.7e-6 at t_c/250 … t_c/2000).
-BALANCE = 5e-5
+# The elastic limits against the elastic array (measured for τ → 0 and τ → ∞: restitution 9e-7
+# and 1.0e-5, largest force 3.5e-4 and 3.5e-4, contact time 3.8e-5 and 9.3e-6; against the
+# continuum law the restitution is 1.4e-5 and 8e-6 off, the elastic array's 1.5e-5 and 1.8e-5).
+LIMIT_RESTITUTION, LIMIT_FORCE, LIMIT_TIME = 5e-5, 5e-4, 1e-4
+# The energy balance at De ≈ 1 and dt = t_c/1000 (measured 2.2e-6; 4.2e-6, 1.1e-6, 2.2e-6, 1.2e-6
+# at t_c/250 … t_c/2000: the small folds of the discrete zone near the pull-off that a sub-step
+# of Δx/4 does not see as snaps).
+BALANCE = 1e-5
 
 
 def contact_time(modulus: float) -> float:
@@ -115,3 +115,17 @@ def test_energy_balance_of_the_first_contact():
     snaps = relaxation.released_energy - relaxation.gained_energy
     assert result.viscous_work + relaxation.stored_energy + snaps == pytest.approx(work, rel=BALANCE, abs=0)
     assert result.viscous_work > 0.5 * work  # the dashpots take most of it at De ≈ 1
+
+
+@pytest.mark.slow
+def test_time_step_order_is_two():
+    """De ≈ 1: restitution, contact time and largest force converge as dt² (fitted order within
+    0.3 of 2 over t_c/250 … t_c/1000 against t_c/2000: measured 2.12, 2.19, 2.05)."""
+    tau = contact_time(RELAXED + 0.5 * ARM)
+    reference = run(scene(tau), tau / 2000)
+    steps = np.array([250, 500, 1000])
+    results = [run(scene(tau), tau / k) for k in steps]
+    for name in ("restitution", "contact_time", "max_force"):
+        errors = np.abs([getattr(result, name) - getattr(reference, name) for result in results])
+        order = -np.polyfit(np.log(steps), np.log(errors), 1)[0]
+        assert order == pytest.approx(2.0, abs=0.3), (name, errors)
