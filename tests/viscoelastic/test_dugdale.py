@@ -129,3 +129,15 @@ def test_time_step_order_is_two():
         errors = np.abs([getattr(result, name) - getattr(reference, name) for result in results])
         order = -np.polyfit(np.log(steps), np.log(errors), 1)[0]
         assert order == pytest.approx(2.0, abs=0.3), (name, errors)
+
+
+def test_without_a_spring_array_it_is_refused():
+    """Maugis–Dugdale on a viscoelastic half-space needs the springs (their history), as JKR does:
+    the continuum is refused with the medium's message, before the adhesion's own checks."""
+    data = scene(1e-8)
+    data["contact"] = {"springs": "continuum"}
+    with pytest.raises(impact.SceneError) as error:
+        impact.load_scene(data)
+    ((field, message),) = error.value.problems
+    assert field == "contact.springs"
+    assert message.startswith("a viscoelastic half-space runs on a spring array: give the number of springs N")
