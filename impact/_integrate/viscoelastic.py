@@ -77,7 +77,6 @@ class Relaxed(eqx.Module):
     """The medium when the run ends (scaled), and the first contact's snaps."""
 
     springs: SpringStates  # [capacity]: the first `count` are the array's
-    interface: jax.Array  # the Dugdale zone's interface energy when the run ends (0 without one)
     spacing: jax.Array  # Δx
     count: jax.Array  # N
     released: jax.Array  # elastic energy released by the springs that let go in the first contact
@@ -181,9 +180,8 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         end = jax.lax.while_loop(running, advance, start)
         outcome = replace(finish(end.carry), first_contact_stored_energy=end.first.stored)
         array = problem.array
-        interface = array.interface(end.springs, end.carry.d)
         relaxed = Relaxed(
-            array.springs_of(end.springs), interface, array.spacing, array.count, end.first.released, end.first.gained
+            array.springs_of(end.springs), array.spacing, array.count, end.first.released, end.first.gained
         )
         return outcome, relaxed
 

@@ -96,10 +96,6 @@ class ViscoelasticArray(eqx.Module):
         """Where the contact phase starts: the touch, d = 0."""
         return jnp.zeros_like(indentation)
 
-    def interface(self, states: SpringStates, indentation):
-        """The energy of an adhesive zone around the contact: none (zero range)."""
-        return jnp.zeros(())
-
     def forces(self, states: SpringStates):
         """Each spring's force per width (0 where free)."""
         return jnp.where(states.attached, self.element.force(states.displacement, states.stretches), 0.0)
