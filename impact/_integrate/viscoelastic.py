@@ -24,12 +24,13 @@ contact's work closes at rest (up to ½m·v'², v' of that step second order in 
 state is the turnaround's.
 """
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 
+from .. import theory
 from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.jkr import hess_coefficients
@@ -37,6 +38,7 @@ from .._law.law import ContactLaw
 from .._law.reach import radius_bound
 from .._law.scales import Scales, energy_scales
 from .._law.viscoelastic import Viscoelastic
+from .._law.viscoelastic_dugdale import DugdaleZoneArray, zone_array
 from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
@@ -50,6 +52,7 @@ from .work import ContactSummary
 # Default array length: the body's extent, or this margin over the bound on the contact radius of
 # the relaxed medium (E∞*: the softest, so the widest contact).
 _LENGTH_MARGIN = 1.25
+_ZONE_WIDTHS = 4.0
 
 
 class ViscoelasticProblem(AbstractProblem):
@@ -58,7 +61,7 @@ class ViscoelasticProblem(AbstractProblem):
     motion: Motion
     bounded: Parameter
     units: Scales
-    array: ViscoelasticArray
+    array: ViscoelasticArray | DugdaleZoneArray
     step: Parameter  # h, scaled
 
     @property
@@ -87,6 +90,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
     capacity: int = eqx.field(static=True)  # slots of the compiled array (≥ N)
     dt: float  # step (s)
     max_steps: int = eqx.field(static=True, default=4096)  # steps a contact may take
+    dugdale: bool = eqx.field(static=True, default=False)  # Maugis–Dugdale adhesion: a zone array
 
     ITERATIONS: ClassVar[int] = 3  # evaluations of the springs per step (the implicit midpoint)
 
@@ -110,9 +114,24 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         length = jnp.where(jnp.isnan(physics.spring_length), default, physics.spring_length / scales.radial)
         detach, attach = law.hess_lengths(scales, E_star, options.adhesive)
         count = physics.spring_count.astype(int)
-        array = spring_array(law.element(scales, E_star), elastic.g, length, count, self.capacity, detach, attach)
+        element = law.element(scales, E_star)
+        array: ViscoelasticArray | DugdaleZoneArray
+        if self.dugdale:
+            # Beyond the JKR bound on the contact, room for the Dugdale zone (its JKR-limit width
+            # (π/4)·E∞*·Δγ/σ0², `theory.dugdale_zone_width`, `_ZONE_WIDTHS` times).
+            zone = theory.dugdale_zone_width(E_star, law.work_of_adhesion, law.adhesive_stress) / scales.radial
+            length = jnp.where(
+                jnp.isnan(physics.spring_length), default + _ZONE_WIDTHS * zone, physics.spring_length / scales.radial
+            )
+            stress = law.adhesive_stress * scales.radial / (E_star * scales.normal)
+            adhesion_range = law.work_of_adhesion / law.adhesive_stress / scales.normal
+            array = zone_array(element, elastic.g, length, count, self.capacity, stress, adhesion_range)
+            start = -physics.gap / scales.normal - adhesion_range  # where the tip comes within range
+        else:
+            array = spring_array(element, elastic.g, length, count, self.capacity, detach, attach)
+            start = -physics.gap / scales.normal
         return ViscoelasticProblem(
-            motion=motion_of(physics, options, scales, -physics.gap / scales.normal, touch_speed),
+            motion=motion_of(physics, options, scales, start, touch_speed),
             bounded=bounded | jnp.isfinite(elastic.extent()),
             units=scales,
             array=array,
@@ -129,7 +148,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         zero = jnp.zeros(())
         start = _Walk(
             carry=initial_carry(problem, options),
-            springs=SpringStates.virgin(self.capacity, terms),
+            springs=problem.array.virgin(terms),
             force=zero,
             contact_steps=jnp.zeros((), int),
             released=zero,
@@ -143,7 +162,8 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
 
         def flight(walk: "_Walk") -> "_Walk":
             touch = next_phase(ADVANCE, 0, 0.0, EVENT_CODE["touch"])
-            c = land(problem, options, walk.carry, 0.0, touch, 0.0, samples=False)
+            surface = problem.array.onset(walk.carry.d)
+            c = land(problem, options, walk.carry, surface, touch, 0.0, samples=False)
             walk = replace(walk, carry=c, contact_steps=jnp.zeros((), int), released=zero, gained=zero)
             return _store(walk, problem.array, rows, c.mode == ADVANCE)
 
@@ -159,7 +179,10 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
 
         end = jax.lax.while_loop(running, advance, start)
         outcome = replace(finish(end.carry), first_contact_stored_energy=end.first.stored)
-        relaxed = Relaxed(end.springs, problem.array.spacing, problem.array.count, end.first.released, end.first.gained)
+        array = problem.array
+        relaxed = Relaxed(
+            array.springs_of(end.springs), array.spacing, array.count, end.first.released, end.first.gained
+        )
         return outcome, relaxed
 
     def _step(self, problem: ViscoelasticProblem, walk: "_Walk") -> "_Walk":
@@ -173,7 +196,7 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         d = c.d + h * half
         t = c.t + h
         force = array.force(springs)
-        attached = jnp.any(springs.attached)
+        attached = array.engaged(springs)
         inward = c.mode == ADVANCE
         turned = inward & (v <= 0.0)
         separated = ~inward & ~attached
@@ -259,7 +282,7 @@ class _Walk(eqx.Module):
     """State of the stepping loop."""
 
     carry: Carry
-    springs: SpringStates
+    springs: Any  # the array's state: SpringStates, or ZoneSprings of a zone array
     force: jax.Array  # F at the current state
     contact_steps: jax.Array
     released: jax.Array  # snaps of the contact under way
@@ -271,7 +294,7 @@ class _Walk(eqx.Module):
     length: jax.Array  # the step's length (scaled): the fixed step, or the landing step's
 
 
-def _store(walk: _Walk, array: ViscoelasticArray, rows: int, valid) -> _Walk:
+def _store(walk: _Walk, array: ViscoelasticArray | DugdaleZoneArray, rows: int, valid) -> _Walk:
     """The walk with its state (t, d, v, F, a) kept among its trajectory rows (`keep_row`)."""
     if rows == 0:
         return walk

@@ -18,6 +18,10 @@ arms' springs; its force is f = u + Σ e_i·q_i, e_i = E_i/E∞, and its elastic
   e₀ = 1 + Σ e_i the instantaneous modulus: the surface creeps back with the retardation times
   −1/λ_k, the eigenvalues λ_k of A (of the symmetric diag(√c)·A·diag(1/√c), `eigh`); exact for
   any step.
+- Free under a force per width linear in time, f(s) = f + ḟ·s (the Dugdale zone's load), the
+  stretches obey q̇ = A·q + (ḟ/e₀)·1 (from f = u + Σ e_i·q_i and q̇_i = u̇ − q_i/τ_i): in the
+  modes y = V·q of A, ẏ_k = λ_k·y_k + (ḟ/e₀)·b_k (b = V·1), the attached spring's equation with
+  1/τ_i → −λ_k and the rate ḟ·b_k/e₀, so the same closed forms give the step (`forced`).
 - A snap (a spring letting go, or attaching) is instantaneous: the dashpots do not move, so u and
   every q_i jump by the same Δu, at the instantaneous stiffness e₀.
 """
@@ -86,6 +90,14 @@ class Loaded(eqx.Module):
     dissipation: jax.Array  # Σ (e_i/τ_i)·∫q_i² ds over the step
 
 
+class Forced(eqx.Module):
+    """A free spring after a step of length h under a force per width linear in time (scaled)."""
+
+    stretches: jax.Array  # q_i at the end [..., M]
+    displacement: jax.Array  # u at the end
+    dissipation: jax.Array  # Σ (e_i/τ_i)·∫q_i² ds over the step
+
+
 class PronyElement(eqx.Module):
     """The rheological element of every spring (scaled: moduli relative to E∞, times in t*)."""
 
@@ -144,6 +156,38 @@ class PronyElement(eqx.Module):
         decay = jnp.exp(self.rates * duration[..., None])
         dissipation = jnp.sum(modes**2 * duration[..., None] * phi1(-2.0 * self.rates * duration[..., None]), axis=-1)
         return (modes * decay) @ self.from_modes.T, dissipation
+
+    def forced(self, stretches, force, force_rate, duration) -> Forced:
+        """A free spring under the force per width `force` + `force_rate`·s for `duration` (all
+        [...]) from the arm stretches `stretches` [..., M]: its modes advanced as `loaded`
+        advances the arms (z_k = −λ_k·h, travel (ḟ·h/e₀)·b_k); the dissipation Σ c_i·∫q_i² ds is
+        ∫|y|² ds (the modes are scaled by √c_i). With `force_rate` 0 and `force` 0, `free`."""
+        modes = stretches @ self.to_modes.T
+        z = -self.rates * duration[..., None]
+        one, _, j1, j2 = _phi_family(z)
+        travel = (force_rate * duration / self.instantaneous)[..., None] * self._drive
+        end = modes * jnp.exp(-z) + travel * one
+        squares = modes**2 * phi1(2.0 * z) + 2.0 * modes * travel * j1 + travel**2 * j2
+        end_stretches = end @ self.from_modes.T
+        return Forced(
+            stretches=end_stretches,
+            displacement=force + force_rate * duration - end_stretches @ self.moduli,
+            dissipation=duration * jnp.sum(squares, axis=-1),
+        )
+
+    def forced_surface(self, stretches, force, force_rate, time):
+        """(u, du/ds) of a free spring `time` into a step under the force `force` + `force_rate`·s."""
+        modes = stretches @ self.to_modes.T
+        z = -self.rates * time[..., None]
+        drive = (force_rate / self.instantaneous)[..., None] * self._drive
+        y = modes * jnp.exp(-z) + time[..., None] * drive * phi1(z)
+        weights = -(self.moduli @ self.from_modes)  # u = f + weights·y
+        return force + force_rate * time + y @ weights, force_rate + (self.rates * y + drive) @ weights
+
+    @property
+    def _drive(self):
+        """b = V·1: the modes' share of a unit force rate (times 1/e₀)."""
+        return jnp.sum(self.to_modes, axis=-1)
 
     def loaded_force(self, displacement, stretches, rate, time):
         """(f, df/ds) of an attached spring `time` into a step at `rate` (for the root search)."""

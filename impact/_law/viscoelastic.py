@@ -1,6 +1,7 @@
 """A viscoelastic half-space: the MDR law of a medium relaxing as a Prony series,
 E*(t) = E∞* + Σ E_i·e^(−t/τ_i), with or without JKR adhesion (the rule of Heß at the
-instantaneous modulus E₀* = E∞* + Σ E_i: `viscoelastic_springs`). E∞* is the scene's E*
+instantaneous modulus E₀* = E∞* + Σ E_i: `viscoelastic_springs`), or Maugis–Dugdale adhesion
+(a Dugdale zone of creeping springs: `viscoelastic_dugdale`). E∞* is the scene's E*
 (`Physics.E_star`); the law holds the Prony terms and the works of adhesion."""
 
 import jax
@@ -15,12 +16,14 @@ from .scales import Scales, adhesive_scales
 
 
 class Viscoelastic(AbstractAdhesiveLaw):
-    """The Prony terms (E_i, τ_i) of the medium and its works of adhesion (0: no adhesion)."""
+    """The Prony terms (E_i, τ_i) of the medium, its works of adhesion (0: no adhesion) and the
+    Dugdale stress (0: JKR)."""
 
     moduli: Parameter  # E_i (Pa) [M]
     times: Parameter  # τ_i (s) [M]
     work_of_adhesion: Parameter  # Δγ (J/m²); 0 without adhesion
     approach_work_of_adhesion: Parameter  # Δγa ≤ Δγ (J/m²)
+    adhesive_stress: Parameter  # σ0 (Pa) of Maugis–Dugdale adhesion (`viscoelastic_dugdale`); 0: JKR
 
     def scales(self, profile: Profile, E_star, mass, touch_velocity) -> Scales:
         """The units of the relaxed medium (E∞* = `E_star`): the jump-in's of Δγa, or the

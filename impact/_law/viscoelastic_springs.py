@@ -81,6 +81,21 @@ class ViscoelasticArray(eqx.Module):
     def slots(self) -> int:
         return self.profile.shape[0]
 
+    def virgin(self, terms: int) -> SpringStates:
+        """The medium at rest."""
+        return SpringStates.virgin(self.slots, terms)
+
+    def springs_of(self, states: SpringStates) -> SpringStates:
+        return states
+
+    def engaged(self, states: SpringStates):
+        """Whether the body is in contact."""
+        return jnp.any(states.attached)
+
+    def onset(self, indentation):
+        """Where the contact phase starts: the touch, d = 0."""
+        return jnp.zeros_like(indentation)
+
     def forces(self, states: SpringStates):
         """Each spring's force per width (0 where free)."""
         return jnp.where(states.attached, self.element.force(states.displacement, states.stretches), 0.0)
@@ -163,39 +178,49 @@ class ViscoelasticArray(eqx.Module):
         )
 
     def _change_time(self, states: SpringStates, indentation, rate, duration):
-        """When in [0, duration] each spring changes (`duration` where it does not). Its own
-        time: 0 where its criterion starts below zero, else the root of its criterion where it
-        ends below; then the edge rule."""
-        zeros = jnp.zeros_like(rate)
-        start, _ = self._criterion(states, indentation, rate, zeros)
-        end, _ = self._criterion(states, indentation, rate, zeros + duration)
-        crosses = (end < 0.0) & (start > 0.0)
-        frozen = jax.tree.map(jax.lax.stop_gradient, (states, indentation, rate))
+        """When in [0, duration] each spring changes (`duration` where it does not): `change_times`
+        of `_criterion`."""
 
-        def unsettled(search):
-            _, _, _, moved, steps = search
-            return (steps < _ROOT_STEPS) & jnp.any(moved > _ROOT_SETTLED * duration)
+        def criterion(inputs, time):
+            return self._criterion(*inputs, time)
 
-        def newton(search):
-            low, high, time, _, steps = search
-            value, slope = self._criterion(*frozen, time)
-            low, high = jnp.where(value > 0.0, time, low), jnp.where(value > 0.0, high, time)
-            step = time - value / jnp.where(slope != 0.0, slope, 1.0)
-            inside = (step >= low) & (step <= high) & jnp.isfinite(step)
-            new = jnp.where(inside, step, 0.5 * (low + high))
-            return low, high, new, jnp.where(crosses, jnp.abs(new - time), 0.0), steps + 1
+        return change_times(criterion, (states, indentation, rate), states.attached, duration)
 
-        guess = duration * start / jnp.where(crosses, start - end, 1.0)
-        search = (zeros, zeros + duration, guess, zeros + duration, jnp.zeros((), int))
-        _, _, root, _, _ = jax.lax.while_loop(unsettled, newton, search)
-        root = derivatives.implicit_root(lambda time: self._criterion(states, indentation, rate, time)[0], root)
-        own = jnp.where(end < 0.0, jnp.where(crosses, root, 0.0), duration)
-        # The contact stays one disc: a spring lets go once every spring outside it has, and
-        # attaches once every spring inside it has (cascading where its own time has passed).
-        attached = states.attached
-        releases = jax.lax.cummax(jnp.where(attached, own, 0.0), reverse=True)
-        attaches = jax.lax.cummax(jnp.where(attached, 0.0, own))
-        return jnp.where(attached, releases, attaches)
+
+def change_times(criterion, inputs, attached, duration):
+    """When in [0, `duration`] each spring changes (`duration` where it does not), for the
+    `criterion`(`inputs`, time) → (value, slope) [N] of what changes it (below 0: it changes).
+    Its own time: 0 where its criterion starts below zero, else the root of its criterion where
+    it ends below (Newton's method in the bracket, differentiated implicitly); then the edge rule
+    of the disc: a spring lets go once every spring outside it has, and attaches once every
+    spring inside it has (cascading where its own time has passed)."""
+    zeros = jnp.zeros(attached.shape, jnp.result_type(duration, float))
+    start, _ = criterion(inputs, zeros)
+    end, _ = criterion(inputs, zeros + duration)
+    crosses = (end < 0.0) & (start > 0.0)
+    frozen = jax.tree.map(jax.lax.stop_gradient, inputs)
+
+    def unsettled(search):
+        _, _, _, moved, steps = search
+        return (steps < _ROOT_STEPS) & jnp.any(moved > _ROOT_SETTLED * duration)
+
+    def newton(search):
+        low, high, time, _, steps = search
+        value, slope = criterion(frozen, time)
+        low, high = jnp.where(value > 0.0, time, low), jnp.where(value > 0.0, high, time)
+        step = time - value / jnp.where(slope != 0.0, slope, 1.0)
+        inside = (step >= low) & (step <= high) & jnp.isfinite(step)
+        new = jnp.where(inside, step, 0.5 * (low + high))
+        return low, high, new, jnp.where(crosses, jnp.abs(new - time), 0.0), steps + 1
+
+    guess = duration * start / jnp.where(crosses, start - end, 1.0)
+    search = (zeros, zeros + duration, guess, zeros + duration, jnp.zeros((), int))
+    _, _, root, _, _ = jax.lax.while_loop(unsettled, newton, search)
+    root = derivatives.implicit_root(lambda time: criterion(inputs, time)[0], root)
+    own = jnp.where(end < 0.0, jnp.where(crosses, root, 0.0), duration)
+    releases = jax.lax.cummax(jnp.where(attached, own, 0.0), reverse=True)
+    attaches = jax.lax.cummax(jnp.where(attached, 0.0, own))
+    return jnp.where(attached, releases, attaches)
 
 
 class _Evolved(eqx.Module):

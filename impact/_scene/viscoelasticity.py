@@ -8,10 +8,12 @@ from pydantic import Field
 
 from .._integrate.viscoelastic import ViscoelasticSprings
 from .._law.jkr import JKR
+from .._law.maugis_dugdale import MaugisDugdale
 from .._law.viscoelastic import Viscoelastic
 from . import domains as d
 from .adhesion import AbstractAdhesion
 from .adhesion.base import value
+from .adhesion.maugis_dugdale import MaugisDugdaleAdhesion
 from .domains import within
 from .errors import FieldProblem
 from .profiles import Number
@@ -50,20 +52,26 @@ class Viscoelasticity(Section):
             return xp.stack(xp.broadcast_arrays(*(value(xp, getattr(term, name)) for term in self.prony)), axis=-1)
 
         zero = value(xp, 0.0)
-        jkr = None if adhesion is None else adhesion.law(xp)
-        assert jkr is None or isinstance(jkr, JKR), "validated: a viscoelastic half-space takes JKR adhesion"
+        law = None if adhesion is None else adhesion.law(xp)
+        assert law is None or isinstance(law, JKR | MaugisDugdale), "validated: JKR or Maugis–Dugdale adhesion"
         return Viscoelastic(
             moduli=stacked("modulus"),
             times=stacked("time"),
-            work_of_adhesion=zero if jkr is None else jkr.work_of_adhesion,
-            approach_work_of_adhesion=zero if jkr is None else jkr.approach_work_of_adhesion,
+            work_of_adhesion=zero if law is None else law.work_of_adhesion,
+            approach_work_of_adhesion=zero if law is None else law.approach_work_of_adhesion,
+            adhesive_stress=law.adhesive_stress if isinstance(law, MaugisDugdale) else zero,
         )
 
     def integrator(self, scene: "Scene") -> ViscoelasticSprings:
         """The spring array stepped by the implicit midpoint rule (validated: springs and dt given)."""
         springs, solver = scene.contact.springs, scene.solver
         assert isinstance(springs, int) and solver.dt is not None, "validated: contact.springs N and solver.dt"
-        return ViscoelasticSprings(capacity=spring_capacity(springs), dt=solver.dt, max_steps=solver.max_steps)
+        return ViscoelasticSprings(
+            capacity=spring_capacity(springs),
+            dt=solver.dt,
+            max_steps=solver.max_steps,
+            dugdale=scene.effects.adhesion is not None and not scene.effects.adhesion.zero_range,
+        )
 
     def instantaneous_modulus(self, relaxed: float) -> float:
         """E₀* = E∞* + Σ E_i (Pa) for the relaxed modulus `relaxed` (Pa)."""
@@ -107,13 +115,13 @@ class Viscoelasticity(Section):
             if section is not None:
                 raise FieldProblem(field, f"not with effects.viscoelasticity: {why}")
         adhesion = effects.adhesion
-        if adhesion is not None and not adhesion.zero_range:
+        if isinstance(adhesion, MaugisDugdaleAdhesion):
+            self._check_dugdale(scene, adhesion)
+        elif adhesion is not None and not adhesion.zero_range:
             raise FieldProblem(
                 "effects.adhesion.model",
-                f"{adhesion.name!r} not with effects.viscoelasticity: its adhesive stress loads the free springs "
-                "of the zone around the contact, which creep under that prescribed force, so the zone's radius "
-                "(where the gap reaches the range) depends on their history; their creep under force and the "
-                "range condition solved with it at every step are not implemented; use model 'jkr'",
+                f"{adhesion.name!r} not with effects.viscoelasticity: its double-Hertz stress acts at every gap, "
+                "so every free spring would carry a load set by its own gap; use model 'jkr' or 'maugis_dugdale'",
             )
         if scene.contact.springs == "continuum":
             raise FieldProblem(
@@ -130,6 +138,22 @@ class Viscoelasticity(Section):
             self._check_impact(scene)
         else:
             self._check_indentation(scene)
+
+    @staticmethod
+    def _check_dugdale(scene: "Scene", adhesion: MaugisDugdaleAdhesion) -> None:
+        if adhesion.hysteretic:
+            raise FieldProblem(
+                "effects.adhesion.approach_work_of_adhesion",
+                f"{adhesion.approach:g} J/m² (below work_of_adhesion) not with effects.viscoelasticity: the "
+                "Dugdale zone of a viscoelastic half-space attaches and detaches over the one range h = Δγ/σ0; "
+                "leave approach_work_of_adhesion out",
+            )
+        if scene.kind != "impact":
+            raise FieldProblem(
+                "effects.adhesion.model",
+                "'maugis_dugdale' with effects.viscoelasticity runs impacts only: the indentation test at a rate "
+                "does not step the Dugdale zone's creep; use model 'jkr' for a viscoelastic indentation",
+            )
 
     @staticmethod
     def _check_impact(scene: "Scene") -> None:

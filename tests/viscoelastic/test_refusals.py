@@ -72,12 +72,23 @@ def refusal(base: dict, **changes) -> tuple[str, str]:
             "relaxation, slip against creep) are not implemented",
         ),
         (
-            {"effects__adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 1e8}},
+            {"effects__adhesion": {"model": "greenwood_johnson", "work_of_adhesion": 0.05, "k": 2.0}},
             "effects.adhesion.model",
-            "'maugis_dugdale' not with effects.viscoelasticity: its adhesive stress loads the free springs of the "
-            "zone around the contact, which creep under that prescribed force, so the zone's radius (where the gap "
-            "reaches the range) depends on their history; their creep under force and the range condition solved "
-            "with it at every step are not implemented; use model 'jkr'",
+            "'greenwood_johnson' not with effects.viscoelasticity: its double-Hertz stress acts at every gap, so "
+            "every free spring would carry a load set by its own gap; use model 'jkr' or 'maugis_dugdale'",
+        ),
+        (
+            {
+                "effects__adhesion": {
+                    "model": "maugis_dugdale",
+                    "work_of_adhesion": 0.05,
+                    "approach_work_of_adhesion": 0.01,
+                    "stress": 1e8,
+                }
+            },
+            "effects.adhesion.approach_work_of_adhesion",
+            "0.01 J/m² (below work_of_adhesion) not with effects.viscoelasticity: the Dugdale zone of a viscoelastic "
+            "half-space attaches and detaches over the one range h = Δγ/σ0; leave approach_work_of_adhesion out",
         ),
         (
             {"contact__springs": "continuum"},
@@ -120,6 +131,12 @@ def test_impact_refusals(changes, field, message):
             "instability that a rate-controlled test without inertia cannot follow; use 'displacement'",
         ),
         ({"program__rate": 0.0}, "program.rate", "0 m/s or N/s is outside the allowed range (0, 1e9] m/s or N/s"),
+        (
+            {"effects__adhesion": {"model": "maugis_dugdale", "work_of_adhesion": 0.05, "stress": 1e6}},
+            "effects.adhesion.model",
+            "'maugis_dugdale' with effects.viscoelasticity runs impacts only: the indentation test at a rate does "
+            "not step the Dugdale zone's creep; use model 'jkr' for a viscoelastic indentation",
+        ),
     ],
 )
 def test_indentation_refusals(changes, field, message):

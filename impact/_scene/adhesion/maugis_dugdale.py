@@ -125,7 +125,7 @@ class MaugisDugdaleAdhesion(AbstractHystereticAdhesion):
         springs = scene.contact.springs
         if springs == "continuum":
             return
-        if springs > DUGDALE_MAX_SPRINGS:
+        if springs > DUGDALE_MAX_SPRINGS and scene.effects.viscoelasticity is None:
             raise FieldProblem(
                 "contact.springs",
                 f"maugis_dugdale takes at most {DUGDALE_MAX_SPRINGS} springs, not {springs}: every spring event is "
