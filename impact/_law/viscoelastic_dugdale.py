@@ -40,6 +40,8 @@ import jax.numpy as jnp
 from .outward_root import root_outward
 from .prony import PronyElement
 from .viscoelastic_springs import SpringStates, StepTotals, change_times
+from .zone_geometry import zone_kernel, zone_loads
+from .zone_steps import Evolved, Segment, Snap, Walked
 
 # Sub-steps of the zone's path: c moves at most this many spacings in one (near the fold, where
 # c(t) runs as a square root of the time left, and after the zone's birth), down to the step over
@@ -91,51 +93,13 @@ class DugdaleZoneArray(eqx.Module):
         """Whether the body feels the medium: a contact or a zone."""
         return jnp.any(state.springs.attached) | (state.zone > 0.0)
 
-    def _hat_weights(self, zone, constant, linear):
-        """Σ over [0, c] of each spring's hat function (1 at its x_j, 0 at its neighbours', flat
-        on [0, x_1]: the springs' values interpolated linearly) against a kernel k(x), from the
-        kernel's integrals `constant`(lo, hi) = ∫k and `linear`(lo, hi) = ∫x·k over [lo, hi] ⊂ [0, c]."""
-        spacing = self.spacing
-        left = (jnp.arange(self.slots) + 0.5) * spacing  # x_i: the pieces [x_i, x_i+1]
-        lower, upper = jnp.minimum(left, zone), jnp.minimum(left + spacing, zone)
-        plain, moment = constant(lower, upper), linear(lower, upper)
-        to_left = ((left + spacing) * plain - moment) / spacing
-        to_right = (moment - left * plain) / spacing
-        head = constant(jnp.zeros(()), jnp.minimum(0.5 * spacing, zone))
-        weights = to_left + jnp.concatenate([jnp.zeros(1), to_right[:-1]])
-        return weights.at[0].add(head)
-
     def loads(self, zone):
-        """f_j(c) [slots]: the zone's line load −2σ̂·√(c² − x²) (3.148) on the springs' hat
-        functions, per width Δx (they add up to the whole load)."""
-        safe = jnp.where(zone > 0.0, zone, 1.0)
-
-        def constant(lo, hi):  # ∫ √(c² − x²) dx
-            def primitive(x):
-                angle = jnp.arcsin(jnp.clip(x / safe, 0.0, 1.0))
-                return 0.5 * (x * jnp.sqrt(jnp.maximum(safe**2 - x**2, 0.0)) + safe**2 * angle)
-
-            return primitive(hi) - primitive(lo)
-
-        def linear(lo, hi):  # ∫ x·√(c² − x²) dx
-            return (jnp.maximum(safe**2 - lo**2, 0.0) ** 1.5 - jnp.maximum(safe**2 - hi**2, 0.0) ** 1.5) / 3.0
-
-        area = self._hat_weights(jnp.where(zone > 0.0, zone, 0.0), constant, linear)
-        return jnp.where(zone > 0.0, -2.0 * self.stress * area / self.spacing, 0.0)
+        """f_j(c) [slots]: the zone's line load on the springs' hat functions (`zone_loads`)."""
+        return zone_loads(self.spacing, self.slots, self.stress, zone)
 
     def kernel(self, zone):
-        """K_j(c) [slots]: the springs' hat functions against 1/√(c² − x²) over [0, c] (they add up to
-        π/2): (2/π)·Σ K_j·s_j is the Abel transform of the linearly interpolated s_j."""
-        safe = jnp.where(zone > 0.0, zone, 1.0)
-
-        def constant(lo, hi):  # ∫ dx/√(c² − x²)
-            return jnp.arcsin(jnp.clip(hi / safe, 0.0, 1.0)) - jnp.arcsin(jnp.clip(lo / safe, 0.0, 1.0))
-
-        def linear(lo, hi):  # ∫ x dx/√(c² − x²)
-            return jnp.sqrt(jnp.maximum(safe**2 - lo**2, 0.0)) - jnp.sqrt(jnp.maximum(safe**2 - hi**2, 0.0))
-
-        weights = self._hat_weights(jnp.where(zone > 0.0, zone, 0.0), constant, linear)
-        return jnp.where(zone > 0.0, weights, 0.0)
+        """K_j(c) [slots]: the springs' hat functions against the Abel kernel (`zone_kernel`)."""
+        return zone_kernel(self.spacing, self.slots, zone)
 
     def gaps(self, springs: SpringStates, indentation):
         """s_j = u_j − (d − g(x_j)) of the free springs (0 attached or unused)."""
@@ -191,14 +155,14 @@ class DugdaleZoneArray(eqx.Module):
         birth = jax.lax.cond(
             born,
             lambda: self._birth(before.springs, depth, rate, rest),
-            lambda: _Snap(before.springs, zone, jnp.zeros(())),
+            lambda: Snap(before.springs, zone, jnp.zeros(())),
         )
         springs = jax.tree.map(lambda b, k: jnp.where(born, b, k), birth.springs, before.springs)
         zone = jnp.where(born, birth.zone, zone)
         walk = jax.lax.cond(
             on & (rest > 0.0),
             lambda: self._zone_walk(springs, zone, depth, rate, rest),
-            lambda: _Walked.held(self._segment(springs, zone, zone, depth, rate, rest), zone, rest),
+            lambda: Walked.held(self._segment(springs, zone, zone, depth, rate, rest), zone, rest),
         )
         folds = walk.folds
         folded = depth + rate * walk.elapsed
@@ -221,7 +185,7 @@ class DugdaleZoneArray(eqx.Module):
             last_release=last_release,
         )
 
-    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration) -> "_Walked":
+    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration) -> Walked:
         """The zone's part of a step: sub-steps, each with the loads linear in time to the root of
         the range condition at its end, halved (down to the step / 2^`_SUBSTEP_HALVINGS`) where c
         would move more than `_SUBSTEP_MOVE`·Δx or the root is lost, doubled again after each one
@@ -231,10 +195,10 @@ class DugdaleZoneArray(eqx.Module):
         shortest = duration * 2.0**-_SUBSTEP_HALVINGS
         zero = jnp.zeros_like(duration)
 
-        def walking(walk: _Walked):
+        def walking(walk: Walked):
             return ~walk.folds & ~walk.overflow & ~walk.finished
 
-        def substep(walk: _Walked) -> _Walked:
+        def substep(walk: Walked) -> Walked:
             left = walk.until - walk.elapsed
             length = jnp.minimum(walk.length, left)
             depth = indentation + rate * walk.elapsed
@@ -262,7 +226,7 @@ class DugdaleZoneArray(eqx.Module):
             reached = take & (length >= left)
             pending = walk.pending | stuck
             released = jnp.where(take, part.last_release, -jnp.inf)
-            return _Walked(
+            return Walked(
                 springs=jax.tree.map(lambda p, k: jnp.where(take, p, k), part.springs, walk.springs),
                 zone=jnp.where(take, end, walk.zone),
                 elapsed=walk.elapsed + taken,
@@ -280,7 +244,7 @@ class DugdaleZoneArray(eqx.Module):
             )
 
         false = jnp.asarray(False)
-        start = _Walked(
+        start = Walked(
             springs=springs,
             zone=zone,
             elapsed=zero,
@@ -311,7 +275,7 @@ class DugdaleZoneArray(eqx.Module):
         low, _, root = jax.lax.fori_loop(0, _FOLD_HALVINGS, halve, (jnp.zeros_like(duration), duration, zone))
         return low, root
 
-    def _segment(self, springs: SpringStates, zone, end, indentation, rate, duration) -> "_Segment":
+    def _segment(self, springs: SpringStates, zone, end, indentation, rate, duration) -> Segment:
         """The springs over `duration` with the zone loads linear in time from f(`zone`) to
         f(`end`), each spring changing at most once (`change_times`)."""
         start_load = self.loads(zone)
@@ -331,7 +295,7 @@ class DugdaleZoneArray(eqx.Module):
         moved = self._snapped(SpringStates(springs.attached ^ changing, before.displacement, before.stretches), jump)
         second = self._evolve(moved, start_load + load_rate * change, load_rate, rate, duration - change)
         width = 2.0 * self.spacing
-        return _Segment(
+        return Segment(
             springs=second.springs,
             impulse=width * jnp.sum(first.impulse + second.impulse),
             dissipation=width * jnp.sum(first.dissipation + second.dissipation),
@@ -340,7 +304,7 @@ class DugdaleZoneArray(eqx.Module):
             last_release=jnp.max(jnp.where(leaving, change, -jnp.inf)),
         )
 
-    def _evolve(self, springs: SpringStates, load, load_rate, rate, duration) -> "_Evolved":
+    def _evolve(self, springs: SpringStates, load, load_rate, rate, duration) -> Evolved:
         """Each spring after `duration` [slots]: attached, following the body at `rate`; free,
         under its load `load` + `load_rate`·s."""
         element = self.element
@@ -348,7 +312,7 @@ class DugdaleZoneArray(eqx.Module):
         loaded = element.loaded(springs.displacement, springs.stretches, rates, duration)
         forced = element.forced(springs.stretches, load, load_rate, duration)
         attached = springs.attached
-        return _Evolved(
+        return Evolved(
             springs=SpringStates(
                 attached,
                 jnp.where(attached, springs.displacement + rate * duration, forced.displacement),
@@ -390,7 +354,7 @@ class DugdaleZoneArray(eqx.Module):
         """The springs after an instantaneous jump of their displacement (dashpots at rest)."""
         return SpringStates(springs.attached, springs.displacement + jump, springs.stretches + jump[:, None])
 
-    def _birth(self, springs: SpringStates, indentation, rate, duration) -> "_Snap":
+    def _birth(self, springs: SpringStates, indentation, rate, duration) -> Snap:
         """The zone born at `indentation`, `duration` before the step's end: its loads jump on,
         the free springs responding at E₀* (those it pulls onto the body attach), and are held
         while the springs creep to the step's end, where c is the first root from below of the
@@ -416,9 +380,9 @@ class DugdaleZoneArray(eqx.Module):
         zone, _ = root_outward(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
         born = ZoneSprings(jumped(zone), zone)
         dissipation = self.stored(ZoneSprings(springs, zone)) - self.stored(born) - self.interface(born, indentation)
-        return _Snap(born.springs, zone, dissipation)
+        return Snap(born.springs, zone, dissipation)
 
-    def _collapse(self, state: ZoneSprings, indentation) -> "_Snap":
+    def _collapse(self, state: ZoneSprings, indentation) -> Snap:
         """The zone gone at `indentation`: its loads drop and the springs in tension let go,
         each snapping at E₀*."""
         springs = state.springs
@@ -429,7 +393,7 @@ class DugdaleZoneArray(eqx.Module):
         snapped = SpringStates(springs.attached & ~leaving, snapped.displacement, snapped.stretches)
         gone = ZoneSprings(snapped, jnp.zeros(()))
         dissipation = self.stored(state) + self.interface(state, indentation) - self.stored(gone)
-        return _Snap(snapped, jnp.zeros(()), dissipation)
+        return Snap(snapped, jnp.zeros(()), dissipation)
 
     def _zone_end(self, springs: SpringStates, zone, indentation, rate, duration):
         """(c₁, found, outward): the zone radius at the end of a step from `zone` that satisfies the range
@@ -447,67 +411,6 @@ class DugdaleZoneArray(eqx.Module):
         outward = here < 0.0
         root, found = root_outward(excess, safe, here, jnp.where(outward, 1.0, -1.0), self.spacing, self.length)
         return root, found, outward
-
-
-class _Segment(eqx.Module):
-    springs: SpringStates
-    impulse: jax.Array
-    dissipation: jax.Array
-    released: jax.Array  # the edge's snaps letting go: (f_load − f)²/(2e₀) each
-    gained: jax.Array  # the edge's snaps attaching: ½e₀·Δu² each
-    last_release: jax.Array
-
-
-class _Walked(eqx.Module):
-    """The zone's part of a step (`DugdaleZoneArray._zone_walk`)."""
-
-    springs: SpringStates
-    zone: jax.Array  # c where the walk stopped
-    elapsed: jax.Array  # time walked (the fold's time where it folds)
-    impulse: jax.Array
-    dissipation: jax.Array
-    released: jax.Array
-    gained: jax.Array
-    last_release: jax.Array
-    folds: jax.Array
-    overflow: jax.Array
-    length: jax.Array  # the next sub-step's length
-    finished: jax.Array  # the last sub-step reached the step's end
-    until: jax.Array  # where the walk ends: the step's end, or the fold once located
-    pending: jax.Array  # the fold is located: the walk goes on to it
-
-    @staticmethod
-    def held(part: "_Segment", zone, duration) -> "_Walked":
-        """A segment at fixed loads (the step the zone is born in, or none) as a finished walk."""
-        false = jnp.asarray(False)
-        return _Walked(
-            part.springs,
-            zone,
-            duration,
-            part.impulse,
-            part.dissipation,
-            part.released,
-            part.gained,
-            part.last_release,
-            false,
-            false,
-            duration,
-            jnp.asarray(True),
-            duration,
-            false,
-        )
-
-
-class _Evolved(eqx.Module):
-    springs: SpringStates
-    impulse: jax.Array  # [slots] ∫f ds
-    dissipation: jax.Array  # [slots]
-
-
-class _Snap(eqx.Module):
-    springs: SpringStates
-    zone: jax.Array
-    dissipation: jax.Array  # −(Δ stored + ΔU)
 
 
 def zone_array(element: PronyElement, g, length, count, slots: int, stress, adhesion_range) -> DugdaleZoneArray:

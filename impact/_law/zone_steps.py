@@ -1,0 +1,77 @@
+"""The parts of a step of the viscoelastic Maugis–Dugdale array
+(`viscoelastic_dugdale.DugdaleZoneArray.advance`): a segment at loads linear in time, the zone's
+walk in sub-steps, the springs evolved in their modes, and a snap of the zone (its birth or
+collapse). Scaled units of `Scales`."""
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .viscoelastic_springs import SpringStates
+
+
+class Segment(eqx.Module):
+    """The springs after a segment of a step at zone loads linear in time, and its totals."""
+
+    springs: SpringStates
+    impulse: jax.Array
+    dissipation: jax.Array
+    released: jax.Array  # the edge's snaps letting go: (f_load − f)²/(2e₀) each
+    gained: jax.Array  # the edge's snaps attaching: ½e₀·Δu² each
+    last_release: jax.Array
+
+
+class Walked(eqx.Module):
+    """The zone's part of a step (`viscoelastic_dugdale.DugdaleZoneArray._zone_walk`)."""
+
+    springs: SpringStates
+    zone: jax.Array  # c where the walk stopped
+    elapsed: jax.Array  # time walked (the fold's time where it folds)
+    impulse: jax.Array
+    dissipation: jax.Array
+    released: jax.Array
+    gained: jax.Array
+    last_release: jax.Array
+    folds: jax.Array
+    overflow: jax.Array
+    length: jax.Array  # the next sub-step's length
+    finished: jax.Array  # the last sub-step reached the step's end
+    until: jax.Array  # where the walk ends: the step's end, or the fold once located
+    pending: jax.Array  # the fold is located: the walk goes on to it
+
+    @staticmethod
+    def held(part: "Segment", zone, duration) -> "Walked":
+        """A segment at fixed loads (the step the zone is born in, or none) as a finished walk."""
+        false = jnp.asarray(False)
+        return Walked(
+            part.springs,
+            zone,
+            duration,
+            part.impulse,
+            part.dissipation,
+            part.released,
+            part.gained,
+            part.last_release,
+            false,
+            false,
+            duration,
+            jnp.asarray(True),
+            duration,
+            false,
+        )
+
+
+class Evolved(eqx.Module):
+    """Each spring after a stretch of time in its mode, and its ∫f ds and dissipation."""
+
+    springs: SpringStates
+    impulse: jax.Array  # [slots] ∫f ds
+    dissipation: jax.Array  # [slots]
+
+
+class Snap(eqx.Module):
+    """The springs and the zone after the zone's birth or collapse, and what it dissipated."""
+
+    springs: SpringStates
+    zone: jax.Array
+    dissipation: jax.Array  # −(Δ stored + ΔU)
