@@ -87,6 +87,7 @@ class DugdaleZoneArray(eqx.Module):
         return ZoneSprings(SpringStates.virgin(self.slots, terms), jnp.zeros(()))
 
     def springs_of(self, state: ZoneSprings) -> SpringStates:
+        """The springs' states, without the zone's radius."""
         return state.springs
 
     def engaged(self, state: ZoneSprings):

@@ -86,6 +86,7 @@ class ViscoelasticArray(eqx.Module):
         return SpringStates.virgin(self.slots, terms)
 
     def springs_of(self, states: SpringStates) -> SpringStates:
+        """The springs' states: the array's state itself."""
         return states
 
     def engaged(self, states: SpringStates):
