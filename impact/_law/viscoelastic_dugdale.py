@@ -39,9 +39,9 @@ import jax.numpy as jnp
 
 from .outward_root import root_outward
 from .prony import PronyElement
-from .viscoelastic_springs import SpringStates, StepTotals, change_times
+from .viscoelastic_springs import Evolved, SpringStates, StepTotals, change_times
 from .zone_geometry import zone_kernel, zone_loads
-from .zone_steps import Evolved, Segment, Snap, Walked
+from .zone_steps import Segment, Snap, Walked
 
 # Sub-steps of the zone's path: c moves at most this many spacings in one (near the fold, where
 # c(t) runs as a square root of the time left, and after the zone's birth), down to the step over
@@ -289,7 +289,7 @@ class DugdaleZoneArray(eqx.Module):
         # Where the disc's edge rule held a spring past its own change, it snaps at E₀* (its force
         # onto its zone load, or its surface onto the body); else the jump is the root's residual.
         e0 = self.element.instantaneous
-        before = first.springs
+        before = first.states
         surplus = start_load + load_rate * change - self.element.force(before.displacement, before.stretches)
         onto = indentation + rate * change - self.profile
         jump = jnp.where(changing, jnp.where(leaving, surplus / e0, onto - before.displacement), 0.0)
@@ -297,7 +297,7 @@ class DugdaleZoneArray(eqx.Module):
         second = self._evolve(moved, start_load + load_rate * change, load_rate, rate, duration - change)
         width = 2.0 * self.spacing
         return Segment(
-            springs=second.springs,
+            springs=second.states,
             impulse=width * jnp.sum(first.impulse + second.impulse),
             dissipation=width * jnp.sum(first.dissipation + second.dissipation),
             released=width * jnp.sum(jnp.where(leaving, 0.5 * e0 * jump**2, 0.0)),
@@ -314,7 +314,7 @@ class DugdaleZoneArray(eqx.Module):
         forced = element.forced(springs.stretches, load, load_rate, duration)
         attached = springs.attached
         return Evolved(
-            springs=SpringStates(
+            states=SpringStates(
                 attached,
                 jnp.where(attached, springs.displacement + rate * duration, forced.displacement),
                 jnp.where(attached[:, None], loaded.stretches, forced.stretches),

@@ -149,7 +149,7 @@ class ViscoelasticArray(eqx.Module):
             last_release=jnp.max(jnp.where(leaving, change, -jnp.inf)),
         )
 
-    def _evolve(self, states: SpringStates, rate, duration) -> "_Evolved":
+    def _evolve(self, states: SpringStates, rate, duration) -> "Evolved":
         """Each spring after `duration` in its mode (attached: u follows the indenter at `rate`;
         free: creeping back)."""
         element = self.element
@@ -158,7 +158,7 @@ class ViscoelasticArray(eqx.Module):
         attached = states.attached
         stretches = jnp.where(attached[:, None], loaded.stretches, free)
         displacement = jnp.where(attached, states.displacement + rate * duration, element.free_displacement(free))
-        return _Evolved(
+        return Evolved(
             states=SpringStates(attached, displacement, stretches),
             impulse=jnp.where(attached, loaded.force_integral, 0.0),
             dissipation=jnp.where(attached, loaded.dissipation, free_dissipation),
@@ -224,7 +224,9 @@ def change_times(criterion, inputs, attached, duration):
     return jnp.where(attached, releases, attaches)
 
 
-class _Evolved(eqx.Module):
+class Evolved(eqx.Module):
+    """Each spring after a stretch of time in its mode, and its ∫f ds and dissipation."""
+
     states: SpringStates
     impulse: jax.Array  # [N] ∫f ds
     dissipation: jax.Array  # [N]

@@ -1,7 +1,6 @@
 """The parts of a step of the viscoelastic Maugis–Dugdale array
 (`viscoelastic_dugdale.DugdaleZoneArray.advance`): a segment at loads linear in time, the zone's
-walk in sub-steps, the springs evolved in their modes, and a snap of the zone (its birth or
-collapse). Scaled units of `Scales`."""
+walk in sub-steps, and a snap of the zone (its birth or collapse). Scaled units of `Scales`."""
 
 import equinox as eqx
 import jax
@@ -59,14 +58,6 @@ class Walked(eqx.Module):
             duration,
             false,
         )
-
-
-class Evolved(eqx.Module):
-    """Each spring after a stretch of time in its mode, and its ∫f ds and dissipation."""
-
-    springs: SpringStates
-    impulse: jax.Array  # [slots] ∫f ds
-    dissipation: jax.Array  # [slots]
 
 
 class Snap(eqx.Module):
