@@ -24,6 +24,7 @@ from .._core import derivatives
 from .._core.lanes import computed_once, only_where
 from .._core.pytree import replace, replace_where, where
 from .._core.quadrature import gauss_legendre, ordered_sum
+from .._law.dugdale_energy import closed_energy
 from .carry import Carry, close_phase, store_samples
 from .codes import ADVANCE, DONE, Status
 from .curve import CurveIntegrator, CurveProblem, after_ride
@@ -104,23 +105,36 @@ class CurveQuadrature(CurveIntegrator):
         def squared(depth, work):  # v² at the depth d after the work ∫F dd from the start
             return squared_speed((c.d, c.v), work, gravity, depth)
 
-        # The work density F·d'(s) at each cell's Gauss nodes; the work at the cells' ends,
-        # cumulative from the start; v² there.
+        # The work at the cells' ends, cumulative from the start, and v² there: from the curve's
+        # energy where it has one in closed form (`closed_energy`), else summed by each cell's
+        # Gauss–Legendre rule (the work density F·d'(s) at its nodes).
         cells = start + (far - start) * jnp.arange(_SCAN_CELLS + 1) / _SCAN_CELLS
-        nodes, weights = gauss_legendre(_CELL_NODES)
-        widths = cells[1:] - cells[:-1]
-        _, cell_forces, cell_slopes = riding(cells[:-1, None] + widths[:, None] * nodes)
-        densities = cell_forces * cell_slopes
-        cell_work = _prefix_sums(widths * ordered_sum(densities * weights))
-        values = squared(curve.depth(law, cells), cell_work)
+        energy = closed_energy(law, curve)
+        if energy is None:
+            nodes, weights = gauss_legendre(_CELL_NODES)
+            widths = cells[1:] - cells[:-1]
+            _, cell_forces, cell_slopes = riding(cells[:-1, None] + widths[:, None] * nodes)
+            densities = cell_forces * cell_slopes
+            cell_work = _prefix_sums(widths * ordered_sum(densities * weights))
+            cell_depths = curve.depth(law, cells)
+        else:
+            origin = energy(start)
+            cell_depths, cell_energies = computed_once(lambda x: (curve.depth(law, x), energy(x)), cells[None])
+            cell_work = cell_energies[0] - origin
+            cell_depths = cell_depths[0]
+        values = squared(cell_depths, cell_work)
         turned = values[-1] <= 0.0
         first = jnp.argmax(values[1:] <= 0.0)  # the cell where v² first reaches 0
         cell = (cells[first], cells[first + 1])
-        s_end, work, settled = only_where(
-            turned,
-            lambda: _turnaround(riding, squared, cell, cell_work[first], densities[first], gravity),
-            (far, cell_work[-1], jnp.zeros_like(far)),
-        )
+
+        def turnaround():
+            if energy is None:
+                estimate, exact = _cell_work(riding, cell, cell_work[first], densities[first])
+            else:
+                estimate = exact = lambda x: energy(x) - origin
+            return _turnaround(riding, squared, cell, cell_work[first], estimate, exact, gravity)
+
+        s_end, work, settled = only_where(turned, turnaround, (far, cell_work[-1], jnp.zeros_like(far)))
         energies = jnp.abs(values[0]) + jnp.abs(values[-1]) + 1.0
         settled = ~turned | (settled <= _SETTLED * energies)
         s_end = jnp.where(turned, s_end, far)
@@ -215,15 +229,11 @@ def _force_extremes(force_at, start, end, points, forces):
     return jnp.min(candidates), jnp.max(candidates)
 
 
-def _turnaround(riding, squared, cell, cell_work, densities, gravity):
-    """(s, the work ∫F dd from the ride's start to s, |v²| there) at the first root of v² in
-    `cell` (v² > 0 at its start, ≤ 0 at its end; the work `cell_work` at its start and the work
-    density F·d'(s) `densities` at its Gauss nodes). Newton steps on v² (d(v²)/ds =
-    2(g − F)·d'(s)), bisecting where a step would leave the bracket: first with the work from
-    the polynomial through the cell's densities (`_integral_within`), in the sub-cell of
-    `_SUB_CELLS` where v² so found turns; then `_POLISH_STEPS` from the best point so found, with
-    the work by the cell's Gauss–Legendre rule from its start. The point polished of least |v²|
-    is kept."""
+def _cell_work(riding, cell, cell_work, densities):
+    """(a quick, an exact) work ∫F dd from the ride's start to s in `cell`, given the work
+    `cell_work` at its start and the work density F·d'(s) `densities` at its Gauss nodes: from
+    the polynomial through those densities (`_integral_within`), and by the cell's
+    Gauss–Legendre rule from its start."""
     low, high = cell
     width = high - low
     safe_width = jnp.where(width != 0.0, width, 1.0)
@@ -236,6 +246,19 @@ def _turnaround(riding, squared, cell, cell_work, densities, gravity):
         _, force, slope = riding(low + (s - low) * nodes)
         return cell_work + (s - low) * ordered_sum(force * slope * weights)
 
+    return interpolated_work, work_to
+
+
+def _turnaround(riding, squared, cell, cell_work, estimate, exact, gravity):
+    """(s, the work ∫F dd from the ride's start to s, |v²| there) at the first root of v² in
+    `cell` (v² > 0 at its start, ≤ 0 at its end; the work `cell_work` at its start). Newton steps
+    on v² (d(v²)/ds = 2(g − F)·d'(s)), bisecting where a step would leave the bracket: first with
+    the work `estimate(s)`, in the sub-cell of `_SUB_CELLS` where v² so found turns; then
+    `_POLISH_STEPS` from the best point so found, with the work `exact(s)`. The point polished of
+    least |v²| is kept."""
+    low, high = cell
+    width = high - low
+
     def newton(s, work, lower, upper, best):  # a step from s, the bracket and the best point
         depth, force, slope = riding(s)
         value = squared(depth, work)
@@ -247,7 +270,7 @@ def _turnaround(riding, squared, cell, cell_work, densities, gravity):
         return jnp.where(inside, target, 0.5 * (lower + upper)), lower, upper, best
 
     subs = low + width * jnp.arange(_SUB_CELLS + 1) / _SUB_CELLS
-    sub_values = squared(riding(subs)[0], interpolated_work(subs))
+    sub_values = squared(riding(subs)[0], estimate(subs))
     first = jnp.argmax(sub_values[1:] <= 0.0)
     lower, upper = subs[first], subs[first + 1]
     above, below = sub_values[first], sub_values[first + 1]
@@ -255,14 +278,14 @@ def _turnaround(riding, squared, cell, cell_work, densities, gravity):
 
     def located(state, _):
         s, lower, upper, best = state
-        return newton(s, interpolated_work(s), lower, upper, best), None
+        return newton(s, estimate(s), lower, upper, best), None
 
     unknown = (low, cell_work, jnp.asarray(jnp.inf))
     (_, _, _, (s, _, _)), _ = jax.lax.scan(located, (s, lower, upper, unknown), None, length=_NEWTON_STEPS)
     lower, upper, best = low, high, unknown
     for _ in range(_POLISH_STEPS):
-        s, lower, upper, best = newton(s, work_to(s), lower, upper, best)
-    work = work_to(s)
+        s, lower, upper, best = newton(s, exact(s), lower, upper, best)
+    work = exact(s)
     last = jnp.abs(squared(riding(s)[0], work))
     return jax.tree.map(lambda x, y: jnp.where(last <= best[2], x, y), (s, work, last), best)
 
