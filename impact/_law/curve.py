@@ -16,6 +16,7 @@ import jax
 import jax.numpy as jnp
 
 from .._core.derivatives import implicit_root
+from .._core.lanes import only_where
 from .._core.search import bisect
 from .branches import next_rising, previous_rising, sign_changes
 from .scales import Scales
@@ -191,11 +192,13 @@ class AbstractCurve(eqx.Module):
         """The cascade at level d from `start`: outward, the first rising state beyond it (s,
         segment, blocked); inward, the last rising state below it (s, segment, released:
         no state holds, the body leaves the range of the adhesive stress). One inversion of d(s)
-        for either."""
+        for either, where a rising state is found."""
         out_segment, blocked = next_rising(self.nodes, self.levels, self.increasing, start, depth)
         in_segment, released = previous_rising(self.nodes, self.levels, self.increasing, start, depth)
         segment = jnp.where(outward, out_segment, in_segment)
-        landing = self.invert(law, depth, segment)
+        # Inverted only where a rising state is found (a batch where none is skips it).
+        found = jnp.where(outward, ~blocked, ~released)
+        landing = only_where(found, lambda: self.invert(law, depth, segment), jnp.zeros_like(self.nodes[segment]))
         out_s = jnp.where(blocked, self.nodes[-1], jnp.maximum(landing, start))
         in_s = jnp.where(released, 0.0, jnp.minimum(landing, start))
         return jnp.where(outward, out_s, in_s), segment, jnp.where(outward, blocked, released)

@@ -52,9 +52,10 @@ _RADIUS_NEWTON_STEPS = 12
 _CONTACT_LOG_SPAN = 40.0
 _ZONE_POINTS, _CONTACT_POINTS = 192, 640
 _PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS = 32, 128
-# Turning points: bisection to 2^-24 of their grid cell, then Newton steps on dd/ds.
-_TURN_BISECTION_STEPS = 24
-_TURN_NEWTON_STEPS = 2
+# Turning points: bisection to 2^-8 of their grid cell, then Newton steps on dd/ds (clamped to
+# the bracket): each squares the error, the third to round-off.
+_TURN_BISECTION_STEPS = 8
+_TURN_NEWTON_STEPS = 3
 
 
 def degree_of(profile: Profile) -> jax.Array:
