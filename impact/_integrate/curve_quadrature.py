@@ -7,9 +7,10 @@ v²(s) = v₀² − 2∫F d'(s) ds + 2g·(d(s) − d₀) (unit mass, scaled). As
 (`quadrature`), a phase ends at its segment's end where v² > 0 there, else at the first root of
 v² (a turnaround), and lasts t = ∫ d'(s) / |v(s)| ds, by the same graded rule in θ with
 s = s₀ + (s₁ − s₀)·(1 − cos πθ)/2 (which takes away the 1/√ singularity of 1/v at a turnaround).
-The curve has no closed-form work: ∫F d'(s) ds is summed by Gauss–Legendre from the phase's
-start, cell by cell along the segment (the curve is smooth on a segment), and at the rule's
-nodes by its panels' spectral integration matrices (`_rule`). The jumps between segments, the
+The work ∫F d'(s) ds is the difference of the curve's energy where it has one in closed form
+(the Maugis–Dugdale paraboloid: `_law.dugdale_energy`); elsewhere it is summed by Gauss–Legendre
+from the phase's start, cell by cell along the segment (the curve is smooth on a segment). At
+the rule's nodes it comes from its panels' spectral integration matrices (`_rule`). The jumps between segments, the
 memory of a hysteretic path and the statuses are the ODE rider's (`curve.after_ride`), so the
 two differ only in how a ride along a segment is followed.
 """
@@ -34,9 +35,10 @@ from .ride import in_contact
 from .work import ContactSummary, squared_speed
 
 # Cells scanned along the segment for the first root of v², each summed by a Gauss–Legendre rule
-# of _CELL_NODES; the cell where v² reaches 0 scanned in _SUB_CELLS, then Newton steps on v²
-# inside the sub-cell, the work within the cell from the polynomial through its rule's nodes;
-# then _POLISH_STEPS Newton steps with the work by the cell's rule.
+# of _CELL_NODES (without a closed-form energy); the cell where v² reaches 0 scanned in
+# _SUB_CELLS, then Newton steps on v² inside the sub-cell, the work within the cell from the
+# polynomial through its rule's nodes; then _POLISH_STEPS Newton steps with the work by the
+# cell's rule (with a closed-form energy, every step's work from it).
 _SCAN_CELLS = 8
 _CELL_NODES = 16
 _SUB_CELLS = 8
