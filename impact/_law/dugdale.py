@@ -289,9 +289,9 @@ def _grid_states(law: DugdaleLaw, curve: DugdaleCurve, grid):
     (`computed_once`: the reach's cumulative sums and the search for turning points read them
     all)."""
 
-    def at(s):
-        depth, force, slope = curve.riding(law, s)
-        return depth, force, slope, curve.state(law, s)[2]
+    def at(s):  # the states and dd/ds by one forward derivative
+        (depth, force, radius), (slope, _, _) = jax.jvp(lambda x: curve.state(law, x)[:3], (s,), (jnp.ones_like(s),))
+        return depth, force, slope, radius
 
     return jax.tree.map(lambda values: values.reshape(grid.shape), computed_once(at, grid.reshape(-1, 16)))
 
