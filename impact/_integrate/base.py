@@ -53,6 +53,13 @@ _ROOT_RTOL, _ROOT_ATOL = 1e-14, 1e-15
 # takes much longer to trace.
 _STAGE_LOOP = "lax"
 
+# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve. It is a
+# constant of the program (a Python float): diffrax rounds a step that ends within 100 ulps of
+# the horizon to it, and XLA then folds the chain of 100 `nextafter`s that computes that bound.
+PHASE_HORIZON = 1.0e4
+# Where the ride of a lane that is not in contact ends (its result is discarded): at once.
+_IDLE_HORIZON = 1e-9
+
 # A ride's state is padded with zeros to a multiple of this many components, so that a point's
 # result does not depend on its batch. A Runge–Kutta step sums its stages with the tableau's
 # constant weights; under vmap that sum is one matrix–vector product over every lane's
@@ -103,9 +110,11 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator[ProblemT]):
         if self.adjoint not in ADJOINTS:
             raise ValueError(f"unknown adjoint {self.adjoint!r}; known: {', '.join(ADJOINTS)}")
 
-    def ride(self, vector_field, first_event, y0, args, horizon, dense: bool) -> "dfx.Solution":
+    def ride(self, vector_field, first_event, y0, args, active, dense: bool) -> "dfx.Solution":
         """Integrate one phase from pseudo-time 0 until `first_event(t, y, args)` crosses zero
-        upwards (located by the Illinois method to a few ulps) or `horizon` is reached.
+        upwards (located by the Illinois method to a few ulps) or `PHASE_HORIZON` is reached;
+        where not `active` (a lane of a batch in another phase: its result is discarded), until
+        the pseudo-time `_IDLE_HORIZON`, at once.
 
         The state is integrated padded with zeros (`_STATE_TILE`); the solution's `ys` are
         not, its dense output is (`dense_states` strips it)."""
@@ -121,7 +130,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator[ProblemT]):
             return jnp.concatenate([vector_field(t, y[:size], args), padding])
 
         def event(t, y, args, **kwargs):
-            return first_event(t, y[:size], args, **kwargs)
+            return jnp.where(active, first_event(t, y[:size], args, **kwargs), t - _IDLE_HORIZON)
 
         def norm(error):  # the padding's zero error left out: the steps of the unpadded state
             return optx.rms_norm(error[:size])
@@ -130,7 +139,7 @@ class AbstractAdaptiveIntegrator(AbstractIntegrator[ProblemT]):
             dfx.ODETerm(padded_field),
             getattr(dfx, SOLVERS[self.method])(scan_kind=_STAGE_LOOP),
             t0=0.0,
-            t1=horizon,
+            t1=PHASE_HORIZON,
             dt0=None,
             y0=jnp.concatenate([y0, padding]),
             args=args,

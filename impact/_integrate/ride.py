@@ -28,11 +28,6 @@ from .work import ContactSummary
 if TYPE_CHECKING:
     import diffrax as dfx
 
-# A contact phase lasts O(1) in scaled time; this horizon only stops a runaway solve.
-PHASE_HORIZON = 1.0e4
-# The horizon of a ride that is not in contact (its result is discarded): it ends at once.
-_IDLE_HORIZON = 1e-9
-
 
 class AbstractPhaseArgs(eqx.Module):
     """What every ride's vector field and conditions read besides the law's own arguments."""
@@ -165,7 +160,7 @@ class AbstractRidingIntegrator(AbstractAdaptiveIntegrator[ProblemT], Generic[Pro
             first_event,
             self.start(options, args, c),
             args,
-            horizon=jnp.where(active, PHASE_HORIZON, _IDLE_HORIZON),
+            active=active,
             dense=self.dense(options),
         )
         found, y_end, turned, out_of_time = located_end(solution, self.all_conditions, args)

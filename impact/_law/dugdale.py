@@ -224,8 +224,8 @@ def _sine_excess(x, sine, cosine):
     """S(x) = sin x − x·cos x = ∫_0^x φ·sin φ dφ from sin x and cos x, without cancellation at
     small x."""
     square = x * x
-    series = jnp.zeros_like(x)
-    for coefficient in reversed(_SERIES):
+    series = jnp.full_like(x, _SERIES[-1])  # Horner's rule from its last coefficient: 0·x² + c, one step less
+    for coefficient in reversed(_SERIES[:-1]):
         series = series * square + coefficient
     return jnp.where(x < _SERIES_BELOW, x * square * series, sine - x * cosine)
 
@@ -241,15 +241,23 @@ class DugdaleCurve(AbstractCurve):
 
     def state(self, law: DugdaleLaw, s):
         """(d, F, a, b) at s."""
-        contact = s > self.junction
+        return self.joined(law, s, law.contact(self.share(s)))
+
+    def share(self, s):
+        """The zone share p = e^(b_J − s) of the contact at s (1 in the zone without contact)."""
+        return jnp.exp(jnp.minimum(self.junction - s, 0.0))
+
+    def joined(self, law: DugdaleLaw, s, contact):
+        """(d, F, a, b) at s, given `contact`, the (d, F, a, b) of `law.contact` at `share(s)`."""
+        closed = s > self.junction
         zone = jnp.minimum(s, self.junction)
         zone_depth, zone_force = law.zone(zone, self.junction)
-        depth, force, radius, contact_zone = law.contact(jnp.exp(jnp.minimum(self.junction - s, 0.0)))
+        depth, force, radius, contact_zone = contact
         return (
-            jnp.where(contact, depth, zone_depth),
-            jnp.where(contact, force, zone_force),
-            jnp.where(contact, radius, 0.0),
-            jnp.where(contact, contact_zone, zone),
+            jnp.where(closed, depth, zone_depth),
+            jnp.where(closed, force, zone_force),
+            jnp.where(closed, radius, 0.0),
+            jnp.where(closed, contact_zone, zone),
         )
 
     def grid(self, law: DugdaleLaw):

@@ -28,18 +28,18 @@ def closed_energy(law, curve) -> Callable[[jax.Array], jax.Array] | None:
     """s ↦ U(s) of `curve` where it is the Maugis–Dugdale paraboloid's (`curve_energy`); None
     for every other curve (static: known from the types)."""
     if isinstance(curve, DugdaleCurve) and isinstance(law, DugdaleLaw) and law.closed_degree == 2:
-        return lambda s: curve_energy(law, curve.junction, s)
+        return lambda s: curve_energy(law, curve, s)
     return None
 
 
-def curve_energy(law: DugdaleLaw, junction, s):
+def curve_energy(law: DugdaleLaw, curve: DugdaleCurve, s):
     """U at the curve parameter s (`DugdaleCurve`: s = b ≤ b_J in the zone, s = b_J − ln p in
     contact) of a paraboloid, scaled: the work ∫F dd along the curve is its difference."""
     assert law.closed_degree == 2, "the curve's energy is in closed form for the paraboloid only"
-    stress, unit = law.stress, law.g_unit()
+    stress, unit, junction = law.stress, law.g_unit(), curve.junction
     zone = jnp.minimum(s, junction)
     zone_energy = stress * zone**3 * (4.0 / 3.0 * stress - 0.5 * jnp.pi * law.f_unit() * zone)
-    share = jnp.exp(jnp.minimum(junction - s, 0.0))
+    share = curve.share(s)
     angles = zone_angles(share)
     ratio, opening, angle = angles
     radius = law.zone_radius(share, angles)

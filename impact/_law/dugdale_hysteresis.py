@@ -69,12 +69,17 @@ class HystereticLaw(eqx.Module):
         return -self.approach_range
 
 
-def frozen_state(law: DugdaleLaw, zone, phi, closed=None):
+def frozen_share(phi):
+    """The zone share p = e^(−φ) of the frozen zone's contact at φ (1 without contact, φ < 0)."""
+    return jnp.exp(-jnp.where(phi >= 0.0, phi, 0.0))
+
+
+def frozen_state(law: DugdaleLaw, zone, phi, closed=None, contact=None):
     """(d, F, a, b) of the frozen zone of radius b = `zone` at φ (3.154, 3.156 with b fixed);
     `closed`: whether the contact's formula holds (default φ ≥ 0; given, it continues across the
-    kink at φ = 0)."""
+    kink at φ = 0); `contact`: `law.contact(frozen_share(φ), zone)`, if already at hand."""
     closed = phi >= 0.0 if closed is None else closed
-    depth, force, radius, _ = law.contact(jnp.exp(-jnp.where(phi >= 0.0, phi, 0.0)), zone)
+    depth, force, radius, _ = law.contact(frozen_share(phi), zone) if contact is None else contact
     open_depth = -2.0 * law.stress * zone + phi
     return (
         jnp.where(closed, depth, open_depth),
@@ -161,10 +166,17 @@ class HysteresisCurve(AbstractCurve):
         range_ = jnp.where(detaching, law.detach.range, law.approach_range)
         outer_law = eqx.tree_at(lambda outer: outer.range, law.detach, range_)
         junction = jnp.where(detaching, self.detach.junction, self.approach.junction)
-        outer = eqx.tree_at(lambda curve: curve.junction, self.detach, junction).state(outer_law, along)
-        frozen_phi = self.switches_at[0] + where_part - self.lower
-        frozen = frozen_state(law.detach, self.zone, self.switches_at[0] + s - self.lower, frozen_phi >= 0.0)
-        return tuple(jnp.where(part == 1, f, o) for o, f in zip(outer, frozen, strict=True))
+        outer_curve = eqx.tree_at(lambda curve: curve.junction, self.detach, junction)
+        frozen_phi = self.switches_at[0] + s - self.lower
+        # The contact's formulas once, at the part's share and zone radius: the outer curve's b
+        # from its range condition, the frozen zone's b_f (the laws differ only in the range).
+        frozen = part == 1
+        share = jnp.where(frozen, frozen_share(frozen_phi), outer_curve.share(along))
+        contact = law.detach.contact(share, jnp.where(frozen, self.zone, outer_law.zone_radius(share)))
+        outer = outer_curve.joined(outer_law, along, contact)
+        closed = self.switches_at[0] + where_part - self.lower >= 0.0
+        frozen_part = frozen_state(law.detach, self.zone, frozen_phi, closed, contact)
+        return tuple(jnp.where(frozen, f, o) for o, f in zip(outer, frozen_part, strict=True))
 
     def grid(self, law: HystereticLaw):
         """The detach curve's grid to s1, the frozen zone's ends, the approach curve's beyond s2."""

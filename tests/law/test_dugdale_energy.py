@@ -48,7 +48,7 @@ def test_energy_differences_are_the_work_along_the_curve(tabor):
         (junction, top),
         (junction + 0.5 * (top - junction), junction + 40.0),
     ]:
-        energies = np.asarray(curve_energy(law, curve.junction, jnp.asarray([start, end])))
+        energies = np.asarray(curve_energy(law, curve, jnp.asarray([start, end])))
         expected = gauss_work(law, curve, start, junction) + gauss_work(law, curve, junction, end)
         if start >= junction:
             expected = gauss_work(law, curve, start, end)
@@ -67,14 +67,13 @@ def test_energy_slope_is_the_force_times_the_depth_slope(tabor):
     states = jnp.asarray(
         np.concatenate([junction * np.array([0.05, 0.5, 0.95]), junction + np.array([0.1, 2.0, 20.0])])
     )
-    energy, slope = jax.jvp(lambda s: curve_energy(law, curve.junction, s), (states,), (jnp.ones_like(states),))
+    energy, slope = jax.jvp(lambda s: curve_energy(law, curve, s), (states,), (jnp.ones_like(states),))
     _, force, depth_slope = curve.riding(law, states)
     density = np.asarray(force * depth_slope)
     tolerance = 1e-13 * (np.abs(density) + np.abs(np.asarray(energy)))
     assert np.all(np.abs(np.asarray(slope) - density) <= tolerance)
     below, above = (
-        float(curve_energy(law, curve.junction, jnp.asarray(s)))
-        for s in (junction, np.nextafter(junction, 2 * junction))
+        float(curve_energy(law, curve, jnp.asarray(s))) for s in (junction, np.nextafter(junction, 2 * junction))
     )
     assert above == pytest.approx(below, rel=1e-15, abs=0.0)
 

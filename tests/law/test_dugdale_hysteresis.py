@@ -10,6 +10,7 @@ import dataclasses
 import math
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -18,6 +19,8 @@ from scipy.optimize import brentq
 
 from impact import load_scene, simulate, theory
 from impact._integrate.curve import CurveIntegrator
+from impact._law.dugdale import DugdaleLaw
+from impact._law.dugdale_hysteresis import frozen_state
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep.closed_forms import closed_form_name
@@ -123,6 +126,34 @@ def test_frozen_zone_solves_3_152_3_154_3_156_with_b_fixed(tabor, share):
             lambda a, gap=gap: frozen_reference(g, a, b, stress)[2] - gap, 1e-6 * b, b * (1 - 1e-12), xtol=1e-20
         )
         assert abs(end - root) <= 1e-10 * A_JKR
+
+
+@pytest.mark.slow
+def test_the_path_is_each_parts_own_formula_from_one_evaluation_of_the_contact(monkeypatch):
+    """Along the detach curve, the frozen zone and the approach curve the path's state is the
+    part's own formula bit for bit (`DugdaleCurve.state` of the detach or approach law at its
+    own parameter, `frozen_state` at φ = φ_d + s − s1), though the path evaluates the contact's
+    formulas once for all three parts (traced once per state, not twice)."""
+    _, law, path = path_of(scene(1.0, 0.5), fraction=0.4)
+    lower, upper = float(path.lower), float(path.upper)
+    detach = jnp.asarray(lower * np.array([0.2, 0.6, 0.9]))
+    frozen = jnp.asarray(lower + (upper - lower) * np.array([0.1, 0.5, 0.9]))
+    approach = jnp.asarray(upper + np.array([0.1, 1.0, 3.0]))
+    state = eqx.filter_jit(lambda path, law, s: path.state(law, s))
+    along = path.start + approach - path.upper
+    expected = (
+        eqx.filter_jit(lambda curve, law, s: curve.state(law, s))(path.detach, law.detach, detach),
+        eqx.filter_jit(frozen_state)(law.detach, path.zone, path.switches_at[0] + frozen - path.lower),
+        eqx.filter_jit(lambda curve, law, s: curve.state(law, s))(path.approach, law.approach, along),
+    )
+    for points, reference in zip((detach, frozen, approach), expected, strict=True):
+        for value, other in zip(state(path, law, points), reference, strict=True):
+            np.testing.assert_array_equal(np.asarray(value), np.asarray(other))
+    traced: list[int] = []
+    contact = DugdaleLaw.contact
+    monkeypatch.setattr(DugdaleLaw, "contact", lambda *args, **kwargs: traced.append(1) or contact(*args, **kwargs))
+    jax.make_jaxpr(lambda s: path.state(law, s))(frozen)
+    assert len(traced) == 1
 
 
 @pytest.mark.parametrize(
