@@ -261,15 +261,20 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
 
     def _midpoint(self, problem: ViscoelasticProblem, walk: "_Walk"):
         """The step's springs, totals and v½ = (v + v')/2 of the implicit midpoint rule: fixed-point
-        evaluations from v½ = v − h·F/2 (scaled mass 1)."""
+        evaluations from v½ = v − h·F/2 (scaled mass 1). The evaluations are the iterations of
+        one loop, so that the array's step is compiled once."""
         c, array, h = walk.carry, problem.array, walk.length
 
-        def corrected(_, half):
-            return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
+        def evaluation(iteration, evaluated):
+            half = evaluated[2]
+            springs, totals = array.advance(walk.springs, c.d, half, h)
+            corrected = jnp.where(iteration < self.ITERATIONS - 1, c.v - 0.5 * totals.impulse, half)
+            return springs, totals, corrected
 
-        half = jax.lax.fori_loop(0, self.ITERATIONS - 1, corrected, c.v - 0.5 * h * walk.force)
-        springs, totals = array.advance(walk.springs, c.d, half, h)
-        return springs, totals, half
+        start = c.v - 0.5 * h * walk.force
+        shapes = jax.eval_shape(lambda: array.advance(walk.springs, c.d, start, h))
+        empty = jax.tree.map(lambda shape: jnp.zeros(shape.shape, shape.dtype), shapes)
+        return jax.lax.fori_loop(0, self.ITERATIONS, evaluation, (*empty, start))
 
 
 class _FirstContact(eqx.Module):
