@@ -378,7 +378,7 @@ class DugdaleZoneArray(eqx.Module):
             return self.range_excess(after.springs, indentation + rate * duration, zone)
 
         start = 0.5 * self.spacing
-        zone, _ = root_outward(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
+        zone, _, _ = root_outward(excess, start, self.spacing, self.length, value=-1.0)
         born = ZoneSprings(jumped(zone), zone)
         dissipation = self.stored(ZoneSprings(springs, zone)) - self.stored(born) - self.interface(born, indentation)
         return Snap(born.springs, zone, dissipation)
@@ -408,10 +408,8 @@ class DugdaleZoneArray(eqx.Module):
             after = self._segment(springs, safe, end, indentation, rate, duration)
             return self.range_excess(after.springs, depth, end)
 
-        here = excess(safe)
-        outward = here < 0.0
-        root, found = root_outward(excess, safe, here, jnp.where(outward, 1.0, -1.0), self.spacing, self.length)
-        return root, found, outward
+        root, found, here = root_outward(excess, safe, self.spacing, self.length)
+        return root, found, here < 0.0
 
 
 def zone_array(element: PronyElement, g, length, count, slots: int, stress, adhesion_range) -> DugdaleZoneArray:
