@@ -115,12 +115,11 @@ def root_outward(function, start, spacing, length, value=None):
             steps=steps + 1,
             bracketed=search.bracketed,
         )
-        return jax.tree.map(
-            lambda first, doubling, falsi: jnp.where(phase == _START, first, jnp.where(phase == _EXPAND, doubling, falsi)),
-            at_start,
-            expanded,
-            refined,
-        )
+
+        def by_phase(first, doubling, falsi):
+            return jnp.where(phase == _START, first, jnp.where(phase == _EXPAND, doubling, falsi))
+
+        return jax.tree.map(by_phase, at_start, expanded, refined)
 
     start = jnp.asarray(start)
     zero = jnp.zeros((), int)
