@@ -32,11 +32,12 @@ class _Search(NamedTuple):
     bracketed: jax.Array
 
 
-def root_outward(function, start, spacing, length, value=None):
+def root_outward(function, start, spacing, length, value=None, skip=False):
     """(root, found, value): the first sign change of the scalar `function` from `start` within
     (0, `length`], outward (c grows) where the function is negative at `start` (its `value`
     there, evaluated where None) and inward else: steps doubling from `_FIRST_STEP`·Δx to a
-    bracket, then Illinois's regula falsi; `root` is `start` where none is found."""
+    bracket, then Illinois's regula falsi; `root` is `start` where none is found. Where `skip`
+    (traced), nothing is evaluated and nothing found."""
     lowest = 1e-9 * spacing
 
     def settling(low, high, steps):
@@ -125,7 +126,7 @@ def root_outward(function, start, spacing, length, value=None):
     zero = jnp.zeros((), int)
     given = jnp.zeros_like(start) if value is None else jnp.asarray(value, start.dtype)
     first = _Search(
-        phase=jnp.asarray(_START if value is None else jnp.where(given == 0.0, _DONE, _EXPAND)),
+        phase=jnp.where(skip, _DONE, _START if value is None else jnp.where(given == 0.0, _DONE, _EXPAND)),
         start_value=given,
         low=start,
         low_value=given,
@@ -133,7 +134,7 @@ def root_outward(function, start, spacing, length, value=None):
         high_value=given,
         side=zero,
         steps=zero,
-        bracketed=jnp.asarray(value is not None) & (given == 0.0),
+        bracketed=~jnp.asarray(skip) & jnp.asarray(value is not None) & (given == 0.0),
     )
     search = jax.lax.while_loop(searching, evaluate, first)
     root = jnp.where(jnp.abs(search.low_value) <= jnp.abs(search.high_value), search.low, search.high)

@@ -158,11 +158,7 @@ class DugdaleZoneArray(eqx.Module):
         )
         springs = jax.tree.map(lambda b, k: jnp.where(born, b, k), birth.springs, before.springs)
         zone = jnp.where(born, birth.zone, zone)
-        walk = jax.lax.cond(
-            on & (rest > 0.0),
-            lambda: self._zone_walk(springs, zone, depth, rate, rest),
-            lambda: Walked.held(self._segment(springs, zone, zone, depth, rate, rest), zone, rest),
-        )
+        walk = self._zone_walk(springs, zone, depth, rate, rest, held=~(on & (rest > 0.0)))
         folds = walk.folds
         folded = depth + rate * walk.elapsed
         collapse = self._collapse(ZoneSprings(walk.springs, walk.zone), folded)
@@ -184,7 +180,7 @@ class DugdaleZoneArray(eqx.Module):
             last_release=last_release,
         )
 
-    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration) -> Walked:
+    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration, held) -> Walked:
         """The zone's part of a step: sub-steps, each with the loads linear in time to the root of
         the range condition at its end, halved (down to the step / 2^`_SUBSTEP_HALVINGS`) where c
         would move more than `_SUBSTEP_MOVE`·Δx or the root is lost, doubled again after each one
@@ -192,7 +188,8 @@ class DugdaleZoneArray(eqx.Module):
         sub-step (`FOLD_HALVINGS` halvings, iterations of the walk's own loop, so that the range
         condition's search is compiled once), the walk goes on to it (c runs there as a square
         root of the time left: the sub-steps shrink towards it) and stops. No root outward: the
-        zone outgrows the array (`overflow`), the walk stops."""
+        zone outgrows the array (`overflow`), the walk stops. `held` (the step the zone is born in,
+        or none): one sub-step at the loads of `zone`, no search."""
         shortest = duration * 2.0**-_SUBSTEP_HALVINGS
         zero = jnp.zeros_like(duration)
 
@@ -207,8 +204,9 @@ class DugdaleZoneArray(eqx.Module):
             bisecting = fold.halvings < FOLD_HALVINGS
             middle = 0.5 * (fold.low + fold.high)
             end, found, outward = self._zone_end(
-                walk.springs, walk.zone, depth, rate, jnp.where(bisecting, middle, length)
+                walk.springs, walk.zone, depth, rate, jnp.where(bisecting, middle, length), held
             )
+            end, found, outward = jnp.where(held, walk.zone, end), found | held, outward & ~held
             # A halving of the fold's bracket: the range condition keeps a root up to `low`.
             low = jnp.where(found, middle, fold.low)
             located_at = fold.halvings + 1 == FOLD_HALVINGS
@@ -400,11 +398,11 @@ class DugdaleZoneArray(eqx.Module):
         dissipation = self.stored(state) + self.interface(state, indentation) - self.stored(gone)
         return Snap(snapped, jnp.zeros(()), dissipation)
 
-    def _zone_end(self, springs: SpringStates, zone, indentation, rate, duration):
+    def _zone_end(self, springs: SpringStates, zone, indentation, rate, duration, skip=False):
         """(c₁, found, outward): the zone radius at the end of a step from `zone` that satisfies the range
         condition there, the springs having crept under loads linear in time to f(c₁); the root
         nearest `zone` in the direction the condition points (`outward`: c grows). Not found
-        inward: the fold."""
+        inward: the fold. Nothing searched (nor found) where `skip`."""
         depth = indentation + rate * duration
         safe = jnp.where(zone > 0.0, zone, 0.5 * self.spacing)
 
@@ -412,7 +410,7 @@ class DugdaleZoneArray(eqx.Module):
             after = self._segment(springs, safe, end, indentation, rate, duration)
             return self.range_excess(after.springs, depth, end)
 
-        root, found, here = root_outward(excess, safe, self.spacing, self.length)
+        root, found, here = root_outward(excess, safe, self.spacing, self.length, skip=skip)
         return root, found, here < 0.0
 
 

@@ -58,28 +58,6 @@ class Walked(eqx.Module):
     pending: jax.Array  # the fold is located (or being located): the walk goes on to it
     fold: FoldBracket  # the fold's bisection, iterations of the walk's loop
 
-    @staticmethod
-    def held(part: "Segment", zone, duration) -> "Walked":
-        """A segment at fixed loads (the step the zone is born in, or none) as a finished walk."""
-        false = jnp.asarray(False)
-        return Walked(
-            part.springs,
-            zone,
-            duration,
-            part.impulse,
-            part.dissipation,
-            part.released,
-            part.gained,
-            part.last_release,
-            false,
-            false,
-            duration,
-            jnp.asarray(True),
-            duration,
-            false,
-            FoldBracket.idle(duration),
-        )
-
 
 class Snap(eqx.Module):
     """The springs and the zone after the zone's birth or collapse, and what it dissipated."""
