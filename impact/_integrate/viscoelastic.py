@@ -30,7 +30,6 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 
-from .. import theory
 from .._core.pytree import replace, where
 from .._core.types import Parameter
 from .._law.jkr import hess_coefficients
@@ -38,8 +37,8 @@ from .._law.law import ContactLaw
 from .._law.reach import radius_bound
 from .._law.scales import Scales, energy_scales
 from .._law.viscoelastic import Viscoelastic
-from .._law.viscoelastic_dugdale import DugdaleZoneArray, zone_array
-from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray, spring_array
+from .._law.viscoelastic_dugdale import DugdaleZoneArray
+from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
@@ -52,7 +51,6 @@ from .work import ContactSummary
 # Default array length: the body's extent, or this margin over the bound on the contact radius of
 # the relaxed medium (E∞*: the softest, so the widest contact).
 _LENGTH_MARGIN = 1.25
-_ZONE_WIDTHS = 4.0
 
 
 class ViscoelasticProblem(AbstractProblem):
@@ -90,7 +88,6 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
     capacity: int = eqx.field(static=True)  # slots of the compiled array (≥ N)
     dt: float  # step (s)
     max_steps: int = eqx.field(static=True, default=4096)  # steps a contact may take
-    dugdale: bool = eqx.field(static=True, default=False)  # Maugis–Dugdale adhesion: a zone array
 
     ITERATIONS: ClassVar[int] = 3  # evaluations of the springs per step (the implicit midpoint)
 
@@ -110,26 +107,13 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
         elastic = ContactLaw(profile, scales, relaxed, relaxed_attach, options.adhesive)
         touch_speed = speed / scales.velocity
         reach, bounded = radius_bound(elastic, relaxed_attach, touch_speed)
-        default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * reach)
+        # Beyond the bound on the contact, the room the law's adhesion needs outside it (a Dugdale zone).
+        default = jnp.minimum(elastic.extent(), _LENGTH_MARGIN * reach) + law.zone_room(scales, E_star)
         length = jnp.where(jnp.isnan(physics.spring_length), default, physics.spring_length / scales.radial)
-        detach, attach = law.hess_lengths(scales, E_star, options.adhesive)
         count = physics.spring_count.astype(int)
         element = law.element(scales, E_star)
-        array: ViscoelasticArray | DugdaleZoneArray
-        if self.dugdale:
-            # Beyond the JKR bound on the contact, room for the Dugdale zone (its JKR-limit width
-            # (π/4)·E∞*·Δγ/σ0², `theory.dugdale_zone_width`, `_ZONE_WIDTHS` times).
-            zone = theory.dugdale_zone_width(E_star, law.work_of_adhesion, law.adhesive_stress) / scales.radial
-            length = jnp.where(
-                jnp.isnan(physics.spring_length), default + _ZONE_WIDTHS * zone, physics.spring_length / scales.radial
-            )
-            stress = law.adhesive_stress * scales.radial / (E_star * scales.normal)
-            adhesion_range = law.work_of_adhesion / law.adhesive_stress / scales.normal
-            array = zone_array(element, elastic.g, length, count, self.capacity, stress, adhesion_range)
-            start = -physics.gap / scales.normal - adhesion_range  # where the tip comes within range
-        else:
-            array = spring_array(element, elastic.g, length, count, self.capacity, detach, attach)
-            start = -physics.gap / scales.normal
+        array = law.spring_array(element, elastic.g, length, count, self.capacity, scales, E_star, options.adhesive)
+        start = -physics.gap / scales.normal - law.adhesion_range(scales)  # where the tip comes within range
         return ViscoelasticProblem(
             motion=motion_of(physics, options, scales, start, touch_speed),
             bounded=bounded | jnp.isfinite(elastic.extent()),
@@ -261,15 +245,20 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
 
     def _midpoint(self, problem: ViscoelasticProblem, walk: "_Walk"):
         """The step's springs, totals and v½ = (v + v')/2 of the implicit midpoint rule: fixed-point
-        evaluations from v½ = v − h·F/2 (scaled mass 1)."""
+        evaluations from v½ = v − h·F/2 (scaled mass 1). The evaluations are the iterations of
+        one loop, so that the array's step is compiled once."""
         c, array, h = walk.carry, problem.array, walk.length
 
-        def corrected(_, half):
-            return c.v - 0.5 * array.advance(walk.springs, c.d, half, h)[1].impulse
+        def evaluation(iteration, evaluated):
+            half = evaluated[2]
+            springs, totals = array.advance(walk.springs, c.d, half, h)
+            corrected = jnp.where(iteration < self.ITERATIONS - 1, c.v - 0.5 * totals.impulse, half)
+            return springs, totals, corrected
 
-        half = jax.lax.fori_loop(0, self.ITERATIONS - 1, corrected, c.v - 0.5 * h * walk.force)
-        springs, totals = array.advance(walk.springs, c.d, half, h)
-        return springs, totals, half
+        start = c.v - 0.5 * h * walk.force
+        shapes = jax.eval_shape(lambda: array.advance(walk.springs, c.d, start, h))
+        empty = jax.tree.map(lambda shape: jnp.zeros(shape.shape, shape.dtype), shapes)
+        return jax.lax.fori_loop(0, self.ITERATIONS, evaluation, (*empty, start))
 
 
 class _FirstContact(eqx.Module):

@@ -41,15 +41,13 @@ from .outward_root import root_outward
 from .prony import PronyElement
 from .viscoelastic_springs import Evolved, SpringStates, StepTotals, change_times
 from .zone_geometry import zone_kernel, zone_loads
-from .zone_steps import Segment, Snap, Walked
+from .zone_steps import FOLD_HALVINGS, FoldBracket, Segment, Snap, Walked
 
 # Sub-steps of the zone's path: c moves at most this many spacings in one (near the fold, where
 # c(t) runs as a square root of the time left, and after the zone's birth), down to the step over
 # 2^_SUBSTEP_HALVINGS.
 _SUBSTEP_MOVE = 0.25
 _SUBSTEP_HALVINGS = 12
-# Halvings of the step that locate the fold (the step / 2⁴⁰: below round-off of the time).
-_FOLD_HALVINGS = 40
 
 
 class ZoneSprings(eqx.Module):
@@ -160,11 +158,7 @@ class DugdaleZoneArray(eqx.Module):
         )
         springs = jax.tree.map(lambda b, k: jnp.where(born, b, k), birth.springs, before.springs)
         zone = jnp.where(born, birth.zone, zone)
-        walk = jax.lax.cond(
-            on & (rest > 0.0),
-            lambda: self._zone_walk(springs, zone, depth, rate, rest),
-            lambda: Walked.held(self._segment(springs, zone, zone, depth, rate, rest), zone, rest),
-        )
+        walk = self._zone_walk(springs, zone, depth, rate, rest, held=~(on & (rest > 0.0)))
         folds = walk.folds
         folded = depth + rate * walk.elapsed
         collapse = self._collapse(ZoneSprings(walk.springs, walk.zone), folded)
@@ -186,13 +180,16 @@ class DugdaleZoneArray(eqx.Module):
             last_release=last_release,
         )
 
-    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration) -> Walked:
+    def _zone_walk(self, springs: SpringStates, zone, indentation, rate, duration, held) -> Walked:
         """The zone's part of a step: sub-steps, each with the loads linear in time to the root of
         the range condition at its end, halved (down to the step / 2^`_SUBSTEP_HALVINGS`) where c
         would move more than `_SUBSTEP_MOVE`·Δx or the root is lost, doubled again after each one
-        taken. A root lost at the shortest sub-step is the fold: located by `_fold`, the walk goes
-        on to it (c runs there as a square root of the time left: the sub-steps shrink towards
-        it) and stops. No root outward: the zone outgrows the array (`overflow`), the walk stops."""
+        taken. A root lost at the shortest sub-step is the fold: located by bisecting that
+        sub-step (`FOLD_HALVINGS` halvings, iterations of the walk's own loop, so that the range
+        condition's search is compiled once), the walk goes on to it (c runs there as a square
+        root of the time left: the sub-steps shrink towards it) and stops. No root outward: the
+        zone outgrows the array (`overflow`), the walk stops. `held` (the step the zone is born in,
+        or none): one sub-step at the loads of `zone`, no search."""
         shortest = duration * 2.0**-_SUBSTEP_HALVINGS
         zero = jnp.zeros_like(duration)
 
@@ -203,15 +200,30 @@ class DugdaleZoneArray(eqx.Module):
             left = walk.until - walk.elapsed
             length = jnp.minimum(walk.length, left)
             depth = indentation + rate * walk.elapsed
-            end, found, outward = self._zone_end(walk.springs, walk.zone, depth, rate, length)
+            fold = walk.fold
+            bisecting = fold.halvings < FOLD_HALVINGS
+            middle = 0.5 * (fold.low + fold.high)
+            end, found, outward = self._zone_end(
+                walk.springs, walk.zone, depth, rate, jnp.where(bisecting, middle, length), held
+            )
+            end, found, outward = jnp.where(held, walk.zone, end), found | held, outward & ~held
+            # A halving of the fold's bracket: the range condition keeps a root up to `low`.
+            low = jnp.where(found, middle, fold.low)
+            located_at = fold.halvings + 1 == FOLD_HALVINGS
+            halved = eqx.tree_at(
+                lambda w: (w.fold, w.length, w.until),
+                walk,
+                (
+                    FoldBracket(low, jnp.where(found, fold.high, middle), fold.halvings + 1),
+                    jnp.where(located_at, low, walk.length),
+                    jnp.where(located_at, walk.elapsed + low, walk.until),
+                ),
+            )
             inward_lost = ~found & ~outward
             can_halve = length > shortest
             halve = can_halve & (inward_lost | (found & (jnp.abs(end - walk.zone) > _SUBSTEP_MOVE * self.spacing)))
-            stuck = inward_lost & ~can_halve  # the fold within this sub-step
+            stuck = inward_lost & ~can_halve  # the fold within this sub-step: bisected next
             located = stuck & ~walk.pending
-            fold_at = jax.lax.cond(
-                located, lambda: self._fold(walk.springs, walk.zone, depth, rate, length)[0], lambda: length
-            )
             take = found & ~halve
             taken = jnp.where(take, length, 0.0)
             part = self._segment(walk.springs, walk.zone, end, depth, rate, taken)
@@ -227,7 +239,7 @@ class DugdaleZoneArray(eqx.Module):
             reached = take & (length >= left)
             pending = walk.pending | stuck
             released = jnp.where(take, part.last_release, -jnp.inf)
-            return Walked(
+            stepped = Walked(
                 springs=jax.tree.map(lambda p, k: jnp.where(take, p, k), part.springs, walk.springs),
                 zone=jnp.where(take, end, walk.zone),
                 elapsed=walk.elapsed + taken,
@@ -238,11 +250,13 @@ class DugdaleZoneArray(eqx.Module):
                 last_release=jnp.maximum(walk.last_release, walk.elapsed + released),
                 folds=(pending & reached) | (stuck & walk.pending),
                 overflow=~found & outward,
-                length=jnp.where(halve, 0.5 * length, jnp.where(take, 2.0 * length, fold_at)),
+                length=jnp.where(halve, 0.5 * length, jnp.where(take, 2.0 * length, length)),
                 finished=reached & ~pending,
-                until=jnp.where(located, walk.elapsed + fold_at, walk.until),
+                until=walk.until,
                 pending=pending,
+                fold=FoldBracket(jnp.zeros_like(length), length, jnp.where(located, 0, fold.halvings)),
             )
+            return jax.tree.map(lambda h, s: jnp.where(bisecting, h, s), halved, stepped)
 
         false = jnp.asarray(False)
         start = Walked(
@@ -260,21 +274,9 @@ class DugdaleZoneArray(eqx.Module):
             finished=false,
             until=duration,
             pending=false,
+            fold=FoldBracket.idle(duration),
         )
         return jax.lax.while_loop(walking, substep, start)
-
-    def _fold(self, springs: SpringStates, zone, indentation, rate, duration):
-        """(t, c): how long into a step of `duration` the range condition keeps a root near `zone`
-        (bisection, `_FOLD_HALVINGS` times), and the root there."""
-
-        def halve(_, bracket):
-            low, high, root = bracket
-            middle = 0.5 * (low + high)
-            end, found, _ = self._zone_end(springs, zone, indentation, rate, middle)
-            return jnp.where(found, middle, low), jnp.where(found, high, middle), jnp.where(found, end, root)
-
-        low, _, root = jax.lax.fori_loop(0, _FOLD_HALVINGS, halve, (jnp.zeros_like(duration), duration, zone))
-        return low, root
 
     def _segment(self, springs: SpringStates, zone, end, indentation, rate, duration) -> Segment:
         """The springs over `duration` with the zone loads linear in time from f(`zone`) to
@@ -378,7 +380,7 @@ class DugdaleZoneArray(eqx.Module):
             return self.range_excess(after.springs, indentation + rate * duration, zone)
 
         start = 0.5 * self.spacing
-        zone, _ = root_outward(excess, start, jnp.asarray(-1.0), jnp.asarray(1.0), self.spacing, self.length)
+        zone, _, _ = root_outward(excess, start, self.spacing, self.length, value=-1.0)
         born = ZoneSprings(jumped(zone), zone)
         dissipation = self.stored(ZoneSprings(springs, zone)) - self.stored(born) - self.interface(born, indentation)
         return Snap(born.springs, zone, dissipation)
@@ -396,11 +398,11 @@ class DugdaleZoneArray(eqx.Module):
         dissipation = self.stored(state) + self.interface(state, indentation) - self.stored(gone)
         return Snap(snapped, jnp.zeros(()), dissipation)
 
-    def _zone_end(self, springs: SpringStates, zone, indentation, rate, duration):
+    def _zone_end(self, springs: SpringStates, zone, indentation, rate, duration, skip=False):
         """(c₁, found, outward): the zone radius at the end of a step from `zone` that satisfies the range
         condition there, the springs having crept under loads linear in time to f(c₁); the root
         nearest `zone` in the direction the condition points (`outward`: c grows). Not found
-        inward: the fold."""
+        inward: the fold. Nothing searched (nor found) where `skip`."""
         depth = indentation + rate * duration
         safe = jnp.where(zone > 0.0, zone, 0.5 * self.spacing)
 
@@ -408,10 +410,8 @@ class DugdaleZoneArray(eqx.Module):
             after = self._segment(springs, safe, end, indentation, rate, duration)
             return self.range_excess(after.springs, depth, end)
 
-        here = excess(safe)
-        outward = here < 0.0
-        root, found = root_outward(excess, safe, here, jnp.where(outward, 1.0, -1.0), self.spacing, self.length)
-        return root, found, outward
+        root, found, here = root_outward(excess, safe, self.spacing, self.length, skip=skip)
+        return root, found, here < 0.0
 
 
 def zone_array(element: PronyElement, g, length, count, slots: int, stress, adhesion_range) -> DugdaleZoneArray:

@@ -20,6 +20,25 @@ class Segment(eqx.Module):
     last_release: jax.Array
 
 
+# Halvings of the sub-step that locate the fold (the step / 2⁴⁰: below round-off of the time).
+FOLD_HALVINGS = 40
+
+
+class FoldBracket(eqx.Module):
+    """The bisection that locates the fold within a sub-step: the range condition keeps a root
+    up to `low` and none at `high` (times into the sub-step); `FOLD_HALVINGS` halvings: none
+    under way."""
+
+    low: jax.Array
+    high: jax.Array
+    halvings: jax.Array
+
+    @staticmethod
+    def idle(duration) -> "FoldBracket":
+        """No bisection under way."""
+        return FoldBracket(jnp.zeros_like(duration), duration, jnp.asarray(FOLD_HALVINGS))
+
+
 class Walked(eqx.Module):
     """The zone's part of a step (`viscoelastic_dugdale.DugdaleZoneArray._zone_walk`)."""
 
@@ -36,28 +55,8 @@ class Walked(eqx.Module):
     length: jax.Array  # the next sub-step's length
     finished: jax.Array  # the last sub-step reached the step's end
     until: jax.Array  # where the walk ends: the step's end, or the fold once located
-    pending: jax.Array  # the fold is located: the walk goes on to it
-
-    @staticmethod
-    def held(part: "Segment", zone, duration) -> "Walked":
-        """A segment at fixed loads (the step the zone is born in, or none) as a finished walk."""
-        false = jnp.asarray(False)
-        return Walked(
-            part.springs,
-            zone,
-            duration,
-            part.impulse,
-            part.dissipation,
-            part.released,
-            part.gained,
-            part.last_release,
-            false,
-            false,
-            duration,
-            jnp.asarray(True),
-            duration,
-            false,
-        )
+    pending: jax.Array  # the fold is located (or being located): the walk goes on to it
+    fold: FoldBracket  # the fold's bisection, iterations of the walk's loop
 
 
 class Snap(eqx.Module):

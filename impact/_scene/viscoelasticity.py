@@ -9,7 +9,7 @@ from pydantic import Field
 from .._integrate.viscoelastic import ViscoelasticSprings
 from .._law.jkr import JKR
 from .._law.maugis_dugdale import MaugisDugdale
-from .._law.viscoelastic import Viscoelastic
+from .._law.viscoelastic import Viscoelastic, ViscoelasticDugdale
 from . import domains as d
 from .adhesion import AbstractAdhesion
 from .adhesion.base import value
@@ -54,13 +54,14 @@ class Viscoelasticity(Section):
         zero = value(xp, 0.0)
         law = None if adhesion is None else adhesion.law(xp)
         assert law is None or isinstance(law, JKR | MaugisDugdale), "validated: JKR or Maugis–Dugdale adhesion"
-        return Viscoelastic(
-            moduli=stacked("modulus"),
-            times=stacked("time"),
-            work_of_adhesion=zero if law is None else law.work_of_adhesion,
-            approach_work_of_adhesion=zero if law is None else law.approach_work_of_adhesion,
-            adhesive_stress=law.adhesive_stress if isinstance(law, MaugisDugdale) else zero,
-        )
+        moduli, times = stacked("modulus"), stacked("time")
+        if law is None or adhesion is None:
+            return Viscoelastic(moduli, times, zero, zero)
+        if isinstance(law, MaugisDugdale) and not adhesion.zero_range:
+            return ViscoelasticDugdale(
+                moduli, times, law.work_of_adhesion, law.approach_work_of_adhesion, law.adhesive_stress
+            )
+        return Viscoelastic(moduli, times, law.work_of_adhesion, law.approach_work_of_adhesion)
 
     def integrator(self, scene: "Scene") -> ViscoelasticSprings:
         """The spring array stepped by the implicit midpoint rule (validated: springs and dt given)."""
@@ -70,7 +71,6 @@ class Viscoelasticity(Section):
             capacity=spring_capacity(springs),
             dt=solver.dt,
             max_steps=solver.max_steps,
-            dugdale=scene.effects.adhesion is not None and not scene.effects.adhesion.zero_range,
         )
 
     def instantaneous_modulus(self, relaxed: float) -> float:
