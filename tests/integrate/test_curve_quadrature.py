@@ -3,6 +3,7 @@ hysteresis, Greenwood–Johnson): each ride along a rising segment of the equili
 by its energy balance and timed by quadrature, against the same impacts integrated by dopri8 at
 rtol 1e-13 and against the quadrature itself at twice its resolution."""
 
+import jax
 import numpy as np
 import pytest
 import yaml
@@ -10,10 +11,9 @@ from typer.testing import CliRunner
 
 import impact
 from impact import simulate
-from impact._core import stored
 from impact._integrate import curve_quadrature
 from impact._integrate.codes import RESULT_CODE
-from impact._run.sweep import batch as batch_module
+from impact._run.parameters import integrator_for, options_for, physics_for
 from impact._run.sweep import sweep
 from impact._scene.paths import with_values
 from impact._scene.scene import load_scene
@@ -65,31 +65,41 @@ def test_curve_quadrature_is_the_tight_integration(config):
 def test_curve_quadrature_is_converged(config, monkeypatch):
     """At twice the nodes of every rule and scan the results move by round-off: restitution,
     deepest indentation and force extremes by ≤ 1e-12 relative, contact times by ≤ 1e-9
-    (measured ≤ 3e-13 and ≤ 8e-10, hard/17 at 0.05 m/s). The rule's results come from
-    the program `test_curve_quadrature_is_the_tight_integration` compiles (a call of five)."""
-    scene = with_values(load_scene(CONFIGS / config), QUADRATURE)
-    swept = sweep(scene, {"initial.velocity": VELOCITIES}, order="given").results
-    at = [VELOCITIES.index(velocity) for velocity in CONVERGED_VELOCITIES]
-    results = {name: np.asarray(values)[at] for name, values in swept.items()}
+    (measured ≤ 3e-13 and ≤ 8e-10, hard/17 at 0.05 m/s)."""
+    scene = load_scene(CONFIGS / config)
+    results = _points_results(scene, CONVERGED_VELOCITIES)
     for name, value in (("_SCAN_CELLS", 16), ("_CELL_NODES", 32), ("_SUB_CELLS", 16), ("_NEWTON_STEPS", 16)):
         monkeypatch.setattr(curve_quadrature, name, value)
     monkeypatch.setattr(curve_quadrature, "_PANEL_NODES", 24)
     rule = curve_quadrature._rule()
     for name, value in zip(("_FRACTION", "_TIME_WEIGHTS", "_WORK_MATRIX"), rule, strict=True):
         monkeypatch.setattr(curve_quadrature, name, value)
-    # Traced afresh: a program kept in this process or stored under the sweep's key would not see
-    # the finer rule (and the finer one is not stored).
-    monkeypatch.setattr(batch_module, "_COMPILED", {})
-    monkeypatch.setattr(stored, "_stored_compiled", lambda *args: None)
-    finer = sweep(scene, {"initial.velocity": list(CONVERGED_VELOCITIES)}, order="given").results
-    assert np.array_equal(results["status"], finer["status"])
-    for name in ("separation_velocity", "max_indentation", "max_force", "min_force"):
-        coarse, fine = np.asarray(results[name]), np.asarray(finer[name])
-        assert np.all(np.abs(coarse - fine) <= 1e-12 * np.abs(fine)), name
-    separated = np.isfinite(np.asarray(finer["contact_time"]))
-    assert np.array_equal(np.isfinite(np.asarray(results["contact_time"])), separated)
-    coarse, fine = np.asarray(results["contact_time"])[separated], np.asarray(finer["contact_time"])[separated]
-    assert np.all(np.abs(coarse - fine) <= 1e-9 * fine)
+    finer = _points_results(scene, CONVERGED_VELOCITIES)
+    for coarse, fine in zip(results, finer, strict=True):
+        assert coarse["status"] == fine["status"]
+        for name in ("separation_velocity", "max_indentation", "max_force", "min_force"):
+            assert coarse[name] == pytest.approx(fine[name], rel=1e-12, abs=0.0), name
+        assert coarse["contact_time"] == pytest.approx(fine["contact_time"], rel=1e-9, abs=0.0)
+
+
+def _points_results(scene, velocities) -> list[dict]:
+    """Each impact's scaled outcome, by one program traced afresh (a cached program would not see
+    a patched rule) and called at each velocity (a traced field of the Physics)."""
+    scene = with_values(scene, QUADRATURE)
+    integrator, options = integrator_for(scene), options_for(scene, trajectory=False)
+    solve = jax.jit(lambda physics: integrator.solve(physics, options)[1])
+    outcomes = [solve(physics_for(with_values(scene, {"initial.velocity": velocity}))) for velocity in velocities]
+    return [
+        {
+            "status": int(outcome.status),
+            "separation_velocity": float(outcome.separation_velocity),
+            "max_indentation": float(outcome.max_indentation),
+            "max_force": float(outcome.max_force),
+            "min_force": float(outcome.min_force),
+            "contact_time": float(outcome.separation_time - outcome.touch_time),
+        }
+        for outcome in outcomes
+    ]
 
 
 @pytest.mark.slow
