@@ -54,14 +54,13 @@ class Viscoelasticity(Section):
         zero = value(xp, 0.0)
         law = None if adhesion is None else adhesion.law(xp)
         assert law is None or isinstance(law, JKR | MaugisDugdale), "validated: JKR or Maugis–Dugdale adhesion"
-        moduli, times = stacked("modulus"), stacked("time")
+        terms = {"moduli": stacked("modulus"), "times": stacked("time")}
         if law is None or adhesion is None:
-            return Viscoelastic(moduli, times, zero, zero)
+            return Viscoelastic(**terms, work_of_adhesion=zero, approach_work_of_adhesion=zero)
+        works = {"work_of_adhesion": law.work_of_adhesion, "approach_work_of_adhesion": law.approach_work_of_adhesion}
         if isinstance(law, MaugisDugdale) and not adhesion.zero_range:
-            return ViscoelasticDugdale(
-                moduli, times, law.work_of_adhesion, law.approach_work_of_adhesion, law.adhesive_stress
-            )
-        return Viscoelastic(moduli, times, law.work_of_adhesion, law.approach_work_of_adhesion)
+            return ViscoelasticDugdale(**terms, **works, adhesive_stress=law.adhesive_stress)
+        return Viscoelastic(**terms, **works)
 
     def integrator(self, scene: "Scene") -> ViscoelasticSprings:
         """The spring array stepped by the implicit midpoint rule (validated: springs and dt given)."""
