@@ -38,7 +38,7 @@ from .._law.reach import radius_bound
 from .._law.scales import Scales, energy_scales
 from .._law.viscoelastic import Viscoelastic
 from .._law.viscoelastic_dugdale import DugdaleZoneArray
-from .._law.viscoelastic_springs import SpringStates, ViscoelasticArray
+from .._law.viscoelastic_springs import SpringStates, StepTotals, ViscoelasticArray
 from .base import AbstractIntegrator
 from .carry import Carry, Outcome, finish, initial_carry, log_event, record_contact
 from .codes import ADVANCE, DONE, EVENT_CODE, FLIGHT, RECEDE, Status
@@ -256,9 +256,9 @@ class ViscoelasticSprings(AbstractIntegrator[ViscoelasticProblem]):
             return springs, totals, corrected
 
         start = c.v - 0.5 * h * walk.force
-        shapes = jax.eval_shape(lambda: array.advance(walk.springs, c.d, start, h))
-        empty = jax.tree.map(lambda shape: jnp.zeros(shape.shape, shape.dtype), shapes)
-        return jax.lax.fori_loop(0, self.ITERATIONS, evaluation, (*empty, start))
+        zero = jnp.zeros_like(start)  # the first iteration overwrites the springs and the totals
+        totals = StepTotals(impulse=zero, dissipation=zero, released=zero, gained=zero, last_release=zero)
+        return jax.lax.fori_loop(0, self.ITERATIONS, evaluation, (walk.springs, totals, start))
 
 
 class _FirstContact(eqx.Module):
