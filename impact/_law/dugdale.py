@@ -51,7 +51,10 @@ _RADIUS_NEWTON_STEPS = 12
 # a coarse grid brackets them; other bodies are searched finely.
 _CONTACT_LOG_SPAN = 40.0
 _ZONE_POINTS, _CONTACT_POINTS = 192, 640
-_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS = 32, 128
+_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS = 16, 32
+# The paraboloid's grid of a spring array's default length (`reach_radius`): finer than its
+# curve's (the reach is a grid point), and kept so that the default arrays stay as they are.
+_LENGTH_ZONE_POINTS, _LENGTH_CONTACT_POINTS = 32, 128
 # Turning points: bisection to 2^-8 of their grid cell, then Newton steps on dd/ds (clamped to
 # the bracket): each squares the error, the third to round-off.
 _TURN_BISECTION_STEPS = 8
@@ -260,13 +263,16 @@ class DugdaleCurve(AbstractCurve):
             jnp.where(closed, contact_zone, zone),
         )
 
-    def grid(self, law: DugdaleLaw):
-        """Zones b/b_J from 1e-12 to 1 (log and even), then contacts with −ln p from 0 to 40."""
-        zones, contacts = (
-            (_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS)
-            if law.closed_degree == 2
-            else (_ZONE_POINTS, _CONTACT_POINTS)
-        )
+    def grid(self, law: DugdaleLaw, points: tuple[int, int] | None = None):
+        """Zones b/b_J from 1e-12 to 1 (log and even), then contacts with −ln p from 0 to 40
+        (`points`: how many of each, if not the law's own)."""
+        if points is None:
+            points = (
+                (_PARABOLOID_ZONE_POINTS, _PARABOLOID_CONTACT_POINTS)
+                if law.closed_degree == 2
+                else (_ZONE_POINTS, _CONTACT_POINTS)
+            )
+        zones, contacts = points
         unit = jnp.concatenate([jnp.logspace(-12.0, 0.0, zones // 2), jnp.linspace(0.0, 1.0, zones // 2)])
         contact = self.junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, contacts + 1)[1:]
         return jnp.concatenate([self.junction * jnp.sort(unit), contact])
@@ -284,10 +290,10 @@ def _unsplit(law: DugdaleLaw) -> DugdaleCurve:
 
 
 def reach_radius(law: DugdaleLaw, reach: Reach):
-    """The contact radius where `build_curve` would end the curve (scaled), from its search grid
-    alone: no turning point is found."""
+    """The contact radius where the curve's reach lies on its search grid (scaled; the
+    paraboloid's finer `_LENGTH_*` grid), from the grid alone: no turning point is found."""
     curve = _unsplit(law)
-    grid = curve.grid(law)
+    grid = curve.grid(law, (_LENGTH_ZONE_POINTS, _LENGTH_CONTACT_POINTS) if law.closed_degree == 2 else None)
     depths, forces, radii, _ = curve.state(law, grid)
     return curve.state(law, reach(grid, depths, forces, radii))[2]
 
