@@ -110,6 +110,26 @@ def test_paraboloid_curve_turns_once_where_the_coarse_search_finds_it(tabor):
     assert float(curve.riding(law, jnp.asarray(nearest))[2]) == pytest.approx(0.0, abs=1e-9)
 
 
+@pytest.mark.parametrize("tabor", (1e-2, 1.0, 1e2))
+def test_paraboloid_nodes_equal_the_fine_search_of_the_same_body_as_a_power_law(tabor):
+    """The paraboloid's curve is searched on 48 states; the same body as a power law (n = 2,
+    c = 1/(2R)) on 832, its zone radius by Newton steps: the junction and the turning point of
+    d(s) hold the same contact and zone radii and force (SI) to 1e-10."""
+    paraboloid = problem_of(md_scene(tabor))
+    power = problem_of(md_scene(tabor, profile={"shape": "power_law", "n": 2.0, "c": 1.0 / (2.0 * R)}))
+
+    def inner_states(problem):  # (F [N], a [m], b [m]) at the nodes between 0 and the top
+        curve, law, scales = problem.curve, problem.law, problem.scales
+        nodes = np.unique(np.asarray(curve.nodes))[1:-1]
+        _, force, radius, zone = (np.asarray(v) for v in curve.state(law, jnp.asarray(nodes)))
+        return force * float(scales.force), radius * float(scales.radial), zone * float(scales.radial)
+
+    found, fine = inner_states(paraboloid), inner_states(power)
+    assert found[0].shape == fine[0].shape == (2,)
+    for coarse_values, fine_values in zip(found, fine, strict=True):
+        np.testing.assert_allclose(coarse_values, fine_values, rtol=1e-10, atol=1e-10 * np.max(np.abs(fine_values)))
+
+
 @pytest.mark.parametrize("tabor", (0.1, 1.0, 10.0))
 def test_zone_without_contact_and_its_junction(tabor):
     problem = problem_of(md_scene(tabor))
