@@ -244,7 +244,7 @@ class DugdaleCurve(AbstractCurve):
 
     def state(self, law: DugdaleLaw, s):
         """(d, F, a, b) at s."""
-        return self.joined(law, s, law.contact(self.share(s)))
+        return _state(self, law, s)
 
     def share(self, s):
         """The zone share p = e^(b_J − s) of the contact at s (1 in the zone without contact)."""
@@ -276,6 +276,14 @@ class DugdaleCurve(AbstractCurve):
         unit = jnp.concatenate([jnp.logspace(-12.0, 0.0, zones // 2), jnp.linspace(0.0, 1.0, zones // 2)])
         contact = self.junction + jnp.linspace(0.0, _CONTACT_LOG_SPAN, contacts + 1)[1:]
         return jnp.concatenate([self.junction * jnp.sort(unit), contact])
+
+
+# A ride's program evaluates the curve in about 30 places (its build, the vector field, the
+# inversion, the work's extremes, …): as its own jitted function the states' formulas are traced
+# once per shape of s (8 in an impact), and each place differentiates or batches that trace.
+@jax.jit
+def _state(curve: DugdaleCurve, law: DugdaleLaw, s):
+    return curve.joined(law, s, law.contact(curve.share(s)))
 
 
 def _unsplit(law: DugdaleLaw) -> DugdaleCurve:

@@ -144,39 +144,12 @@ class HysteresisCurve(AbstractCurve):
 
     def state(self, law: HystereticLaw, s):
         """(d, F, a, b) at s."""
-        return self._on_part(law, s, s)
+        return _on_part(self, law, s, s)
 
     def on_segment(self, law: HystereticLaw, s, segment):
         """(d, F, a, b) at s by the formula of the segment's part (continued across its ends: the
         parts meet at kinks, where a ride that starts at rest would see the wrong slope)."""
-        return self._on_part(law, s, 0.5 * (self.nodes[segment] + self.nodes[segment + 1]))
-
-    def _on_part(self, law: HystereticLaw, s, where_part):
-        """(d, F, a, b) at s by the formula of the part (and the frozen zone's side of φ = 0)
-        holding `where_part`."""
-        part = jnp.where(where_part <= self.lower, 0, jnp.where(where_part < self.upper, 1, 2))
-        # The two curves differ only in their range and junction: one evaluation, of the part's.
-        # (`where`, not min/max, for the parameter: their derivative at a tie is halved.)
-        detaching = part == 0
-        along = jnp.where(
-            detaching,
-            jnp.where(s <= self.lower, s, self.lower),
-            jnp.where(self.start + s - self.upper > 0.0, self.start + s - self.upper, 0.0),
-        )
-        range_ = jnp.where(detaching, law.detach.range, law.approach_range)
-        outer_law = eqx.tree_at(lambda outer: outer.range, law.detach, range_)
-        junction = jnp.where(detaching, self.detach.junction, self.approach.junction)
-        outer_curve = eqx.tree_at(lambda curve: curve.junction, self.detach, junction)
-        frozen_phi = self.switches_at[0] + s - self.lower
-        # The contact's formulas once, at the part's share and zone radius: the outer curve's b
-        # from its range condition, the frozen zone's b_f (the laws differ only in the range).
-        frozen = part == 1
-        share = jnp.where(frozen, frozen_share(frozen_phi), outer_curve.share(along))
-        contact = law.detach.contact(share, jnp.where(frozen, self.zone, outer_law.zone_radius(share)))
-        outer = outer_curve.joined(outer_law, along, contact)
-        closed = self.switches_at[0] + where_part - self.lower >= 0.0
-        frozen_part = frozen_state(law.detach, self.zone, frozen_phi, closed, contact)
-        return tuple(jnp.where(frozen, f, o) for o, f in zip(outer, frozen_part, strict=True))
+        return _on_part(self, law, s, 0.5 * (self.nodes[segment] + self.nodes[segment + 1]))
 
     def grid(self, law: HystereticLaw):
         """The detach curve's grid to s1, the frozen zone's ends, the approach curve's beyond s2."""
@@ -210,6 +183,37 @@ class HysteresisCurve(AbstractCurve):
         zone = self.state(law, s)[3]
         curve = self.at(law, zone)
         return curve, zone, jnp.where(s <= self.lower, curve.lower, jnp.where(s >= self.upper, curve.upper, s))
+
+
+# Traced once per shape of s and of the part's point, as `dugdale._state`: a ride evaluates the
+# path in about 30 places.
+@jax.jit
+def _on_part(curve: HysteresisCurve, law: HystereticLaw, s, where_part):
+    """(d, F, a, b) at s by the formula of the part (and the frozen zone's side of φ = 0)
+    holding `where_part`."""
+    part = jnp.where(where_part <= curve.lower, 0, jnp.where(where_part < curve.upper, 1, 2))
+    # The two curves differ only in their range and junction: one evaluation, of the part's.
+    # (`where`, not min/max, for the parameter: their derivative at a tie is halved.)
+    detaching = part == 0
+    along = jnp.where(
+        detaching,
+        jnp.where(s <= curve.lower, s, curve.lower),
+        jnp.where(curve.start + s - curve.upper > 0.0, curve.start + s - curve.upper, 0.0),
+    )
+    range_ = jnp.where(detaching, law.detach.range, law.approach_range)
+    outer_law = eqx.tree_at(lambda outer: outer.range, law.detach, range_)
+    junction = jnp.where(detaching, curve.detach.junction, curve.approach.junction)
+    outer_curve = eqx.tree_at(lambda curve: curve.junction, curve.detach, junction)
+    frozen_phi = curve.switches_at[0] + s - curve.lower
+    # The contact's formulas once, at the part's share and zone radius: the outer curve's b
+    # from its range condition, the frozen zone's b_f (the laws differ only in the range).
+    frozen = part == 1
+    share = jnp.where(frozen, frozen_share(frozen_phi), outer_curve.share(along))
+    contact = law.detach.contact(share, jnp.where(frozen, curve.zone, outer_law.zone_radius(share)))
+    outer = outer_curve.joined(outer_law, along, contact)
+    closed = curve.switches_at[0] + where_part - curve.lower >= 0.0
+    frozen_part = frozen_state(law.detach, curve.zone, frozen_phi, closed, contact)
+    return tuple(jnp.where(frozen, f, o) for o, f in zip(outer, frozen_part, strict=True))
 
 
 def hysteresis_curve(

@@ -20,6 +20,7 @@ from scipy.optimize import brentq
 from impact import load_scene, simulate, theory
 from impact._integrate.curve import CurveIntegrator
 from impact._law.dugdale import DugdaleLaw
+from impact._law.dugdale_hysteresis import _on_part as path_state
 from impact._law.dugdale_hysteresis import frozen_state
 from impact._run.impacts import solve_scene
 from impact._run.parameters import integrator_for, options_for, physics_for
@@ -133,7 +134,8 @@ def test_the_path_is_each_parts_own_formula_from_one_evaluation_of_the_contact(m
     """Along the detach curve, the frozen zone and the approach curve the path's state is the
     part's own formula bit for bit (`DugdaleCurve.state` of the detach or approach law at its
     own parameter, `frozen_state` at φ = φ_d + s − s1), though the path evaluates the contact's
-    formulas once for all three parts (traced once per state, not twice)."""
+    formulas once for all three parts (traced once per state, not twice; and once per shape of
+    s: the path's formulas are one jitted function, whose trace later evaluations reuse)."""
     _, law, path = path_of(scene(1.0, 0.5), fraction=0.4)
     lower, upper = float(path.lower), float(path.upper)
     detach = jnp.asarray(lower * np.array([0.2, 0.6, 0.9]))
@@ -152,7 +154,10 @@ def test_the_path_is_each_parts_own_formula_from_one_evaluation_of_the_contact(m
     traced: list[int] = []
     contact = DugdaleLaw.contact
     monkeypatch.setattr(DugdaleLaw, "contact", lambda *args, **kwargs: traced.append(1) or contact(*args, **kwargs))
+    path_state.clear_cache()  # the evaluations above
     jax.make_jaxpr(lambda s: path.state(law, s))(frozen)
+    assert len(traced) == 1
+    jax.make_jaxpr(lambda s: path.state(law, s) + path.state(law, 2.0 * s))(frozen)
     assert len(traced) == 1
 
 

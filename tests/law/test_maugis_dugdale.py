@@ -5,6 +5,7 @@
 import math
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -14,6 +15,8 @@ from typer.testing import CliRunner
 import impact
 from impact import load_scene, simulate, theory
 from impact._io.run import read_run
+from impact._law.dugdale import DugdaleLaw
+from impact._law.dugdale import _state as dugdale_state
 from impact._law.maugis_curves import normalized_curve
 from impact._plots.maugis_curves import equilibrium_figure
 from impact._run.parameters import integrator_for, options_for, physics_for
@@ -128,6 +131,31 @@ def test_paraboloid_nodes_equal_the_fine_search_of_the_same_body_as_a_power_law(
     assert found[0].shape == fine[0].shape == (2,)
     for coarse_values, fine_values in zip(found, fine, strict=True):
         np.testing.assert_allclose(coarse_values, fine_values, rtol=1e-10, atol=1e-10 * np.max(np.abs(fine_values)))
+
+
+def test_the_curve_states_are_traced_once_per_shape(monkeypatch):
+    """A ride evaluates the curve in many places; its states are one jitted function, so the
+    contact's formulas are traced once per shape of s, and a derivative or a batch of them reuses
+    that trace."""
+    problem = problem_of(md_scene(1.0))
+    curve, law = problem.curve, problem.law
+    traced: list[int] = []
+    contact = DugdaleLaw.contact
+    monkeypatch.setattr(DugdaleLaw, "contact", lambda *args, **kwargs: traced.append(1) or contact(*args, **kwargs))
+    s = jnp.linspace(0.1, 2.0, 7)
+    dugdale_state.clear_cache()  # traces of earlier tests in this process
+
+    def places(s):
+        riding = curve.riding(law, s)
+        return (
+            curve.state(law, s),
+            curve.depth(law, 2.0 * s),
+            riding,
+            jax.vmap(lambda x: curve.force(law, x))(s[:, None]),
+        )
+
+    jax.make_jaxpr(places)(s)
+    assert len(traced) == 2  # s of shape [7], and the batch's rows of shape [1]
 
 
 @pytest.mark.parametrize("tabor", (0.1, 1.0, 10.0))
