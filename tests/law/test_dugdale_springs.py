@@ -17,11 +17,11 @@ from impact._integrate.codes import RESULT_CODE
 from impact._integrate.dugdale import DugdaleSpringIntegrator
 from impact._integrate.quasistatic import QuasiStaticNumerics, march
 from impact._law.dugdale import DugdaleLaw
-from impact._law.dugdale_springs import contact_margin, piece_state
+from impact._law.dugdale_springs import LENGTH_MARGIN, contact_margin, piece_state
 from impact._law.scales import Scales
 from impact._run.impacts import solve_scene
 from impact._run.indentation import indentation_loading, indentation_numerics
-from impact._run.parameters import options_for
+from impact._run.parameters import integrator_for, options_for, physics_for
 from impact.profiles import Paraboloid
 from tests.scenes import A_JKR, D_JKR, E_STAR, F_JKR, MASS, WORK, R, micro_sphere
 
@@ -108,6 +108,23 @@ def test_quasi_static_pull_off_converges_at_second_order(control):
     coarse = eqx.tree_at(lambda x: (x.spring_count, x.law.adhesive_stress), loading, (jnp.asarray(32), stress))
     _, outcome = march(coarse, numerics)
     assert int(outcome.status) == RESULT_CODE["unresolved_zone"]
+
+
+@pytest.mark.parametrize("tabor", [0.3, 3.0])
+def test_the_default_array_reaches_just_beyond_the_largest_contact(tabor):
+    """Without `contact.length` the array spans LENGTH_MARGIN / TOP_MARGIN times the contact
+    radius where the continuum curve's reach lies on its search grid: beyond the continuum
+    impact's largest contact radius by at least LENGTH_MARGIN, and within 2.5 times it (measured
+    2.15 and 1.70; the reach read on the curve's own coarser grid gives 2.7 and 8.9)."""
+    continuum = impact_scene(tabor)
+    largest = float(np.max(simulate(continuum).contact_radius))
+    scene = load_scene({**continuum, "contact": {"springs": 64}})
+    problem = eqx.filter_jit(lambda integrator, physics, options: integrator.build(physics, options))(
+        integrator_for(scene), physics_for(scene), options_for(scene, trajectory=False)
+    )
+    curve = problem.curve
+    length = float(curve.spacing * curve.count * problem.scales.radial)
+    assert LENGTH_MARGIN * largest <= length <= 2.5 * largest
 
 
 @pytest.mark.slow
