@@ -10,9 +10,9 @@ s = s₀ + (s₁ − s₀)·(1 − cos πθ)/2 (which takes away the 1/√ singu
 The work ∫F d'(s) ds is the difference of the curve's energy where it has one in closed form
 (the Maugis–Dugdale paraboloid: `_law.dugdale_energy`); elsewhere it is summed by Gauss–Legendre
 from the phase's start, cell by cell along the segment (the curve is smooth on a segment). At
-the rule's nodes it comes from its panels' spectral integration matrices (`_rule`). The jumps between segments, the
-memory of a hysteretic path and the statuses are the ODE rider's (`curve.after_ride`), so the
-two differ only in how a ride along a segment is followed.
+the rule's nodes it comes from its panels' spectral integration matrices (`_rule`). The jumps
+between segments, the memory of a hysteretic path and the statuses are the ODE rider's
+(`curve.after_ride`), so the two differ only in how a ride along a segment is followed.
 """
 
 from typing import ClassVar

@@ -203,7 +203,7 @@ def _on_part(curve: HysteresisCurve, law: HystereticLaw, s, where_part):
     range_ = jnp.where(detaching, law.detach.range, law.approach_range)
     outer_law = eqx.tree_at(lambda outer: outer.range, law.detach, range_)
     junction = jnp.where(detaching, curve.detach.junction, curve.approach.junction)
-    outer_curve = eqx.tree_at(lambda curve: curve.junction, curve.detach, junction)
+    outer_curve = eqx.tree_at(lambda detach: detach.junction, curve.detach, junction)
     frozen_phi = curve.switches_at[0] + s - curve.lower
     # The contact's formulas once, at the part's share and zone radius: the outer curve's b
     # from its range condition, the frozen zone's b_f (the laws differ only in the range).
